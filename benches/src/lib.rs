@@ -1,0 +1,2 @@
+//! Shared helpers for the benchmarks (work in progress).
+#![forbid(unsafe_code)]

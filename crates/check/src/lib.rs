@@ -1,0 +1,2 @@
+//! Input checking (work in progress).
+#![forbid(unsafe_code)]

@@ -1,0 +1,2 @@
+//! The `envelope` program (work in progress).
+fn main() {}

@@ -1,0 +1,2 @@
+//! Mesh file formats (work in progress).
+#![forbid(unsafe_code)]

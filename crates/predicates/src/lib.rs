@@ -1,0 +1,2 @@
+//! Exact geometric predicates (work in progress).
+#![forbid(unsafe_code)]
