@@ -1,2 +1,363 @@
-//! Mesh file formats (work in progress).
+//! Readers and writers for OBJ, OFF, PLY and STL triangle meshes.
+//!
+//! Every reader produces a [`TriangleSoup`] and a [`ReadReport`], and validates at the
+//! boundary: each coordinate passes [`envelope_mesh::check_coordinate`], each index is in
+//! range, and anything else wrong (truncation, wrong header counts, malformed numbers, no
+//! faces, garbage) is a typed [`ReadError`] naming the file, the line or byte offset and the
+//! problem. Readers never panic and never reserve more than the remaining input can hold, so
+//! a header announcing 2^31 vertices in a 100-byte file fails fast instead of allocating.
+//!
+//! Conversions (all listed in the report):
+//! * polygons with more than three corners (OBJ, OFF, PLY) are fan-triangulated from their
+//!   first corner, which is exact for convex polygons and may fold non-convex ones;
+//! * PLY `tristrips` are expanded with alternating winding, `-1` restarting a strip, and strip
+//!   triangles with a repeated corner dropped;
+//! * STL corners are welded: bitwise-equal positions become one vertex, numbered in order of
+//!   first appearance. STL stores `f32`; the conversion to `f64` is exact.
+//!
+//! Writers use Rust's shortest round-trip float formatting, so text output read back gives
+//! the same `f64` values; binary PLY stores `double`. STL stores `f32`, so an STL round trip is
+//! exact only for `f32`-representable coordinates, and loses unreferenced vertices and the
+//! vertex order (vertices come back in order of first use).
+//!
+//! ```
+//! use envelope_io::{read, write, Format, PlyEncoding};
+//! use envelope_mesh::TriangleSoup;
+//! let soup = TriangleSoup::from_raw(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.1, 0.0]], &[[0, 1, 2]]);
+//! let mut bytes = Vec::new();
+//! write(&mut bytes, &soup, Format::Ply(PlyEncoding::BinaryLittleEndian)).unwrap();
+//! let (back, report) = read(&bytes[..], Format::Ply(PlyEncoding::Ascii)).unwrap();
+//! assert_eq!(back, soup);
+//! assert_eq!(report.format, Format::Ply(PlyEncoding::BinaryLittleEndian)); // the header decides
+//! ```
 #![forbid(unsafe_code)]
+
+mod build;
+mod error;
+mod input;
+mod obj;
+mod off;
+mod ply;
+mod report;
+mod stl;
+
+use std::fmt;
+use std::fs;
+use std::io::{self, BufWriter, Read, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use envelope_mesh::{TriangleSoup, check_coordinate};
+
+pub use error::{Axis, Location, ReadError, ReadErrorKind, WriteError, WriteErrorKind};
+pub use report::ReadReport;
+
+use input::Input;
+
+/// Encoding of a PLY file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PlyEncoding {
+    /// `format ascii 1.0`.
+    Ascii,
+    /// `format binary_little_endian 1.0`.
+    BinaryLittleEndian,
+    /// `format binary_big_endian 1.0`.
+    BinaryBigEndian,
+}
+
+/// Encoding of an STL file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StlEncoding {
+    /// `solid ... endsolid` text.
+    Ascii,
+    /// 80-byte header, `u32` count, 50-byte records.
+    Binary,
+}
+
+/// A mesh file format. For reading only the family matters (the PLY header and the STL
+/// content decide the encoding); for writing the encoding is used as given.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Format {
+    /// Wavefront OBJ (`v` and `f` statements).
+    Obj,
+    /// Object File Format (`OFF`, also `COFF`, `NOFF`, `STOFF` headers when reading).
+    Off,
+    /// Stanford polygon format.
+    Ply(PlyEncoding),
+    /// Stereolithography triangles.
+    Stl(StlEncoding),
+}
+
+impl Format {
+    /// The format a file extension names (ASCII case-insensitive, without the dot), with the
+    /// binary encoding for PLY and STL.
+    ///
+    /// ```
+    /// use envelope_io::{Format, StlEncoding};
+    /// assert_eq!(Format::from_extension("STL"), Some(Format::Stl(StlEncoding::Binary)));
+    /// assert_eq!(Format::from_extension("txt"), None);
+    /// ```
+    #[must_use]
+    pub fn from_extension(ext: &str) -> Option<Self> {
+        let ext = ext.to_ascii_lowercase();
+        match ext.as_str() {
+            "obj" => Some(Format::Obj),
+            "off" => Some(Format::Off),
+            "ply" => Some(Format::Ply(PlyEncoding::BinaryLittleEndian)),
+            "stl" => Some(Format::Stl(StlEncoding::Binary)),
+            _ => None,
+        }
+    }
+
+    /// The format a path's extension names, see [`Format::from_extension`].
+    #[must_use]
+    pub fn from_path(path: &Path) -> Option<Self> {
+        Self::from_extension(path.extension()?.to_str()?)
+    }
+
+    /// Guesses the format from the first bytes of a file (a few hundred suffice) and, when
+    /// known, its total length (needed to recognise binary STL by its size).
+    ///
+    /// ```
+    /// use envelope_io::{Format, PlyEncoding};
+    /// assert_eq!(Format::sniff(b"ply\nformat ascii 1.0\n", None), Some(Format::Ply(PlyEncoding::Ascii)));
+    /// assert_eq!(Format::sniff(b"# cube\nv 0 0 0\n", None), Some(Format::Obj));
+    /// ```
+    #[must_use]
+    pub fn sniff(head: &[u8], len: Option<u64>) -> Option<Self> {
+        if head.starts_with(b"ply\n") || head.starts_with(b"ply\r\n") {
+            let enc = if contains(head, b"binary_little_endian") {
+                PlyEncoding::BinaryLittleEndian
+            } else if contains(head, b"binary_big_endian") {
+                PlyEncoding::BinaryBigEndian
+            } else {
+                PlyEncoding::Ascii
+            };
+            return Some(Format::Ply(enc));
+        }
+        if head.len() >= 84 && len.is_some_and(|l| l == stl::binary_size(head)) {
+            return Some(Format::Stl(StlEncoding::Binary));
+        }
+        let text = head.trim_ascii_start();
+        if text.len() >= 5 && text[..5].eq_ignore_ascii_case(b"solid") {
+            return Some(Format::Stl(StlEncoding::Ascii));
+        }
+        // The first non-comment token decides between OFF and OBJ.
+        let mut first = None;
+        for line in head.split(|&b| b == b'\n') {
+            let line = line.split(|&b| b == b'#').next().unwrap_or_default();
+            if let Some(t) = input::tokens(line).next() {
+                first = Some(t);
+                break;
+            }
+        }
+        let first = first?;
+        if first.ends_with(b"OFF") {
+            return Some(Format::Off);
+        }
+        const OBJ_KEYWORDS: [&[u8]; 12] =
+            [b"v", b"vt", b"vn", b"vp", b"f", b"o", b"g", b"s", b"l", b"p", b"mtllib", b"usemtl"];
+        if OBJ_KEYWORDS.contains(&first) {
+            return Some(Format::Obj);
+        }
+        None
+    }
+
+    /// The usual file extension.
+    #[must_use]
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::Obj => "obj",
+            Format::Off => "off",
+            Format::Ply(_) => "ply",
+            Format::Stl(_) => "stl",
+        }
+    }
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Format::Obj => "OBJ",
+            Format::Off => "OFF",
+            Format::Ply(PlyEncoding::Ascii) => "PLY (ascii)",
+            Format::Ply(PlyEncoding::BinaryLittleEndian) => "PLY (binary little-endian)",
+            Format::Ply(PlyEncoding::BinaryBigEndian) => "PLY (binary big-endian)",
+            Format::Stl(StlEncoding::Ascii) => "STL (ascii)",
+            Format::Stl(StlEncoding::Binary) => "STL (binary)",
+        })
+    }
+}
+
+fn contains(hay: &[u8], needle: &[u8]) -> bool {
+    hay.windows(needle.len()).any(|w| w == needle)
+}
+
+/// Reads a mesh in the given format family from any reader (buffering is done here; a
+/// `BufReader` is not needed). Without a known input size, reservations from header counts
+/// are capped and the arrays grow as real data arrives.
+///
+/// ```
+/// use envelope_io::{read, Format};
+/// let off = b"OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+/// let (soup, report) = read(&off[..], Format::Off).unwrap();
+/// assert_eq!((soup.num_vertices(), soup.num_faces()), (4, 2));
+/// assert_eq!(report.polygons_triangulated, 1);
+/// ```
+///
+/// # Errors
+/// A [`ReadError`] (with `path: None`) for anything wrong with the input.
+pub fn read<R: Read>(reader: R, format: Format) -> Result<(TriangleSoup, ReadReport), ReadError> {
+    read_input(Input::new(reader, None), format)
+}
+
+fn read_input<R: Read>(
+    input: Input<R>,
+    format: Format,
+) -> Result<(TriangleSoup, ReadReport), ReadError> {
+    match format {
+        Format::Obj => obj::read(input),
+        Format::Off => off::read(input),
+        Format::Ply(_) => ply::read(input),
+        Format::Stl(_) => stl::read(input),
+    }
+}
+
+/// Reads a mesh file, choosing the format from the extension (case-insensitive) or, when the
+/// extension is missing or unknown, from the content ([`Format::sniff`]).
+///
+/// ```
+/// # let dir = tempfile::tempdir().unwrap();
+/// # let path = dir.path().join("tri.obj");
+/// # std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+/// let (soup, _report) = envelope_io::read_path(&path).unwrap();
+/// assert_eq!(soup.num_faces(), 1);
+/// let err = envelope_io::read_path(dir.path()).unwrap_err();
+/// assert_eq!(err.kind, envelope_io::ReadErrorKind::IsADirectory);
+/// ```
+///
+/// # Errors
+/// A [`ReadError`] naming `path` for a missing file, a directory, an unknown format or
+/// anything wrong with the content.
+pub fn read_path(path: impl AsRef<Path>) -> Result<(TriangleSoup, ReadReport), ReadError> {
+    let path = path.as_ref();
+    let fail = |kind: ReadErrorKind| ReadError::new(Location::None, kind).with_path(path);
+    let meta = fs::metadata(path).map_err(|e| fail(e.kind().into()))?;
+    if meta.is_dir() {
+        return Err(fail(ReadErrorKind::IsADirectory));
+    }
+    let file = fs::File::open(path).map_err(|e| fail(e.kind().into()))?;
+    let mut input = Input::new(file, Some(meta.len()));
+    let format = match Format::from_path(path) {
+        Some(f) => f,
+        None => {
+            let head = input.peek(512).map_err(|e| fail(e.kind().into()))?;
+            Format::sniff(head, Some(meta.len())).ok_or_else(|| fail(ReadErrorKind::UnknownFormat))?
+        }
+    };
+    read_input(input, format).map_err(|e| e.with_path(path))
+}
+
+/// Checks what the readers would check, so that whatever is written can be read back.
+fn validate(soup: &TriangleSoup) -> Result<(), WriteErrorKind> {
+    for (v, p) in soup.positions.iter().enumerate() {
+        for (axis, x) in Axis::ALL.into_iter().zip(p.to_array()) {
+            if let Err(error) = check_coordinate(x) {
+                return Err(WriteErrorKind::Coordinate { vertex: v as u64, axis, error });
+            }
+        }
+    }
+    let n = soup.positions.len();
+    for (f, face) in soup.faces.iter().enumerate() {
+        if let Some(v) = face.iter().find(|v| v.index() >= n) {
+            return Err(WriteErrorKind::IndexOutOfRange {
+                face: f as u64,
+                index: v.0,
+                vertices: n as u64,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Writes `soup` in `format` (buffered internally). Coordinates that
+/// [`envelope_mesh::check_coordinate`] rejects and out-of-range indices are refused before
+/// anything is written. An empty soup is written as such, but readers reject it.
+///
+/// ```
+/// use envelope_io::{write, Format};
+/// use envelope_mesh::TriangleSoup;
+/// let soup = TriangleSoup::from_raw(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.5, 0.0]], &[[0, 1, 2]]);
+/// let mut out = Vec::new();
+/// write(&mut out, &soup, Format::Obj).unwrap();
+/// assert!(String::from_utf8(out).unwrap().ends_with("v 0.0 0.5 0.0\nf 1 2 3\n"));
+/// ```
+///
+/// # Errors
+/// [`WriteErrorKind::Io`] when the writer fails, the other kinds for an invalid soup.
+pub fn write<W: Write>(writer: W, soup: &TriangleSoup, format: Format) -> Result<(), WriteError> {
+    validate(soup)?;
+    let mut w = BufWriter::with_capacity(1 << 16, writer);
+    match format {
+        Format::Obj => obj::write(&mut w, soup)?,
+        Format::Off => off::write(&mut w, soup)?,
+        Format::Ply(enc) => ply::write(&mut w, soup, enc)?,
+        Format::Stl(enc) => stl::write(&mut w, soup, enc)?,
+    }
+    w.flush()?;
+    Ok(())
+}
+
+static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Writes `soup` to `path` atomically: into a temporary file in the same directory, synced,
+/// then renamed over `path`. An existing file at `path` is never left half-written, and the
+/// temporary file is removed on error.
+///
+/// ```
+/// use envelope_io::{read_path, write_path, Format, StlEncoding};
+/// use envelope_mesh::TriangleSoup;
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("tri.stl");
+/// let soup = TriangleSoup::from_raw(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.5, 0.0]], &[[0, 1, 2]]);
+/// write_path(&path, &soup, Format::Stl(StlEncoding::Binary)).unwrap();
+/// assert_eq!(read_path(&path).unwrap().0, soup);
+/// ```
+///
+/// # Errors
+/// A [`WriteError`] naming `path`.
+pub fn write_path(
+    path: impl AsRef<Path>,
+    soup: &TriangleSoup,
+    format: Format,
+) -> Result<(), WriteError> {
+    let path = path.as_ref();
+    validate(soup).map_err(|k| WriteError::from(k).with_path(path))?;
+    let (tmp, file) = create_temp(path).map_err(|e| WriteError::from(e).with_path(path))?;
+    let result = write(&file, soup, format)
+        .and_then(|()| file.sync_all().map_err(WriteError::from))
+        .and_then(|()| fs::rename(&tmp, path).map_err(WriteError::from));
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result.map_err(|e| e.with_path(path))
+}
+
+fn create_temp(path: &Path) -> io::Result<(PathBuf, fs::File)> {
+    let name = path
+        .file_name()
+        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "path has no file name"))?;
+    let dir = path.parent().unwrap_or(Path::new(""));
+    loop {
+        let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+        let mut tmp_name = std::ffi::OsString::from(".");
+        tmp_name.push(name);
+        tmp_name.push(format!(".{}.{n}.tmp", std::process::id()));
+        let tmp = dir.join(tmp_name);
+        match fs::OpenOptions::new().write(true).create_new(true).open(&tmp) {
+            Ok(f) => return Ok((tmp, f)),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists && n < u64::MAX => {}
+            Err(e) => return Err(e),
+        }
+    }
+}

@@ -1,0 +1,214 @@
+//! Wavefront OBJ: `v x y z` and `f i j k ...` statements; everything else is ignored (and
+//! counted in the report).
+//!
+//! * Face corners may be `i`, `i/t`, `i//n` or `i/t/n`; only the vertex index `i` is kept.
+//! * Indices are 1-based; negative indices count back from the last vertex defined so far.
+//!   Indices must name a vertex defined before the face (as every common writer does).
+//! * Polygons with more than three corners are fan-triangulated from the first corner.
+//! * `#` starts a comment; a `\` at the end of a line joins the next line to it.
+//! * Extra vertex values (`w`, or the common `r g b` colour extension) are ignored.
+
+use std::collections::BTreeMap;
+use std::io::{self, Read, Write};
+
+use envelope_mesh::TriangleSoup;
+
+use crate::build::{check_vertex_count, checked_position, finish, push_polygon};
+use crate::error::{ReadError, ReadErrorKind};
+use crate::input::{Input, Lines, parse_f64, parse_i64};
+use crate::{Format, ReadReport};
+
+/// Reads the next logical line (joining `\` continuations); false at the end.
+fn next_statement<R: Read>(lines: &mut Lines<R>) -> Result<bool, ReadError> {
+    if !lines.next()? {
+        return Ok(false);
+    }
+    while lines.line.trim_ascii_end().ends_with(b"\\") {
+        let mut acc = std::mem::take(&mut lines.line);
+        let keep = acc.trim_ascii_end().len() - 1;
+        acc.truncate(keep);
+        acc.push(b' ');
+        let more = lines.next()?;
+        if more {
+            acc.extend_from_slice(&lines.line);
+        }
+        lines.line = acc;
+        if !more {
+            break;
+        }
+    }
+    Ok(true)
+}
+
+pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport), ReadError> {
+    let mut lines = Lines::new(input, Some(b'#'));
+    let mut report = ReadReport::new(Format::Obj);
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    let mut poly: Vec<u32> = Vec::new();
+    let mut face_no = 0u64;
+    let mut ignored: BTreeMap<String, u64> = BTreeMap::new();
+    let mut extra_vertex_values = 0u64;
+    while next_statement(&mut lines)? {
+        let loc = lines.location();
+        let err = |kind| ReadError::new(loc, kind);
+        let mut toks = lines.tokens();
+        let Some(keyword) = toks.next() else { continue };
+        match keyword {
+            b"v" => {
+                let mut p = [0.0; 3];
+                for (i, c) in p.iter_mut().enumerate() {
+                    let t = toks.next().ok_or_else(|| {
+                        err(ReadErrorKind::WrongValueCount { expected: 3, found: i as u64 })
+                    })?;
+                    *c = parse_f64(t).ok_or_else(|| err(ReadErrorKind::MalformedNumber))?;
+                }
+                if toks.next().is_some() {
+                    extra_vertex_values += 1;
+                }
+                let n = positions.len() as u64;
+                check_vertex_count(n + 1).map_err(err)?;
+                positions.push(checked_position(p, n).map_err(err)?);
+            }
+            b"f" => {
+                poly.clear();
+                let n = positions.len() as i64;
+                for t in toks {
+                    let idx = t.split(|&b| b == b'/').next().unwrap_or_default();
+                    let raw = parse_i64(idx).ok_or_else(|| err(ReadErrorKind::MalformedNumber))?;
+                    let index = match raw {
+                        r if r > 0 => r - 1,
+                        r if r < 0 => n.saturating_add(r),
+                        _ => -1,
+                    };
+                    if index < 0 || index >= n {
+                        return Err(err(ReadErrorKind::IndexOutOfRange {
+                            what: "face",
+                            element: face_no,
+                            index,
+                            vertices: n as u64,
+                        }));
+                    }
+                    poly.push(index as u32);
+                }
+                push_polygon(&mut faces, &poly, face_no, &mut report).map_err(err)?;
+                face_no += 1;
+            }
+            other => {
+                *ignored.entry(String::from_utf8_lossy(other).into_owned()).or_default() += 1;
+            }
+        }
+    }
+    if extra_vertex_values > 0 {
+        report.note(format!("{extra_vertex_values} vertices had values after x y z (ignored)"));
+    }
+    for (k, n) in ignored {
+        report.note(format!("ignored {n} '{k}' statements"));
+    }
+    let loc = lines.location();
+    finish(positions, faces, report).map_err(|k| ReadError::new(loc, k))
+}
+
+pub(crate) fn write<W: Write>(w: &mut W, soup: &TriangleSoup) -> io::Result<()> {
+    writeln!(w, "# {} vertices, {} triangles", soup.num_vertices(), soup.num_faces())?;
+    for p in &soup.positions {
+        writeln!(w, "v {:?} {:?} {:?}", p.x, p.y, p.z)?;
+    }
+    for f in &soup.faces {
+        writeln!(w, "f {} {} {}", f[0].0 as u64 + 1, f[1].0 as u64 + 1, f[2].0 as u64 + 1)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Axis, Location, read};
+    use envelope_mesh::CoordError;
+
+    fn obj(s: &str) -> Result<(TriangleSoup, ReadReport), ReadError> {
+        read(s.as_bytes(), Format::Obj)
+    }
+
+    fn kind(s: &str) -> ReadErrorKind {
+        obj(s).unwrap_err().kind
+    }
+
+    #[test]
+    fn quad_with_slashes_negatives_continuations_and_comments() {
+        let (soup, report) = obj(concat!(
+            "# a quad\n",
+            "mtllib x.mtl\n",
+            "v 0 0 0\nv 1 0 0 # comment\nv 1 1 0 1.0\n",
+            "v 0 \\\n 1 0\n",
+            "vt 0 0\nvn 0 0 1\n",
+            "f 1/1/1 2//1 -2/1 -1\n",
+        ))
+        .unwrap();
+        assert_eq!(
+            soup,
+            TriangleSoup::from_raw(
+                &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+                &[[0, 1, 2], [0, 2, 3]]
+            )
+        );
+        assert_eq!(report.polygons_triangulated, 1);
+        assert_eq!(report.triangles_from_polygons, 2);
+        assert!(report.notes.iter().any(|n| n.contains("'vt'")));
+        assert!(report.notes.iter().any(|n| n.contains("after x y z")));
+    }
+
+    #[test]
+    fn crlf_lines() {
+        let (soup, _) = obj("v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n").unwrap();
+        assert_eq!(soup.num_faces(), 1);
+    }
+
+    #[test]
+    fn bad_inputs() {
+        assert_eq!(
+            kind("v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n"),
+            ReadErrorKind::Coordinate { vertex: 1, axis: Axis::Y, error: CoordError::NaN }
+        );
+        assert_eq!(
+            kind("v 0 0 1e300\n"),
+            ReadErrorKind::Coordinate { vertex: 0, axis: Axis::Z, error: CoordError::TooLarge }
+        );
+        assert_eq!(kind("v 0 0\n"), ReadErrorKind::WrongValueCount { expected: 3, found: 2 });
+        assert_eq!(kind("v 0 0 x\n"), ReadErrorKind::MalformedNumber);
+        assert_eq!(kind("v 0 0 0\nf 1 2 3\n"), ReadErrorKind::IndexOutOfRange {
+            what: "face",
+            element: 0,
+            index: 1,
+            vertices: 1
+        });
+        assert_eq!(
+            kind("v 0 0 0\nv 0 0 0\nv 0 0 0\nf 1 2 3\nf 0 1 2\n"),
+            ReadErrorKind::IndexOutOfRange { what: "face", element: 1, index: -1, vertices: 3 }
+        );
+        assert_eq!(kind("v 0 0 0\nv 0 0 0\nv 0 0 0\nf -4 1 2\n"), ReadErrorKind::IndexOutOfRange {
+            what: "face",
+            element: 0,
+            index: -1,
+            vertices: 3
+        });
+        assert_eq!(kind("v 0 0 0\nv 0 0 0\nf 1 2\n"), ReadErrorKind::TooFewCorners {
+            face: 0,
+            corners: 2
+        });
+        assert_eq!(kind("v 0 0 0\nf x/1 1 1\n"), ReadErrorKind::MalformedNumber);
+        assert_eq!(kind("v 0 0 0\nv 1 1 1\n"), ReadErrorKind::NoFaces);
+        assert_eq!(kind(""), ReadErrorKind::NoFaces);
+        assert_eq!(read(&[0xff, 0x00, 0x13, 0x80][..], Format::Obj).unwrap_err().kind, ReadErrorKind::NoFaces);
+    }
+
+    #[test]
+    fn error_names_the_line() {
+        let e = obj("v 0 0 0\n\nv 1 inf 0\n").unwrap_err();
+        assert_eq!(e.location, Location::Line(3));
+        assert_eq!(
+            e.to_string(),
+            "<input>: line 3: vertex 1: y coordinate rejected: coordinate is infinite"
+        );
+    }
+}
