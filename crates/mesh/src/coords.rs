@@ -70,9 +70,18 @@ mod tests {
     fn range_edges() {
         assert_eq!(check_coordinate(MAX_ALLOWED_MAGNITUDE), Ok(()));
         assert_eq!(check_coordinate(-MIN_ALLOWED_MAGNITUDE), Ok(()));
-        assert_eq!(check_coordinate(MAX_ALLOWED_MAGNITUDE * 2.0), Err(CoordError::TooLarge));
-        assert_eq!(check_coordinate(MIN_ALLOWED_MAGNITUDE / 2.0), Err(CoordError::TooSmall));
-        assert_eq!(check_coordinate(f64::NEG_INFINITY), Err(CoordError::Infinite));
+        assert_eq!(
+            check_coordinate(MAX_ALLOWED_MAGNITUDE * 2.0),
+            Err(CoordError::TooLarge)
+        );
+        assert_eq!(
+            check_coordinate(MIN_ALLOWED_MAGNITUDE / 2.0),
+            Err(CoordError::TooSmall)
+        );
+        assert_eq!(
+            check_coordinate(f64::NEG_INFINITY),
+            Err(CoordError::Infinite)
+        );
         assert_eq!(check_coordinate(-0.0), Ok(()));
     }
 }

@@ -84,7 +84,8 @@ impl TriangleSoup {
     /// fraction of this length.
     #[must_use]
     pub fn diagonal(&self) -> f64 {
-        self.bounding_box().map_or(0.0, |(lo, hi)| (hi - lo).length())
+        self.bounding_box()
+            .map_or(0.0, |(lo, hi)| (hi - lo).length())
     }
 
     /// Whether every face index is below `num_vertices()`.

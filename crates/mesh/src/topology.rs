@@ -1,0 +1,477 @@
+//! Topology of any [`TriangleSoup`]: edges, border loops, connected components, Euler
+//! characteristic, genus, manifoldness and orientability.
+//!
+//! The paper (Cohen et al. 1996, section 3) assumes an oriented 2-manifold, possibly with
+//! borders, and promises to preserve its topology; this module states which soups satisfy that
+//! and measures what must be preserved.
+//!
+//! Conventions, chosen once and used throughout:
+//!
+//! * **Excluded faces.** A face with an out-of-range index or a repeated index (`[a, a, b]`) is
+//!   listed in [`Topology::excluded_faces`] and otherwise ignored: it adds no edge, no
+//!   component, nothing to the Euler characteristic.
+//! * **Unreferenced vertices** (named by no face at all) are listed and counted nowhere else.
+//! * **Components** are classes of faces connected through shared edges (CGAL's
+//!   `connected_components` convention): two faces touching at a single vertex (a bow-tie) are
+//!   two components, and the pinch vertex counts once in each component's `V`.
+//! * **Fans.** At a vertex, two incident faces are in the same fan when a chain of incident
+//!   faces joins them, consecutive ones sharing an edge at that vertex that has exactly two
+//!   incident faces. A vertex with more than one fan is non-manifold; this always includes both
+//!   endpoints of every non-manifold edge (an edge with three or more faces).
+//! * **Orientability** is decided through the edges with exactly two faces: a component is
+//!   orientable when some choice of flips makes every such edge run in opposite directions in
+//!   its two faces.
+//! * **Genus** of a component follows from `chi = 2 - 2g - b` (b = border loops) and is
+//!   defined only for a manifold, orientable component.
+
+use crate::analysis::{
+    EdgeTable, NONE, UnionFind, corner_fans, fan_counts, next_slot, slot_ends, valid_faces,
+};
+use crate::{FaceId, TriangleSoup, VertexId};
+
+/// One connected component (faces joined through shared edges).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Component {
+    /// The smallest face id in the component.
+    pub first_face: FaceId,
+    /// Number of faces `F`.
+    pub faces: usize,
+    /// Number of distinct vertices `V` of its faces.
+    pub vertices: usize,
+    /// Number of undirected edges `E` of its faces.
+    pub edges: usize,
+    /// Number of border loops and open border chains `b`.
+    pub border_loops: usize,
+    /// Euler characteristic `V - E + F`.
+    pub euler: i64,
+    /// No border edge.
+    pub closed: bool,
+    /// No non-manifold edge and no vertex with two fans inside this component.
+    pub manifold: bool,
+    /// Orientable through its two-face edges (see the module docs).
+    pub orientable: bool,
+    /// `g` from `chi = 2 - 2g - b`; `None` unless manifold and orientable.
+    pub genus: Option<u32>,
+}
+
+/// Everything [`analyze`] measures.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Topology {
+    /// Number of vertex slots (referenced or not).
+    pub num_vertices: usize,
+    /// Number of vertices of at least one non-excluded face.
+    pub num_referenced_vertices: usize,
+    /// Number of faces, excluded ones included.
+    pub num_faces: usize,
+    /// Number of undirected edges of the non-excluded faces.
+    pub num_edges: usize,
+    /// Faces ignored because of an out-of-range or repeated index, increasing.
+    pub excluded_faces: Vec<FaceId>,
+    /// Vertices no face names, increasing.
+    pub unreferenced_vertices: Vec<VertexId>,
+    /// Edges with exactly one incident face, directed as that face runs them, sorted by their
+    /// undirected `(min, max)` key.
+    pub border_edges: Vec<[VertexId; 2]>,
+    /// Closed border cycles, each listed without repeating its first vertex.
+    ///
+    /// A loop starts at the first vertex of its smallest border edge (in `(min, max)` order)
+    /// and runs the way that edge's face runs it. At a vertex with several border edges
+    /// (a pinch), a border edge continues with the border edge at the other end of the same
+    /// fan; border edges whose fan ends at a non-manifold edge instead are paired, within one
+    /// component, in order of `(other endpoint, edge key)`. On a consistently oriented
+    /// component every loop therefore runs as its half-edges do.
+    pub border_loops: Vec<Vec<VertexId>>,
+    /// Border paths that could not be closed (only possible next to a non-manifold edge with
+    /// an odd number of faces), from one dead end to the other.
+    pub border_chains: Vec<Vec<VertexId>>,
+    /// Components in order of their smallest face id.
+    pub components: Vec<Component>,
+    /// Sum of the components' Euler characteristics.
+    pub euler: i64,
+    /// Sum of the components' genera, `None` when one is undefined.
+    pub genus: Option<u32>,
+    /// No non-manifold edge and no non-manifold vertex (pinches between components count).
+    pub manifold: bool,
+    /// Every component orientable.
+    pub orientable: bool,
+    /// No edge is traversed in the same direction by two faces.
+    pub consistently_oriented: bool,
+}
+
+impl Topology {
+    /// Number of border loops plus open border chains.
+    #[must_use]
+    pub fn num_border_loops(&self) -> usize {
+        self.border_loops.len() + self.border_chains.len()
+    }
+
+    /// Renames vertex and face ids (used by [`crate::HalfEdgeMesh::topology`]).
+    pub(crate) fn rename(&mut self, vmap: &[VertexId], fmap: &[FaceId]) {
+        let v = |x: &mut VertexId| *x = vmap[x.index()];
+        self.unreferenced_vertices.iter_mut().for_each(v);
+        self.border_edges.iter_mut().flatten().for_each(v);
+        self.border_loops.iter_mut().flatten().for_each(v);
+        self.border_chains.iter_mut().flatten().for_each(v);
+        for f in &mut self.excluded_faces {
+            *f = fmap[f.index()];
+        }
+        for c in &mut self.components {
+            c.first_face = fmap[c.first_face.index()];
+        }
+    }
+}
+
+/// Union-find with parity, for orientability: `flip(a) xor flip(b) == parity` constraints.
+struct ParityUnionFind {
+    parent: Vec<u32>,
+    parity: Vec<bool>,
+}
+
+impl ParityUnionFind {
+    fn new(n: usize) -> Self {
+        Self {
+            parent: (0..n as u32).collect(),
+            parity: vec![false; n],
+        }
+    }
+
+    /// Root of `x` and the parity of `x` relative to it (full path compression, iterative).
+    fn find(&mut self, x: u32) -> (u32, bool) {
+        let mut path = Vec::new();
+        let mut r = x;
+        while self.parent[r as usize] != r {
+            path.push(r);
+            r = self.parent[r as usize];
+        }
+        // Walk back from the node nearest the root, accumulating parity.
+        let mut acc = false;
+        for &y in path.iter().rev() {
+            acc ^= self.parity[y as usize];
+            self.parity[y as usize] = acc;
+            self.parent[y as usize] = r;
+        }
+        (
+            r,
+            if path.is_empty() {
+                false
+            } else {
+                self.parity[x as usize]
+            },
+        )
+    }
+
+    /// Adds the constraint; returns false on a contradiction.
+    fn relate(&mut self, a: u32, b: u32, differ: bool) -> bool {
+        let (ra, pa) = self.find(a);
+        let (rb, pb) = self.find(b);
+        if ra == rb {
+            return (pa ^ pb) == differ;
+        }
+        self.parent[rb as usize] = ra;
+        self.parity[rb as usize] = pa ^ pb ^ differ;
+        true
+    }
+}
+
+/// Analyses any soup; see the module docs for the conventions. O(n log n) worst case, expected
+/// O(n) (a counting sort on edge keys, union-find with path compression).
+///
+/// ```
+/// use envelope_mesh::{analyze, generate};
+/// let t = analyze(&generate::torus(2.0, 0.5, 12, 8));
+/// assert_eq!((t.euler, t.genus, t.components.len()), (0, Some(1), 1));
+/// assert!(t.manifold && t.orientable && t.consistently_oriented && t.border_loops.is_empty());
+/// ```
+#[must_use]
+pub fn analyze(soup: &TriangleSoup) -> Topology {
+    let faces = &soup.faces;
+    let nv = soup.positions.len();
+    let nf = faces.len();
+    let valid = valid_faces(soup);
+    let table = EdgeTable::build(soup, &valid);
+    let fans = corner_fans(soup, &table);
+    let fan_count = fan_counts(soup, &valid, &fans);
+
+    // Referenced vertices.
+    let mut named = vec![false; nv];
+    let mut in_valid = vec![false; nv];
+    for (f, tri) in faces.iter().enumerate() {
+        for v in tri {
+            if v.index() < nv {
+                named[v.index()] = true;
+                if valid[f] {
+                    in_valid[v.index()] = true;
+                }
+            }
+        }
+    }
+
+    // Components, orientation.
+    let mut comp_uf = UnionFind::new(nf);
+    let mut parity = ParityUnionFind::new(nf);
+    let mut nonorientable_faces = Vec::new();
+    let mut consistently_oriented = true;
+    let mut nonmanifold_edge_faces = Vec::new();
+    for e in 0..table.num_edges() {
+        let sl = table.edge_slots(e);
+        for &t in &sl[1..] {
+            comp_uf.union(sl[0] / 3, t / 3);
+        }
+        let first_dir = slot_ends(faces, sl[0]).0;
+        if sl[1..].iter().any(|&t| slot_ends(faces, t).0 == first_dir) {
+            consistently_oriented = false;
+        }
+        match *sl {
+            [s, t] => {
+                let same = slot_ends(faces, s).0 == slot_ends(faces, t).0;
+                if !parity.relate(s / 3, t / 3, same) {
+                    nonorientable_faces.push(s / 3);
+                }
+            }
+            [s, _, _, ..] => nonmanifold_edge_faces.push(s / 3),
+            _ => {}
+        }
+    }
+    comp_uf.flatten();
+    let mut comp_of_root = vec![NONE; nf];
+    let mut face_comp = vec![NONE; nf];
+    let mut components: Vec<Component> = Vec::new();
+    for f in 0..nf {
+        if !valid[f] {
+            continue;
+        }
+        let r = comp_uf.root(f as u32) as usize;
+        if comp_of_root[r] == NONE {
+            comp_of_root[r] = components.len() as u32;
+            components.push(Component {
+                first_face: FaceId::from_index(f),
+                faces: 0,
+                vertices: 0,
+                edges: 0,
+                border_loops: 0,
+                euler: 0,
+                closed: true,
+                manifold: true,
+                orientable: true,
+                genus: None,
+            });
+        }
+        face_comp[f] = comp_of_root[r];
+        components[face_comp[f] as usize].faces += 1;
+    }
+    // Distinct vertices per component: visit faces grouped by component.
+    {
+        let mut order: Vec<u32> = (0..nf as u32).filter(|&f| valid[f as usize]).collect();
+        order.sort_unstable_by_key(|&f| face_comp[f as usize]);
+        let mut last = vec![NONE; nv];
+        for &f in &order {
+            let c = face_comp[f as usize];
+            for v in faces[f as usize] {
+                if last[v.index()] != c {
+                    last[v.index()] = c;
+                    components[c as usize].vertices += 1;
+                }
+            }
+        }
+    }
+    let mut border_edge_ids = Vec::new();
+    for e in 0..table.num_edges() {
+        let sl = table.edge_slots(e);
+        let c = &mut components[face_comp[(sl[0] / 3) as usize] as usize];
+        c.edges += 1;
+        if sl.len() == 1 {
+            c.closed = false;
+            border_edge_ids.push(e);
+        }
+    }
+    for f in nonorientable_faces {
+        components[face_comp[f as usize] as usize].orientable = false;
+    }
+    for f in nonmanifold_edge_faces {
+        components[face_comp[f as usize] as usize].manifold = false;
+    }
+    // A vertex with two fans in the same component makes that component non-manifold.
+    let mut vertex_manifold = true;
+    {
+        let mut fan_roots: Vec<(u32, u32)> = Vec::new();
+        for (f, tri) in faces.iter().enumerate() {
+            if valid[f] {
+                for i in 0..3 {
+                    let c = (3 * f + i) as u32;
+                    if fan_count[tri[i].index()] > 1 && fans.root(c) == c {
+                        fan_roots.push((tri[i].0, face_comp[f]));
+                    }
+                }
+            }
+        }
+        vertex_manifold &= fan_roots.is_empty();
+        fan_roots.sort_unstable();
+        for w in fan_roots.windows(2) {
+            if w[0] == w[1] {
+                components[w[0].1 as usize].manifold = false;
+            }
+        }
+    }
+
+    let (border_loops, border_chains, loop_comps) =
+        trace_border(soup, &table, &fans, &face_comp, &border_edge_ids);
+    for c in loop_comps {
+        components[c as usize].border_loops += 1;
+    }
+
+    let mut total_genus = Some(0u32);
+    let mut euler = 0i64;
+    for c in &mut components {
+        c.euler = c.vertices as i64 - c.edges as i64 + c.faces as i64;
+        euler += c.euler;
+        if c.manifold && c.orientable {
+            let twice = 2 - c.border_loops as i64 - c.euler;
+            if twice >= 0 && twice % 2 == 0 {
+                c.genus = Some((twice / 2) as u32);
+            }
+        }
+        total_genus = match (total_genus, c.genus) {
+            (Some(a), Some(b)) => Some(a + b),
+            _ => None,
+        };
+    }
+
+    Topology {
+        num_vertices: nv,
+        num_referenced_vertices: in_valid.iter().filter(|&&b| b).count(),
+        num_faces: nf,
+        num_edges: table.num_edges(),
+        excluded_faces: (0..nf)
+            .filter(|&f| !valid[f])
+            .map(FaceId::from_index)
+            .collect(),
+        unreferenced_vertices: (0..nv)
+            .filter(|&v| !named[v])
+            .map(VertexId::from_index)
+            .collect(),
+        border_edges: border_edge_ids
+            .iter()
+            .map(|&e| {
+                let (a, b) = slot_ends(faces, table.edge_slots(e)[0]);
+                [VertexId(a), VertexId(b)]
+            })
+            .collect(),
+        border_loops,
+        border_chains,
+        manifold: vertex_manifold && components.iter().all(|c| c.manifold),
+        orientable: components.iter().all(|c| c.orientable),
+        consistently_oriented,
+        components,
+        euler,
+        genus: total_genus,
+    }
+}
+
+/// Loops, open chains, and the component of each (loops first, then chains).
+type Borders = (Vec<Vec<VertexId>>, Vec<Vec<VertexId>>, Vec<u32>);
+
+/// Pairs border edge ends at each vertex (same fan first) and walks the pairing.
+fn trace_border(
+    soup: &TriangleSoup,
+    table: &EdgeTable,
+    fans: &UnionFind,
+    face_comp: &[u32],
+    border: &[usize],
+) -> Borders {
+    let faces = &soup.faces;
+    let nb = border.len();
+    // End 2*i is the origin of border edge i (as its face runs it), end 2*i+1 the target.
+    let end_vertex = |end: u32| -> u32 {
+        let s = table.edge_slots(border[(end / 2) as usize])[0];
+        let (a, b) = slot_ends(faces, s);
+        if end % 2 == 0 { a } else { b }
+    };
+    let end_fan = |end: u32| -> u32 {
+        let s = table.edge_slots(border[(end / 2) as usize])[0];
+        fans.root(if end % 2 == 0 { s } else { next_slot(s) })
+    };
+    let mut ends: Vec<(u32, u32, u32)> = (0..2 * nb as u32)
+        .map(|end| (end_vertex(end), end_fan(end), end))
+        .collect();
+    ends.sort_unstable();
+    let mut partner = vec![NONE; 2 * nb];
+    let mut i = 0;
+    while i < ends.len() {
+        let v = ends[i].0;
+        let mut j = i;
+        while j < ends.len() && ends[j].0 == v {
+            j += 1;
+        }
+        // Same-fan pairs.
+        let mut leftover = Vec::new();
+        let mut k = i;
+        while k < j {
+            if k + 1 < j && ends[k + 1].1 == ends[k].1 && (k + 2 >= j || ends[k + 2].1 != ends[k].1)
+            {
+                let (a, b) = (ends[k].2, ends[k + 1].2);
+                partner[a as usize] = b;
+                partner[b as usize] = a;
+                k += 2;
+            } else {
+                let end = ends[k].2;
+                let comp =
+                    face_comp[(table.edge_slots(border[(end / 2) as usize])[0] / 3) as usize];
+                leftover.push((comp, end_vertex(end ^ 1), border[(end / 2) as usize], end));
+                k += 1;
+            }
+        }
+        leftover.sort_unstable();
+        for w in leftover.chunk_by(|a, b| a.0 == b.0) {
+            for p in w.chunks_exact(2) {
+                partner[p[0].3 as usize] = p[1].3;
+                partner[p[1].3 as usize] = p[0].3;
+            }
+        }
+        i = j;
+    }
+
+    let mut used = vec![false; nb];
+    let (mut loops, mut chains, mut loop_comps, mut chain_comps) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for start in 0..nb {
+        if used[start] {
+            continue;
+        }
+        used[start] = true;
+        let comp = face_comp[(table.edge_slots(border[start])[0] / 3) as usize];
+        let mut verts = vec![VertexId(end_vertex(2 * start as u32))];
+        let mut at = 2 * start as u32 + 1;
+        let closed = loop {
+            let p = partner[at as usize];
+            if p == 2 * start as u32 {
+                break true;
+            }
+            verts.push(VertexId(end_vertex(at)));
+            if p == NONE {
+                break false;
+            }
+            used[(p / 2) as usize] = true;
+            at = p ^ 1;
+        };
+        if closed {
+            loops.push(verts);
+            loop_comps.push(comp);
+        } else {
+            // Extend backwards from the start's origin.
+            let mut back = Vec::new();
+            let mut at = 2 * start as u32;
+            while partner[at as usize] != NONE {
+                let p = partner[at as usize];
+                used[(p / 2) as usize] = true;
+                at = p ^ 1;
+                back.push(VertexId(end_vertex(at)));
+            }
+            back.reverse();
+            back.extend(verts);
+            chains.push(back);
+            chain_comps.push(comp);
+        }
+    }
+    loop_comps.extend(chain_comps);
+    (loops, chains, loop_comps)
+}
