@@ -1,2 +1,208 @@
-//! Exact geometric predicates (work in progress).
+//! Exact geometric predicates for guaranteed-error mesh simplification.
+//!
+//! *Exact predicates, inexact constructions*: every decision this crate makes is the sign the
+//! decision would have in infinite-precision arithmetic on the f64 inputs, and comes back as an
+//! enum ([`Sign`], [`Orientation`], [`TriangleLocation`], ...). Nothing here constructs points.
+//!
+//! * Kernels ([`Kernel`]): [`Filtered`] (Shewchuk's adaptive predicates via `robust`, plus
+//!   rigorously filtered floating point, falling back to [`Exact`] GMP rationals), [`Exact`], and
+//!   [`Checked`] which runs two kernels and panics with a reproduction when they disagree.
+//! * Derived predicates in [`generic`] (any kernel) and re-exported here on [`Filtered`]:
+//!   segment/triangle and triangle/triangle intersection (also for adjacent mesh faces),
+//!   point location in a triangle and in a closed surface, exact distance-vs-tolerance
+//!   comparisons, collinearity and T-junction tests.
+//! * [`bvh`]: a conservative bounding-volume hierarchy, and [`self_intersections`].
+//!
+//! Conventions: `orient3d(a, b, c, d)` is the sign of `((b-a)×(c-a))·(d-a)` (CGAL's; positive
+//! when `d` is on the side the right-hand normal of `abc` points to); `orient2d` is positive
+//! for counter-clockwise turns. Fast paths are used when coordinates are within
+//! [`MIN_ALLOWED_MAGNITUDE`]..=[`MAX_ALLOWED_MAGNITUDE`] (or zero); outside, the exact kernel
+//! answers. NaN/infinite inputs panic.
 #![forbid(unsafe_code)]
+
+mod arith;
+pub mod bvh;
+pub mod generic;
+mod kernel;
+mod range;
+mod sign;
+
+use glam::DVec3;
+
+pub use generic::{Containment, SegmentTriangle, Shared, TriangleLocation};
+pub use kernel::{Checked, Exact, Filtered, Kernel};
+pub use range::{MAX_ALLOWED_MAGNITUDE, MIN_ALLOWED_MAGNITUDE, in_exact_range, next_down, next_up};
+pub use sign::{Orientation, Sign};
+
+/// The kernel the free functions of this crate use.
+pub type DefaultKernel = Filtered;
+
+/// `eps * eps` rounded up to a double (so that comparing with it never under-reports a
+/// distance as too large). Use it to turn a tolerance into the `eps2` of the `cmp_*` functions.
+///
+/// ```
+/// use envelope_predicates::square_rounded_up;
+/// assert_eq!(square_rounded_up(0.5), 0.25);
+/// assert!(square_rounded_up(0.1) >= 0.1 * 0.1);
+/// ```
+#[must_use]
+pub fn square_rounded_up(eps: f64) -> f64 {
+    let s = eps * eps;
+    // Exact iff the fused remainder is zero.
+    if eps.mul_add(eps, -s) > 0.0 { next_up(s) } else { s }
+}
+
+/// Orientation of `a, b, c` in the plane: `Positive` when counter-clockwise.
+///
+/// ```
+/// use envelope_predicates::{orient2d, Orientation};
+/// use glam::DVec2;
+/// assert_eq!(orient2d(DVec2::ZERO, DVec2::X, DVec2::Y), Orientation::Positive);
+/// ```
+#[must_use]
+pub fn orient2d(a: glam::DVec2, b: glam::DVec2, c: glam::DVec2) -> Orientation {
+    Filtered::orient2d(a, b, c)
+}
+
+/// Sign of `((b-a)×(c-a))·(d-a)`: `Positive` when `d` is on the side the right-hand normal of
+/// `abc` points to (CGAL's `orientation`; the negation of Shewchuk's `orient3d`).
+///
+/// ```
+/// use envelope_predicates::{orient3d, Orientation};
+/// use glam::DVec3;
+/// assert_eq!(orient3d(DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z), Orientation::Positive);
+/// ```
+#[must_use]
+pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Orientation {
+    Filtered::orient3d(a, b, c, d)
+}
+
+/// Side of `e` relative to the oriented sphere through `a, b, c, d`; see [`Kernel::insphere`].
+///
+/// ```
+/// use envelope_predicates::{insphere, Sign};
+/// use glam::DVec3;
+/// let (a, b, c, d) = (DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z); // positively oriented
+/// assert_eq!(insphere(a, b, c, d, DVec3::splat(0.25)), Sign::Positive);
+/// assert_eq!(insphere(a, b, c, d, DVec3::splat(2.0)), Sign::Negative);
+/// assert_eq!(insphere(a, b, c, d, DVec3::ONE), Sign::Zero);
+/// ```
+#[must_use]
+pub fn insphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) -> Sign {
+    Filtered::insphere(a, b, c, d, e)
+}
+
+macro_rules! default_kernel {
+    ($(#[$m:meta])* $name:ident ( $($arg:ident : $ty:ty),* ) -> $ret:ty) => {
+        $(#[$m])*
+        #[must_use]
+        pub fn $name($($arg: $ty),*) -> $ret {
+            generic::$name::<DefaultKernel>($($arg),*)
+        }
+    };
+}
+
+default_kernel!(
+    /// Three points on one line; see [`generic::collinear`].
+    collinear(a: DVec3, b: DVec3, c: DVec3) -> bool);
+default_kernel!(
+    /// `p` in the relative interior of segment `ab` (T-junction); see [`generic::point_strictly_inside_segment`].
+    point_strictly_inside_segment(p: DVec3, a: DVec3, b: DVec3) -> bool);
+default_kernel!(
+    /// `p` on the closed segment `ab`; see [`generic::point_on_segment`].
+    point_on_segment(p: DVec3, a: DVec3, b: DVec3) -> bool);
+default_kernel!(
+    /// Closed 3-D segments meet; see [`generic::segments_intersect`].
+    segments_intersect(p: DVec3, q: DVec3, a: DVec3, b: DVec3) -> bool);
+default_kernel!(
+    /// Location of `p` on the closed triangle `t`; see [`generic::point_in_triangle`].
+    point_in_triangle(p: DVec3, t: [DVec3; 3]) -> TriangleLocation);
+default_kernel!(
+    /// How segment `pq` meets triangle `t`; see [`generic::segment_triangle`].
+    segment_triangle(p: DVec3, q: DVec3, t: [DVec3; 3]) -> SegmentTriangle);
+default_kernel!(
+    /// Closed triangles meet; see [`generic::triangles_intersect`].
+    triangles_intersect(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool);
+default_kernel!(
+    /// Adjacent faces meet away from what they share; see [`generic::adjacent_triangles_intersect`].
+    adjacent_triangles_intersect(t1: [DVec3; 3], t2: [DVec3; 3], shared: Shared) -> bool);
+default_kernel!(
+    /// Coplanar triangles overlapping with positive area; see [`generic::triangles_overlap_with_area`].
+    triangles_overlap_with_area(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool);
+default_kernel!(
+    /// Sign of `dist(p, segment ab)² − eps2`; see [`generic::cmp_point_segment`].
+    cmp_point_segment(p: DVec3, a: DVec3, b: DVec3, eps2: f64) -> Sign);
+default_kernel!(
+    /// Sign of `dist(p, t)² − eps2`; see [`generic::cmp_point_triangle`].
+    cmp_point_triangle(p: DVec3, t: [DVec3; 3], eps2: f64) -> Sign);
+default_kernel!(
+    /// Sign of `dist(p0p1, q0q1)² − eps2`; see [`generic::cmp_segment_segment`].
+    cmp_segment_segment(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3, eps2: f64) -> Sign);
+default_kernel!(
+    /// Sign of `dist(pq, t)² − eps2`; see [`generic::cmp_segment_triangle`].
+    cmp_segment_triangle(p: DVec3, q: DVec3, t: [DVec3; 3], eps2: f64) -> Sign);
+default_kernel!(
+    /// Sign of `dist(t1, t2)² − eps2`; see [`generic::cmp_triangle_triangle`].
+    cmp_triangle_triangle(t1: [DVec3; 3], t2: [DVec3; 3], eps2: f64) -> Sign);
+default_kernel!(
+    /// Inside/on/outside a closed triangulated surface; see [`generic::point_in_surface`].
+    point_in_surface(p: DVec3, positions: &[DVec3], faces: &[[u32; 3]]) -> Containment);
+
+/// The vertex indices two faces have in common, as a [`Shared`] (or `None` when disjoint, and
+/// `Some(None)` when they share three distinct indices: the same face twice).
+fn shared_indices(f: [u32; 3], g: [u32; 3]) -> Option<Option<Shared>> {
+    let mut pairs: [(usize, usize); 3] = [(0, 0); 3];
+    let mut n = 0;
+    for i in 0..3 {
+        // Count each distinct index once, even if a face repeats it.
+        if f[..i].contains(&f[i]) {
+            continue;
+        }
+        if let Some(j) = g.iter().position(|&x| x == f[i]) {
+            pairs[n] = (i, j);
+            n += 1;
+        }
+    }
+    match n {
+        0 => None,
+        1 => Some(Some(Shared::Vertex(pairs[0].0, pairs[0].1))),
+        2 => Some(Some(Shared::Edge([pairs[0].0, pairs[1].0], [pairs[0].1, pairs[1].1]))),
+        _ => Some(None),
+    }
+}
+
+/// True when mesh faces `f` and `g` intersect, adjacency-aware: faces sharing vertex indices
+/// intersect only if they meet away from the shared vertex/edge; two faces with the same three
+/// vertex indices always count as intersecting (a duplicated face).
+#[must_use]
+pub fn faces_intersect(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> bool {
+    let t1 = f.map(|i| positions[i as usize]);
+    let t2 = g.map(|i| positions[i as usize]);
+    match shared_indices(f, g) {
+        None => triangles_intersect(t1, t2),
+        Some(Some(shared)) => adjacent_triangles_intersect(t1, t2, shared),
+        Some(None) => true,
+    }
+}
+
+/// All pairs of intersecting faces, `(i, j)` with `i < j`, sorted.
+///
+/// Faces are closed triangles; faces that share vertex indices count only when they meet away
+/// from what they share (see [`adjacent_triangles_intersect`]); faces that touch at equal
+/// positions with different indices (an unwelded seam) do count. Candidates come from the
+/// [`bvh`] (exact boxes); tests run in parallel; the output is deterministic.
+///
+/// ```
+/// use envelope_predicates::self_intersections;
+/// use glam::DVec3;
+/// let pos = [DVec3::ZERO, DVec3::X, DVec3::Y, // face 0
+///            DVec3::new(0.2, 0.2, -1.0), DVec3::new(0.2, 0.2, 1.0), DVec3::new(3.0, 3.0, 0.0), // face 1 pierces 0
+///            DVec3::new(1.0, 1.0, 0.0)]; // face 2 shares the edge (1, 2) with face 0, flat
+/// let faces = [[0, 1, 2], [3, 4, 5], [2, 1, 6]];
+/// assert_eq!(self_intersections(&pos, &faces), vec![(0, 1)]);
+/// ```
+#[must_use]
+pub fn self_intersections(positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<(u32, u32)> {
+    let tree = bvh::Bvh::from_triangles(positions, faces);
+    tree.self_pairs_where(|i, j| faces_intersect(positions, faces[i as usize], faces[j as usize]))
+}

@@ -1,0 +1,474 @@
+//! A bounding-volume hierarchy over axis-aligned boxes, with conservative box arithmetic.
+//!
+//! Boxes built from input points are exact (their bounds are input coordinates). Constructed
+//! boxes (inflated by a tolerance) are rounded outward, and distance bounds are rounded down,
+//! so every box test is conservative: it may report extra candidates, never miss one.
+//!
+//! Build: median split of item-box centres along the widest axis, `O(n log n)`, the top levels
+//! in parallel (rayon). Leaves hold up to [`LEAF_SIZE`] items. Item ids are `u32` indices into
+//! the slice of boxes the tree was built from.
+
+use glam::DVec3;
+
+use crate::range::{next_down, next_up};
+
+/// Maximum number of items per leaf.
+pub const LEAF_SIZE: usize = 4;
+
+/// A closed axis-aligned box `[min, max]`. An empty box has `min > max`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    /// Lower corner.
+    pub min: DVec3,
+    /// Upper corner.
+    pub max: DVec3,
+}
+
+impl Aabb {
+    /// The empty box (union identity).
+    pub const EMPTY: Aabb = Aabb { min: DVec3::INFINITY, max: DVec3::NEG_INFINITY };
+
+    /// The smallest box containing the points (exact).
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::Aabb;
+    /// use glam::DVec3;
+    /// let b = Aabb::from_points(&[DVec3::ZERO, DVec3::new(1.0, -2.0, 3.0)]);
+    /// assert_eq!(b.min, DVec3::new(0.0, -2.0, 0.0));
+    /// assert!(b.overlaps(&Aabb::from_points(&[DVec3::new(1.0, 0.0, 3.0)])));
+    /// ```
+    #[must_use]
+    pub fn from_points(points: &[DVec3]) -> Aabb {
+        points.iter().fold(Aabb::EMPTY, |b, &p| Aabb { min: b.min.min(p), max: b.max.max(p) })
+    }
+
+    /// The box of a triangle (exact).
+    #[inline]
+    #[must_use]
+    pub fn from_triangle(t: [DVec3; 3]) -> Aabb {
+        Aabb { min: t[0].min(t[1]).min(t[2]), max: t[0].max(t[1]).max(t[2]) }
+    }
+
+    /// The smallest box containing both (exact).
+    #[inline]
+    #[must_use]
+    pub fn union(&self, o: &Aabb) -> Aabb {
+        Aabb { min: self.min.min(o.min), max: self.max.max(o.max) }
+    }
+
+    /// True when the closed boxes share a point (exact).
+    #[inline]
+    #[must_use]
+    pub fn overlaps(&self, o: &Aabb) -> bool {
+        self.min.x <= o.max.x
+            && o.min.x <= self.max.x
+            && self.min.y <= o.max.y
+            && o.min.y <= self.max.y
+            && self.min.z <= o.max.z
+            && o.min.z <= self.max.z
+    }
+
+    /// True when `p` is in the closed box (exact).
+    #[inline]
+    #[must_use]
+    pub fn contains(&self, p: DVec3) -> bool {
+        self.min.cmple(p).all() && p.cmple(self.max).all()
+    }
+
+    /// True for the empty box.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        !self.min.cmple(self.max).all()
+    }
+
+    /// A box containing every point within distance `eps` (>= 0) of this box, rounded outward.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::Aabb;
+    /// use glam::DVec3;
+    /// let b = Aabb::from_points(&[DVec3::splat(0.1)]).inflated(0.2);
+    /// assert!(b.min.x <= 0.1 - 0.2 && b.max.x >= 0.1 + 0.2);
+    /// assert!(b.contains(DVec3::new(-0.1, 0.3, 0.3)));
+    /// ```
+    #[must_use]
+    pub fn inflated(&self, eps: f64) -> Aabb {
+        let down = |x: f64| next_down(x - eps);
+        let up = |x: f64| next_up(x + eps);
+        Aabb {
+            min: DVec3::new(down(self.min.x), down(self.min.y), down(self.min.z)),
+            max: DVec3::new(up(self.max.x), up(self.max.y), up(self.max.z)),
+        }
+    }
+
+    /// A lower bound of the squared distance from `p` to the box (0 inside); never larger than
+    /// the exact value.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::Aabb;
+    /// use glam::DVec3;
+    /// let b = Aabb::from_points(&[DVec3::ZERO, DVec3::ONE]);
+    /// let d2 = b.sq_distance_lower_bound(DVec3::new(4.0, 0.5, -3.0));
+    /// assert!(d2 <= 25.0 && d2 > 24.99);
+    /// ```
+    #[must_use]
+    pub fn sq_distance_lower_bound(&self, p: DVec3) -> f64 {
+        let axis = |lo: f64, hi: f64, x: f64| {
+            // Each gap is rounded down, so its square is a lower bound before rounding.
+            if x < lo {
+                next_down(lo - x).max(0.0)
+            } else if x > hi {
+                next_down(x - hi).max(0.0)
+            } else {
+                0.0
+            }
+        };
+        let d = DVec3::new(
+            axis(self.min.x, self.max.x, p.x),
+            axis(self.min.y, self.max.y, p.y),
+            axis(self.min.z, self.max.z, p.z),
+        );
+        // Three squares and two sums: relative error below 5u; subtract generously.
+        let s = d.x * d.x + d.y * d.y + d.z * d.z;
+        (s * (1.0 - 8.0 * f64::EPSILON) - 1e-300).max(0.0)
+    }
+
+    /// A lower bound of the distance from `p` to the box.
+    #[must_use]
+    pub fn distance_lower_bound(&self, p: DVec3) -> f64 {
+        next_down(self.sq_distance_lower_bound(p).sqrt()).max(0.0)
+    }
+
+    #[inline]
+    fn center(&self) -> DVec3 {
+        (self.min + self.max) * 0.5
+    }
+}
+
+/// A node of a [`Bvh`], by index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct NodeId(u32);
+
+/// What a node holds.
+#[derive(Clone, Copy, Debug)]
+pub enum NodeKind<'a> {
+    /// A leaf with these item ids.
+    Leaf(&'a [u32]),
+    /// An interior node with two children.
+    Interior(NodeId, NodeId),
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bounds: Aabb,
+    /// Leaf: first item position; interior: left child.
+    a: u32,
+    /// Leaf: item count (> 0); interior: right child.
+    b: u32,
+    /// Number of items below.
+    count: u32,
+    leaf: bool,
+}
+
+/// A bounding-volume hierarchy over item boxes.
+#[derive(Clone, Debug)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    /// Item ids in leaf order.
+    items: Vec<u32>,
+    /// Item boxes in leaf order (`boxes[k]` is the box of `items[k]`).
+    boxes: Vec<Aabb>,
+}
+
+/// Subtrees larger than this are built / traversed with rayon.
+const PAR_THRESHOLD: usize = 4096;
+
+impl Bvh {
+    /// Builds a tree over `boxes` (item id `i` is `boxes[i]`).
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let boxes: Vec<Aabb> = (0..10)
+    ///     .map(|i| Aabb::from_points(&[DVec3::splat(i as f64), DVec3::splat(i as f64 + 1.5)]))
+    ///     .collect();
+    /// let bvh = Bvh::new(&boxes);
+    /// assert_eq!(bvh.self_pairs(), (0..9).map(|i| (i, i + 1)).collect::<Vec<_>>());
+    /// assert_eq!(bvh.overlapping(&Aabb::from_points(&[DVec3::splat(0.5)])), vec![0]);
+    /// ```
+    #[must_use]
+    pub fn new(boxes: &[Aabb]) -> Bvh {
+        assert!(boxes.len() < u32::MAX as usize, "too many items for u32 ids");
+        let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
+        if boxes.is_empty() {
+            return Bvh { nodes: Vec::new(), items, boxes: Vec::new() };
+        }
+        let centers: Vec<DVec3> = boxes.iter().map(Aabb::center).collect();
+        let nodes = build(boxes, &centers, &mut items, 0);
+        let ordered = items.iter().map(|&i| boxes[i as usize]).collect();
+        Bvh { nodes, items, boxes: ordered }
+    }
+
+    /// Builds a tree over the boxes of the triangles `faces` of `positions` (item id = face index).
+    #[must_use]
+    pub fn from_triangles(positions: &[DVec3], faces: &[[u32; 3]]) -> Bvh {
+        let boxes: Vec<Aabb> =
+            faces.iter().map(|f| Aabb::from_triangle(f.map(|i| positions[i as usize]))).collect();
+        Bvh::new(&boxes)
+    }
+
+    /// Number of items.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.items.len()
+    }
+
+    /// True when the tree has no items.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    /// The root node, if any.
+    #[must_use]
+    pub fn root(&self) -> Option<NodeId> {
+        (!self.nodes.is_empty()).then_some(NodeId(0))
+    }
+
+    /// The box of a node (contains the boxes of all items below it).
+    #[must_use]
+    pub fn bounds(&self, n: NodeId) -> Aabb {
+        self.nodes[n.0 as usize].bounds
+    }
+
+    /// The children or items of a node.
+    #[must_use]
+    pub fn kind(&self, n: NodeId) -> NodeKind<'_> {
+        let node = &self.nodes[n.0 as usize];
+        if node.leaf {
+            NodeKind::Leaf(&self.items[node.a as usize..(node.a + node.b) as usize])
+        } else {
+            NodeKind::Interior(NodeId(node.a), NodeId(node.b))
+        }
+    }
+
+    /// Calls `f` with every item whose box overlaps `query`.
+    pub fn for_each_overlapping(&self, query: &Aabb, mut f: impl FnMut(u32)) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let mut stack = vec![0u32];
+        while let Some(n) = stack.pop() {
+            let node = &self.nodes[n as usize];
+            if !node.bounds.overlaps(query) {
+                continue;
+            }
+            if node.leaf {
+                for k in node.a as usize..(node.a + node.b) as usize {
+                    if self.boxes[k].overlaps(query) {
+                        f(self.items[k]);
+                    }
+                }
+            } else {
+                stack.push(node.b);
+                stack.push(node.a);
+            }
+        }
+    }
+
+    /// The sorted ids of the items whose boxes overlap `query`.
+    #[must_use]
+    pub fn overlapping(&self, query: &Aabb) -> Vec<u32> {
+        let mut out = Vec::new();
+        self.for_each_overlapping(query, |i| out.push(i));
+        out.sort_unstable();
+        out
+    }
+
+    /// All pairs `(i, j)`, `i < j`, of items with overlapping boxes, for which `keep(i, j)` holds;
+    /// sorted. Runs in parallel (rayon); `keep` is called once per overlapping pair.
+    pub fn self_pairs_where<F: Fn(u32, u32) -> bool + Sync>(&self, keep: F) -> Vec<(u32, u32)> {
+        if self.nodes.is_empty() {
+            return Vec::new();
+        }
+        let mut out = self.self_rec(0, &keep);
+        out.sort_unstable();
+        out
+    }
+
+    /// All pairs `(i, j)`, `i < j`, of items with overlapping boxes; sorted.
+    #[must_use]
+    pub fn self_pairs(&self) -> Vec<(u32, u32)> {
+        self.self_pairs_where(|_, _| true)
+    }
+
+    /// All pairs `(i, j)` with `i` an item of `self` and `j` an item of `other` whose boxes
+    /// overlap and for which `keep(i, j)` holds; sorted. Runs in parallel.
+    pub fn pairs_with_where<F: Fn(u32, u32) -> bool + Sync>(&self, other: &Bvh, keep: F) -> Vec<(u32, u32)> {
+        if self.nodes.is_empty() || other.nodes.is_empty() {
+            return Vec::new();
+        }
+        let mut out = cross_rec(self, 0, other, 0, &|a: u32, b: u32| keep(a, b).then_some((a, b)));
+        out.sort_unstable();
+        out
+    }
+
+    /// All overlapping pairs between two trees (`(id in self, id in other)`), sorted.
+    #[must_use]
+    pub fn pairs_with(&self, other: &Bvh) -> Vec<(u32, u32)> {
+        self.pairs_with_where(other, |_, _| true)
+    }
+
+    #[inline]
+    fn size(&self, n: u32) -> usize {
+        self.nodes[n as usize].count as usize
+    }
+
+    fn self_rec<F: Fn(u32, u32) -> bool + Sync>(&self, n: u32, keep: &F) -> Vec<(u32, u32)> {
+        let node = &self.nodes[n as usize];
+        if node.leaf {
+            let mut out = Vec::new();
+            let (s, e) = (node.a as usize, (node.a + node.b) as usize);
+            for k in s..e {
+                for l in k + 1..e {
+                    if self.boxes[k].overlaps(&self.boxes[l]) {
+                        let (i, j) = ordered(self.items[k], self.items[l]);
+                        if keep(i, j) {
+                            out.push((i, j));
+                        }
+                    }
+                }
+            }
+            return out;
+        }
+        let (l, r) = (node.a, node.b);
+        let pair = |a: u32, b: u32| {
+            let (i, j) = ordered(a, b);
+            keep(i, j).then_some((i, j))
+        };
+        if self.size(n) > PAR_THRESHOLD {
+            let ((mut x, y), z) = rayon::join(
+                || rayon::join(|| self.self_rec(l, keep), || self.self_rec(r, keep)),
+                || cross_rec(self, l, self, r, &pair),
+            );
+            x.extend(y);
+            x.extend(z);
+            x
+        } else {
+            let mut x = self.self_rec(l, keep);
+            x.extend(self.self_rec(r, keep));
+            x.extend(cross_rec(self, l, self, r, &pair));
+            x
+        }
+    }
+}
+
+#[inline]
+fn ordered(a: u32, b: u32) -> (u32, u32) {
+    if a < b { (a, b) } else { (b, a) }
+}
+
+/// Pairs between the subtree `na` of `ta` and the subtree `nb` of `tb`.
+fn cross_rec<F: Fn(u32, u32) -> Option<(u32, u32)> + Sync>(
+    ta: &Bvh,
+    na: u32,
+    tb: &Bvh,
+    nb: u32,
+    f: &F,
+) -> Vec<(u32, u32)> {
+    let (a, b) = (&ta.nodes[na as usize], &tb.nodes[nb as usize]);
+    if !a.bounds.overlaps(&b.bounds) {
+        return Vec::new();
+    }
+    if a.leaf && b.leaf {
+        let mut out = Vec::new();
+        for k in a.a as usize..(a.a + a.b) as usize {
+            for l in b.a as usize..(b.a + b.b) as usize {
+                if ta.boxes[k].overlaps(&tb.boxes[l]) {
+                    out.extend(f(ta.items[k], tb.items[l]));
+                }
+            }
+        }
+        return out;
+    }
+    let (sa, sb) = (ta.size(na), tb.size(nb));
+    // Descend the larger side (or the only interior one).
+    let descend_a = !a.leaf && (b.leaf || sa >= sb);
+    let (x, y) = if descend_a {
+        ((na, a.a, nb, nb), (na, a.b, nb, nb))
+    } else {
+        ((na, na, nb, b.a), (na, na, nb, b.b))
+    };
+    let run = |(_, ca, _, cb): (u32, u32, u32, u32)| cross_rec(ta, ca, tb, cb, f);
+    if sa + sb > PAR_THRESHOLD {
+        let (mut l, r) = rayon::join(|| run(x), || run(y));
+        l.extend(r);
+        l
+    } else {
+        let mut l = run(x);
+        l.extend(run(y));
+        l
+    }
+}
+
+/// Builds the subtree over `items` (positions `offset..` in the global item order); node 0 of
+/// the returned vector is its root, child links are relative to the vector. Large subtrees are
+/// split in parallel and relocated; small ones are built sequentially in place.
+fn build(boxes: &[Aabb], centers: &[DVec3], items: &mut [u32], offset: u32) -> Vec<Node> {
+    if items.len() <= 16 * PAR_THRESHOLD {
+        let mut nodes = Vec::with_capacity(items.len() / 2 + 1);
+        build_into(&mut nodes, boxes, centers, items, offset);
+        return nodes;
+    }
+    let (bounds, mid) = split(boxes, centers, items);
+    let (li, ri) = items.split_at_mut(mid);
+    let (left, right) =
+        rayon::join(|| build(boxes, centers, li, offset), || build(boxes, centers, ri, offset + mid as u32));
+    let mut nodes = Vec::with_capacity(1 + left.len() + right.len());
+    let (lo, ro) = (1u32, 1 + left.len() as u32);
+    nodes.push(Node { bounds, a: lo, b: ro, count: (li.len() + ri.len()) as u32, leaf: false });
+    let shift = |n: &Node, by: u32| if n.leaf { *n } else { Node { a: n.a + by, b: n.b + by, ..*n } };
+    nodes.extend(left.iter().map(|n| shift(n, lo)));
+    nodes.extend(right.iter().map(|n| shift(n, ro)));
+    nodes
+}
+
+/// Sequential pre-order build appending to `nodes`; returns the index of the subtree root.
+fn build_into(nodes: &mut Vec<Node>, boxes: &[Aabb], centers: &[DVec3], items: &mut [u32], offset: u32) -> u32 {
+    let me = nodes.len() as u32;
+    if items.len() <= LEAF_SIZE {
+        let bounds = items.iter().fold(Aabb::EMPTY, |b, &i| b.union(&boxes[i as usize]));
+        let n = items.len() as u32;
+        nodes.push(Node { bounds, a: offset, b: n, count: n, leaf: true });
+        return me;
+    }
+    let (bounds, mid) = split(boxes, centers, items);
+    nodes.push(Node { bounds, a: 0, b: 0, count: items.len() as u32, leaf: false });
+    let (li, ri) = items.split_at_mut(mid);
+    let l = build_into(nodes, boxes, centers, li, offset);
+    let r = build_into(nodes, boxes, centers, ri, offset + mid as u32);
+    nodes[me as usize].a = l;
+    nodes[me as usize].b = r;
+    me
+}
+
+/// Bounds of the items, and a median partition of them along the widest axis of their centres.
+fn split(boxes: &[Aabb], centers: &[DVec3], items: &mut [u32]) -> (Aabb, usize) {
+    let mut bounds = Aabb::EMPTY;
+    let mut cb = Aabb::EMPTY;
+    for &i in items.iter() {
+        bounds = bounds.union(&boxes[i as usize]);
+        let c = centers[i as usize];
+        cb = Aabb { min: cb.min.min(c), max: cb.max.max(c) };
+    }
+    let ext = cb.max - cb.min;
+    let axis = if ext.x >= ext.y && ext.x >= ext.z {
+        0
+    } else if ext.y >= ext.z {
+        1
+    } else {
+        2
+    };
+    let mid = items.len() / 2;
+    items.select_nth_unstable_by(mid, |&i, &j| centers[i as usize][axis].total_cmp(&centers[j as usize][axis]));
+    (bounds, mid)
+}

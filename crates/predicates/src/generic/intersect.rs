@@ -1,0 +1,334 @@
+//! Segment–triangle and triangle–triangle intersection of closed simplices (exact).
+
+use glam::DVec3;
+
+use super::basic::{
+    TriangleLocation, collinear, locate_2d, locate_coplanar, normal_axis, proj, segments_intersect,
+    segments_intersect_2d,
+};
+use crate::{Kernel, Orientation, Sign};
+
+/// How a closed segment `pq` meets a closed triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SegmentTriangle {
+    /// No common point.
+    Disjoint,
+    /// `p` and `q` lie strictly on opposite sides of the triangle's plane and the segment
+    /// crosses it at the given location of the (non-degenerate) triangle:
+    /// `Interior` is a proper crossing, `Edge(i)`/`Vertex(i)` a crossing through an edge/vertex.
+    Crossing(TriangleLocation),
+    /// Exactly one endpoint (`0` for `p`, `1` for `q`) lies in the plane, inside the closed
+    /// triangle at `location`; the other is strictly off the plane.
+    Endpoint {
+        /// `0` for `p`, `1` for `q`.
+        endpoint: u8,
+        /// Where that endpoint is on the triangle (never `Outside`).
+        location: TriangleLocation,
+    },
+    /// Both endpoints lie in the plane of the non-degenerate triangle and the segment meets
+    /// the closed triangle (a single point, a sub-segment, or all of the segment).
+    Coplanar,
+    /// The triangle is degenerate (collinear vertices: a segment or a point) and the segment
+    /// meets it.
+    DegenerateTriangle,
+}
+
+impl SegmentTriangle {
+    /// True unless [`SegmentTriangle::Disjoint`].
+    #[must_use]
+    pub fn intersects(self) -> bool {
+        self != SegmentTriangle::Disjoint
+    }
+}
+
+/// Classifies how the closed segment `pq` meets the closed triangle `t` (exact).
+///
+/// Degenerate cases: `p == q` is a point (classified like a segment: `Endpoint { endpoint: 0 }`
+/// never occurs for it, a point in the plane gives `Coplanar`); a degenerate triangle gives
+/// `DegenerateTriangle` or `Disjoint`.
+///
+/// ```
+/// use envelope_predicates::{segment_triangle, SegmentTriangle, TriangleLocation};
+/// use glam::DVec3;
+/// let t = [DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 2.0, 0.0)];
+/// let down = |x: f64, y: f64| (DVec3::new(x, y, 1.0), DVec3::new(x, y, -1.0));
+/// let (p, q) = down(0.5, 0.5);
+/// assert_eq!(segment_triangle(p, q, t), SegmentTriangle::Crossing(TriangleLocation::Interior));
+/// let (p, q) = down(1.0, 1.0);
+/// assert_eq!(segment_triangle(p, q, t), SegmentTriangle::Crossing(TriangleLocation::Edge(1)));
+/// let (p, q) = down(3.0, 0.0);
+/// assert_eq!(segment_triangle(p, q, t), SegmentTriangle::Disjoint);
+/// ```
+pub fn segment_triangle<K: Kernel>(p: DVec3, q: DVec3, t: [DVec3; 3]) -> SegmentTriangle {
+    let Some((axis, s)) = normal_axis::<K>(t[0], t[1], t[2]) else {
+        let meets = (0..3).any(|i| segments_intersect::<K>(p, q, t[i], t[(i + 1) % 3]));
+        return if meets { SegmentTriangle::DegenerateTriangle } else { SegmentTriangle::Disjoint };
+    };
+    let sp = K::orient3d(t[0], t[1], t[2], p);
+    let sq = K::orient3d(t[0], t[1], t[2], q);
+    segment_triangle_with::<K>(p, q, t, axis, s, sp, sq)
+}
+
+/// [`segment_triangle`] for a non-degenerate triangle with known projection axis, its 2-D
+/// orientation there, and the plane sides of `p` and `q`.
+fn segment_triangle_with<K: Kernel>(
+    p: DVec3,
+    q: DVec3,
+    t: [DVec3; 3],
+    axis: usize,
+    s: Orientation,
+    sp: Orientation,
+    sq: Orientation,
+) -> SegmentTriangle {
+    use Orientation::Degenerate as Z;
+    match (sp, sq) {
+        (Z, Z) => {
+            let (p2, q2) = (proj(p, axis), proj(q, axis));
+            let t2 = t.map(|v| proj(v, axis));
+            let meets = locate_2d::<K>(p2, t2, s) != TriangleLocation::Outside
+                || locate_2d::<K>(q2, t2, s) != TriangleLocation::Outside
+                || (0..3).any(|i| segments_intersect_2d::<K>(p2, q2, t2[i], t2[(i + 1) % 3]));
+            if meets { SegmentTriangle::Coplanar } else { SegmentTriangle::Disjoint }
+        }
+        (Z, _) | (_, Z) => {
+            let (endpoint, x) = if sp == Z { (0, p) } else { (1, q) };
+            match locate_coplanar::<K>(x, t, axis, s) {
+                TriangleLocation::Outside => SegmentTriangle::Disjoint,
+                location => SegmentTriangle::Endpoint { endpoint, location },
+            }
+        }
+        _ if sp == sq => SegmentTriangle::Disjoint,
+        _ => {
+            let o = [
+                K::orient3d(p, q, t[0], t[1]),
+                K::orient3d(p, q, t[1], t[2]),
+                K::orient3d(p, q, t[2], t[0]),
+            ];
+            let pos = o.contains(&Orientation::Positive);
+            let neg = o.contains(&Orientation::Negative);
+            if pos && neg {
+                return SegmentTriangle::Disjoint;
+            }
+            let loc = match o.map(Orientation::is_degenerate) {
+                [false, false, false] => TriangleLocation::Interior,
+                [true, false, false] => TriangleLocation::Edge(0),
+                [false, true, false] => TriangleLocation::Edge(1),
+                [false, false, true] => TriangleLocation::Edge(2),
+                [true, false, true] => TriangleLocation::Vertex(0),
+                [true, true, false] => TriangleLocation::Vertex(1),
+                [false, true, true] => TriangleLocation::Vertex(2),
+                // Impossible when p and q are strictly on opposite sides of a non-degenerate plane.
+                [true, true, true] => unreachable!("line pq coplanar with all edges"),
+            };
+            SegmentTriangle::Crossing(loc)
+        }
+    }
+}
+
+/// True when all three are the same strict side.
+#[inline]
+fn strictly_one_side(o: [Orientation; 3]) -> bool {
+    !o[0].is_degenerate() && o[0] == o[1] && o[1] == o[2]
+}
+
+/// True when the closed triangles `t1` and `t2` have a common point (touching counts), exact.
+///
+/// Handles coplanar triangles (2-D overlap) and degenerate triangles (segments, points). The
+/// answer is the exact geometric one, so it is symmetric in `t1, t2` and invariant under any
+/// permutation of either triangle's vertices.
+///
+/// Method: after a plane-side rejection, two closed triangles meet iff an edge of one meets
+/// the other (their intersection is convex; one of its extreme points lies on an edge).
+///
+/// ```
+/// use envelope_predicates::triangles_intersect;
+/// use glam::DVec3;
+/// let t1 = [DVec3::ZERO, DVec3::X, DVec3::Y];
+/// let t2 = [DVec3::new(0.2, 0.2, -1.0), DVec3::new(0.2, 0.2, 1.0), DVec3::new(5.0, 5.0, 0.0)];
+/// assert!(triangles_intersect(t1, t2));
+/// let t3 = t2.map(|p| p + DVec3::new(0.0, 0.0, 1.5));
+/// assert!(!triangles_intersect(t1, t3));
+/// ```
+pub fn triangles_intersect<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool {
+    let s2 = t2.map(|v| K::orient3d(t1[0], t1[1], t1[2], v));
+    if strictly_one_side(s2) {
+        return false;
+    }
+    let s1 = t1.map(|v| K::orient3d(t2[0], t2[1], t2[2], v));
+    if strictly_one_side(s1) {
+        return false;
+    }
+    edges_meet::<K>(t1, t2, s2) || edges_meet::<K>(t2, t1, s1)
+}
+
+/// Some edge of `a` meets the closed triangle `b`; `sides[i]` is `orient3d(b, a[i])`.
+fn edges_meet<K: Kernel>(a: [DVec3; 3], b: [DVec3; 3], sides: [Orientation; 3]) -> bool {
+    match normal_axis::<K>(b[0], b[1], b[2]) {
+        Some((axis, s)) => (0..3).any(|i| {
+            let j = (i + 1) % 3;
+            segment_triangle_with::<K>(a[i], a[j], b, axis, s, sides[i], sides[j]).intersects()
+        }),
+        None => (0..3).any(|i| segment_triangle::<K>(a[i], a[(i + 1) % 3], b).intersects()),
+    }
+}
+
+/// Which vertices two mesh faces share, as local vertex indices (`0..3`) into each triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Shared {
+    /// `t1[i] == t2[j]` is the only shared vertex.
+    Vertex(usize, usize),
+    /// `t1[i0] == t2[j0]` and `t1[i1] == t2[j1]`: a shared edge (local indices `[i0, i1]`, `[j0, j1]`).
+    Edge([usize; 2], [usize; 2]),
+}
+
+/// Intersection test for adjacent mesh faces: true only when the closed triangles meet
+/// somewhere other than their shared vertex or shared edge.
+///
+/// The shared vertices must have identical positions (they are the same mesh vertex).
+///
+/// * Shared edge `uw`, non-degenerate faces: they meet elsewhere iff they are coplanar and the
+///   opposite vertices lie on the same side of `uw` (a fold-over); otherwise their
+///   intersection is exactly the edge.
+/// * Shared vertex `v`, non-degenerate faces: they meet elsewhere iff the edge opposite `v` in
+///   one face meets the other face (that edge does not contain `v`).
+/// * Degenerate faces are the union of their two edges at the shared vertex (or a segment on
+///   the shared edge's line) and are tested as such.
+///
+/// ```
+/// use envelope_predicates::{adjacent_triangles_intersect, Shared};
+/// use glam::DVec3;
+/// let (u, w) = (DVec3::ZERO, DVec3::X);
+/// // Two faces folded onto each other across the edge uw.
+/// let t1 = [u, w, DVec3::new(0.5, 1.0, 0.0)];
+/// let t2 = [w, u, DVec3::new(0.3, 2.0, 0.0)];
+/// assert!(adjacent_triangles_intersect(t1, t2, Shared::Edge([0, 1], [1, 0])));
+/// // A flat, non-overlapping neighbour.
+/// let t3 = [w, u, DVec3::new(0.3, -2.0, 0.0)];
+/// assert!(!adjacent_triangles_intersect(t1, t3, Shared::Edge([0, 1], [1, 0])));
+/// ```
+pub fn adjacent_triangles_intersect<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3], shared: Shared) -> bool {
+    match shared {
+        Shared::Vertex(i, j) => {
+            debug_assert_eq!(t1[i], t2[j], "shared vertex positions differ");
+            let v = t1[i];
+            meets_beyond_vertex::<K>(v, [t1[(i + 1) % 3], t1[(i + 2) % 3]], [t2[(j + 1) % 3], t2[(j + 2) % 3]])
+        }
+        Shared::Edge([i0, i1], [j0, j1]) => {
+            debug_assert!(t1[i0] == t2[j0] && t1[i1] == t2[j1], "shared edge positions differ");
+            let (u, w) = (t1[i0], t1[i1]);
+            let a = t1[3 - i0 - i1];
+            let b = t2[3 - j0 - j1];
+            meets_beyond_edge::<K>(u, w, a, b)
+        }
+    }
+}
+
+/// `[v, a1, b1] ∩ [v, a2, b2] != {v}`.
+fn meets_beyond_vertex<K: Kernel>(v: DVec3, [a1, b1]: [DVec3; 2], [a2, b2]: [DVec3; 2]) -> bool {
+    let t1 = [v, a1, b1];
+    let t2 = [v, a2, b2];
+    // Plane-side rejection: the other face touches this plane only at v.
+    let s = [a2, b2].map(|x| K::orient3d(v, a1, b1, x));
+    if !s[0].is_degenerate() && s[0] == s[1] {
+        return false;
+    }
+    let s = [a1, b1].map(|x| K::orient3d(v, a2, b2, x));
+    if !s[0].is_degenerate() && s[0] == s[1] {
+        return false;
+    }
+    let d1 = collinear::<K>(v, a1, b1);
+    let d2 = collinear::<K>(v, a2, b2);
+    match (d1, d2) {
+        (false, false) => {
+            segment_triangle::<K>(a1, b1, t2).intersects() || segment_triangle::<K>(a2, b2, t1).intersects()
+        }
+        (true, _) => spoke_meets::<K>(v, a1, t2, d2) || spoke_meets::<K>(v, b1, t2, d2),
+        (false, true) => spoke_meets::<K>(v, a2, t1, false) || spoke_meets::<K>(v, b2, t1, false),
+    }
+}
+
+/// `[v, a] ∩ t != {v}` for a triangle `t = [v, x, y]` (degenerate when `t_degenerate`).
+fn spoke_meets<K: Kernel>(v: DVec3, a: DVec3, t: [DVec3; 3], t_degenerate: bool) -> bool {
+    if a == v {
+        return false;
+    }
+    if t_degenerate {
+        // t is the union of the spokes [v, t1] and [v, t2].
+        same_ray::<K>(v, a, t[1]) || same_ray::<K>(v, a, t[2])
+    } else {
+        super::point_in_triangle::<K>(a, t) != TriangleLocation::Outside
+            || segments_intersect::<K>(v, a, t[1], t[2])
+    }
+}
+
+/// `x != v`, `y != v`, and `x`, `y` on the same ray from `v`.
+fn same_ray<K: Kernel>(v: DVec3, x: DVec3, y: DVec3) -> bool {
+    x != v && y != v && collinear::<K>(v, x, y) && K::dot(v, x, v, y) == Sign::Positive
+}
+
+/// `[u, w, a] ∩ [u, w, b]` is not contained in the segment `uw`.
+fn meets_beyond_edge<K: Kernel>(u: DVec3, w: DVec3, a: DVec3, b: DVec3) -> bool {
+    if u == w {
+        return meets_beyond_vertex::<K>(u, [w, a], [w, b]);
+    }
+    match (normal_axis::<K>(u, w, a), normal_axis::<K>(u, w, b)) {
+        (Some((axis, sa)), Some(_)) => {
+            if !K::orient3d(u, w, a, b).is_degenerate() {
+                return false;
+            }
+            let sb = K::orient2d(proj(u, axis), proj(w, axis), proj(b, axis));
+            sa == sb
+        }
+        (None, None) => {
+            // Both faces lie on the line uw: they overlap beyond the edge iff a and b stick out
+            // past the same endpoint.
+            let side = |x: DVec3| {
+                if K::dot(u, w, w, x) == Sign::Positive {
+                    1
+                } else if K::dot(w, u, u, x) == Sign::Positive {
+                    -1
+                } else {
+                    0
+                }
+            };
+            let (sa, sb) = (side(a), side(b));
+            sa != 0 && sa == sb
+        }
+        // A non-degenerate face meets the line uw exactly in the segment uw.
+        _ => false,
+    }
+}
+
+/// True when two closed triangles are coplanar, both non-degenerate, and their interiors
+/// overlap (intersection with positive area): coincident or partly coincident faces.
+///
+/// Uses the separating-axis theorem in the projection: the interiors are disjoint iff the
+/// other triangle lies in the closed outer half-plane of some edge of one of them.
+///
+/// ```
+/// use envelope_predicates::triangles_overlap_with_area;
+/// use glam::DVec3;
+/// let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
+/// assert!(triangles_overlap_with_area(t, [t[1], t[2], t[0]]));
+/// // Sharing only an edge: no area in common.
+/// assert!(!triangles_overlap_with_area(t, [DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)]));
+/// ```
+pub fn triangles_overlap_with_area<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool {
+    let Some((axis, s1)) = normal_axis::<K>(t1[0], t1[1], t1[2]) else { return false };
+    if t2.iter().any(|&v| !K::orient3d(t1[0], t1[1], t1[2], v).is_degenerate()) {
+        return false;
+    }
+    let p1 = t1.map(|v| proj(v, axis));
+    let p2 = t2.map(|v| proj(v, axis));
+    let s2 = K::orient2d(p2[0], p2[1], p2[2]);
+    if s2.is_degenerate() {
+        return false;
+    }
+    let separated = |a: [glam::DVec2; 3], sa: Orientation, b: [glam::DVec2; 3]| {
+        (0..3).any(|i| {
+            let (x, y) = (a[i], a[(i + 1) % 3]);
+            b.iter().all(|&v| K::orient2d(x, y, v) != sa)
+        })
+    };
+    !separated(p1, s1, p2) && !separated(p2, s2, p1)
+}
