@@ -12,7 +12,11 @@ use crate::report::ReadReport;
 pub(crate) fn checked_position(p: [f64; 3], vertex: u64) -> Result<DVec3, ReadErrorKind> {
     for (axis, &x) in Axis::ALL.iter().zip(&p) {
         if let Err(error) = check_coordinate(x) {
-            return Err(ReadErrorKind::Coordinate { vertex, axis: *axis, error });
+            return Err(ReadErrorKind::Coordinate {
+                vertex,
+                axis: *axis,
+                error,
+            });
         }
     }
     Ok(DVec3::from_array(p))
@@ -26,7 +30,12 @@ pub(crate) fn push_polygon(
     report: &mut ReadReport,
 ) -> Result<(), ReadErrorKind> {
     match poly.len() {
-        n if n < 3 => return Err(ReadErrorKind::TooFewCorners { face, corners: n as u64 }),
+        n if n < 3 => {
+            return Err(ReadErrorKind::TooFewCorners {
+                face,
+                corners: n as u64,
+            });
+        }
         3 => faces.push([VertexId(poly[0]), VertexId(poly[1]), VertexId(poly[2])]),
         n => {
             for i in 1..n - 1 {
@@ -48,7 +57,11 @@ pub(crate) fn push_strip(faces: &mut Vec<[VertexId; 3]>, s: &[u32], report: &mut
     }
     report.strips_expanded += 1;
     for k in 0..s.len().saturating_sub(2) {
-        let (a, b, c) = if k % 2 == 0 { (s[k], s[k + 1], s[k + 2]) } else { (s[k + 1], s[k], s[k + 2]) };
+        let (a, b, c) = if k % 2 == 0 {
+            (s[k], s[k + 1], s[k + 2])
+        } else {
+            (s[k + 1], s[k], s[k + 2])
+        };
         if a == b || b == c || a == c {
             report.strip_triangles_dropped += 1;
         } else {
@@ -68,13 +81,22 @@ pub(crate) fn vertex_index(
     if index >= 0 && (index as u64) < vertices {
         Ok(index as u32)
     } else {
-        Err(ReadErrorKind::IndexOutOfRange { what, element, index, vertices })
+        Err(ReadErrorKind::IndexOutOfRange {
+            what,
+            element,
+            index,
+            vertices,
+        })
     }
 }
 
 /// Rejects vertex counts that do not fit vertex ids (`u32::MAX` is the invalid id).
 pub(crate) fn check_vertex_count(n: u64) -> Result<(), ReadErrorKind> {
-    if n >= u64::from(u32::MAX) { Err(ReadErrorKind::TooMany("vertices")) } else { Ok(()) }
+    if n >= u64::from(u32::MAX) {
+        Err(ReadErrorKind::TooMany("vertices"))
+    } else {
+        Ok(())
+    }
 }
 
 /// Final checks shared by all readers.

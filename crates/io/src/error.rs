@@ -136,7 +136,9 @@ impl From<io::ErrorKind> for ReadErrorKind {
         match kind {
             io::ErrorKind::NotFound => ReadErrorKind::NotFound,
             io::ErrorKind::IsADirectory => ReadErrorKind::IsADirectory,
-            io::ErrorKind::UnexpectedEof => ReadErrorKind::Truncated { expected: "more data" },
+            io::ErrorKind::UnexpectedEof => ReadErrorKind::Truncated {
+                expected: "more data",
+            },
             other => ReadErrorKind::Io(other),
         }
     }
@@ -148,7 +150,7 @@ impl From<io::ErrorKind> for ReadErrorKind {
 /// use envelope_io::{read, Format, ReadErrorKind};
 /// let err = read(&b"OFF\n3 1 0\n0 0 0\n1 0 0\n"[..], Format::Off).unwrap_err();
 /// assert!(matches!(err.kind, ReadErrorKind::Truncated { .. }));
-/// assert_eq!(err.to_string(), "<input>: line 5: file ends early: expected vertex line");
+/// assert_eq!(err.to_string(), "<input>: line 4: file ends early: expected vertex line");
 /// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ReadError {
@@ -162,7 +164,11 @@ pub struct ReadError {
 
 impl ReadError {
     pub(crate) fn new(location: Location, kind: ReadErrorKind) -> Self {
-        Self { path: None, location, kind }
+        Self {
+            path: None,
+            location,
+            kind,
+        }
     }
 
     pub(crate) fn with_path(mut self, path: &std::path::Path) -> Self {
@@ -244,7 +250,10 @@ impl From<WriteErrorKind> for WriteError {
 
 impl From<io::Error> for WriteError {
     fn from(e: io::Error) -> Self {
-        Self { path: None, kind: WriteErrorKind::Io(e) }
+        Self {
+            path: None,
+            kind: WriteErrorKind::Io(e),
+        }
     }
 }
 

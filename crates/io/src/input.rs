@@ -24,7 +24,15 @@ pub(crate) struct Input<R> {
 
 impl<R: Read> Input<R> {
     pub(crate) fn new(inner: R, size: Option<u64>) -> Self {
-        Self { inner, buf: vec![0; CHUNK], pos: 0, end: 0, base: 0, eof: false, size }
+        Self {
+            inner,
+            buf: vec![0; CHUNK],
+            pos: 0,
+            end: 0,
+            base: 0,
+            eof: false,
+            size,
+        }
     }
 
     /// Absolute offset of the next unread byte.
@@ -155,7 +163,12 @@ pub(crate) struct Lines<R> {
 
 impl<R: Read> Lines<R> {
     pub(crate) fn new(input: Input<R>, comment: Option<u8>) -> Self {
-        Self { input, line: Vec::new(), line_no: 0, comment }
+        Self {
+            input,
+            line: Vec::new(),
+            line_no: 0,
+            comment,
+        }
     }
 
     pub(crate) fn location(&self) -> Location {
@@ -202,7 +215,8 @@ impl<R: Read> Lines<R> {
 }
 
 pub(crate) fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
-    line.split(|b| b.is_ascii_whitespace()).filter(|t| !t.is_empty())
+    line.split(|b| b.is_ascii_whitespace())
+        .filter(|t| !t.is_empty())
 }
 
 /// A token stream over lines (for formats where line breaks carry no meaning).
@@ -261,8 +275,14 @@ impl<R: Read> Tokens<R> {
 
     /// Requires the next token to be `keyword` (ASCII case-insensitive).
     pub(crate) fn expect_keyword(&mut self, keyword: &'static str) -> Result<(), ReadError> {
-        let ok = self.expect_any(keyword)?.eq_ignore_ascii_case(keyword.as_bytes());
-        if ok { Ok(()) } else { Err(self.error(ReadErrorKind::Unexpected { expected: keyword })) }
+        let ok = self
+            .expect_any(keyword)?
+            .eq_ignore_ascii_case(keyword.as_bytes());
+        if ok {
+            Ok(())
+        } else {
+            Err(self.error(ReadErrorKind::Unexpected { expected: keyword }))
+        }
     }
 
     /// Parses the next token with `parse`, failing with `MalformedNumber`.

@@ -155,8 +155,9 @@ impl Format {
         if first.ends_with(b"OFF") {
             return Some(Format::Off);
         }
-        const OBJ_KEYWORDS: [&[u8]; 12] =
-            [b"v", b"vt", b"vn", b"vp", b"f", b"o", b"g", b"s", b"l", b"p", b"mtllib", b"usemtl"];
+        const OBJ_KEYWORDS: [&[u8]; 12] = [
+            b"v", b"vt", b"vn", b"vp", b"f", b"o", b"g", b"s", b"l", b"p", b"mtllib", b"usemtl",
+        ];
         if OBJ_KEYWORDS.contains(&first) {
             return Some(Format::Obj);
         }
@@ -252,7 +253,8 @@ pub fn read_path(path: impl AsRef<Path>) -> Result<(TriangleSoup, ReadReport), R
         Some(f) => f,
         None => {
             let head = input.peek(512).map_err(|e| fail(e.kind().into()))?;
-            Format::sniff(head, Some(meta.len())).ok_or_else(|| fail(ReadErrorKind::UnknownFormat))?
+            Format::sniff(head, Some(meta.len()))
+                .ok_or_else(|| fail(ReadErrorKind::UnknownFormat))?
         }
     };
     read_input(input, format).map_err(|e| e.with_path(path))
@@ -263,7 +265,11 @@ fn validate(soup: &TriangleSoup) -> Result<(), WriteErrorKind> {
     for (v, p) in soup.positions.iter().enumerate() {
         for (axis, x) in Axis::ALL.into_iter().zip(p.to_array()) {
             if let Err(error) = check_coordinate(x) {
-                return Err(WriteErrorKind::Coordinate { vertex: v as u64, axis, error });
+                return Err(WriteErrorKind::Coordinate {
+                    vertex: v as u64,
+                    axis,
+                    error,
+                });
             }
         }
     }
@@ -354,7 +360,11 @@ fn create_temp(path: &Path) -> io::Result<(PathBuf, fs::File)> {
         tmp_name.push(name);
         tmp_name.push(format!(".{}.{n}.tmp", std::process::id()));
         let tmp = dir.join(tmp_name);
-        match fs::OpenOptions::new().write(true).create_new(true).open(&tmp) {
+        match fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+        {
             Ok(f) => return Ok((tmp, f)),
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists && n < u64::MAX => {}
             Err(e) => return Err(e),

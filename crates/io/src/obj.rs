@@ -59,7 +59,10 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
                 let mut p = [0.0; 3];
                 for (i, c) in p.iter_mut().enumerate() {
                     let t = toks.next().ok_or_else(|| {
-                        err(ReadErrorKind::WrongValueCount { expected: 3, found: i as u64 })
+                        err(ReadErrorKind::WrongValueCount {
+                            expected: 3,
+                            found: i as u64,
+                        })
                     })?;
                     *c = parse_f64(t).ok_or_else(|| err(ReadErrorKind::MalformedNumber))?;
                 }
@@ -95,12 +98,16 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
                 face_no += 1;
             }
             other => {
-                *ignored.entry(String::from_utf8_lossy(other).into_owned()).or_default() += 1;
+                *ignored
+                    .entry(String::from_utf8_lossy(other).into_owned())
+                    .or_default() += 1;
             }
         }
     }
     if extra_vertex_values > 0 {
-        report.note(format!("{extra_vertex_values} vertices had values after x y z (ignored)"));
+        report.note(format!(
+            "{extra_vertex_values} vertices had values after x y z (ignored)"
+        ));
     }
     for (k, n) in ignored {
         report.note(format!("ignored {n} '{k}' statements"));
@@ -110,12 +117,23 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
 }
 
 pub(crate) fn write<W: Write>(w: &mut W, soup: &TriangleSoup) -> io::Result<()> {
-    writeln!(w, "# {} vertices, {} triangles", soup.num_vertices(), soup.num_faces())?;
+    writeln!(
+        w,
+        "# {} vertices, {} triangles",
+        soup.num_vertices(),
+        soup.num_faces()
+    )?;
     for p in &soup.positions {
         writeln!(w, "v {:?} {:?} {:?}", p.x, p.y, p.z)?;
     }
     for f in &soup.faces {
-        writeln!(w, "f {} {} {}", f[0].0 as u64 + 1, f[1].0 as u64 + 1, f[2].0 as u64 + 1)?;
+        writeln!(
+            w,
+            "f {} {} {}",
+            f[0].0 as u64 + 1,
+            f[1].0 as u64 + 1,
+            f[2].0 as u64 + 1
+        )?;
     }
     Ok(())
 }
@@ -148,7 +166,12 @@ mod tests {
         assert_eq!(
             soup,
             TriangleSoup::from_raw(
-                &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+                &[
+                    [0.0, 0.0, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [1.0, 1.0, 0.0],
+                    [0.0, 1.0, 0.0]
+                ],
                 &[[0, 1, 2], [0, 2, 3]]
             )
         );
@@ -168,38 +191,71 @@ mod tests {
     fn bad_inputs() {
         assert_eq!(
             kind("v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n"),
-            ReadErrorKind::Coordinate { vertex: 1, axis: Axis::Y, error: CoordError::NaN }
+            ReadErrorKind::Coordinate {
+                vertex: 1,
+                axis: Axis::Y,
+                error: CoordError::NaN
+            }
         );
         assert_eq!(
             kind("v 0 0 1e300\n"),
-            ReadErrorKind::Coordinate { vertex: 0, axis: Axis::Z, error: CoordError::TooLarge }
+            ReadErrorKind::Coordinate {
+                vertex: 0,
+                axis: Axis::Z,
+                error: CoordError::TooLarge
+            }
         );
-        assert_eq!(kind("v 0 0\n"), ReadErrorKind::WrongValueCount { expected: 3, found: 2 });
+        assert_eq!(
+            kind("v 0 0\n"),
+            ReadErrorKind::WrongValueCount {
+                expected: 3,
+                found: 2
+            }
+        );
         assert_eq!(kind("v 0 0 x\n"), ReadErrorKind::MalformedNumber);
-        assert_eq!(kind("v 0 0 0\nf 1 2 3\n"), ReadErrorKind::IndexOutOfRange {
-            what: "face",
-            element: 0,
-            index: 1,
-            vertices: 1
-        });
+        assert_eq!(
+            kind("v 0 0 0\nf 1 2 3\n"),
+            ReadErrorKind::IndexOutOfRange {
+                what: "face",
+                element: 0,
+                index: 1,
+                vertices: 1
+            }
+        );
         assert_eq!(
             kind("v 0 0 0\nv 0 0 0\nv 0 0 0\nf 1 2 3\nf 0 1 2\n"),
-            ReadErrorKind::IndexOutOfRange { what: "face", element: 1, index: -1, vertices: 3 }
+            ReadErrorKind::IndexOutOfRange {
+                what: "face",
+                element: 1,
+                index: -1,
+                vertices: 3
+            }
         );
-        assert_eq!(kind("v 0 0 0\nv 0 0 0\nv 0 0 0\nf -4 1 2\n"), ReadErrorKind::IndexOutOfRange {
-            what: "face",
-            element: 0,
-            index: -1,
-            vertices: 3
-        });
-        assert_eq!(kind("v 0 0 0\nv 0 0 0\nf 1 2\n"), ReadErrorKind::TooFewCorners {
-            face: 0,
-            corners: 2
-        });
+        assert_eq!(
+            kind("v 0 0 0\nv 0 0 0\nv 0 0 0\nf -4 1 2\n"),
+            ReadErrorKind::IndexOutOfRange {
+                what: "face",
+                element: 0,
+                index: -1,
+                vertices: 3
+            }
+        );
+        assert_eq!(
+            kind("v 0 0 0\nv 0 0 0\nf 1 2\n"),
+            ReadErrorKind::TooFewCorners {
+                face: 0,
+                corners: 2
+            }
+        );
         assert_eq!(kind("v 0 0 0\nf x/1 1 1\n"), ReadErrorKind::MalformedNumber);
         assert_eq!(kind("v 0 0 0\nv 1 1 1\n"), ReadErrorKind::NoFaces);
         assert_eq!(kind(""), ReadErrorKind::NoFaces);
-        assert_eq!(read(&[0xff, 0x00, 0x13, 0x80][..], Format::Obj).unwrap_err().kind, ReadErrorKind::NoFaces);
+        assert_eq!(
+            read(&[0xff, 0x00, 0x13, 0x80][..], Format::Obj)
+                .unwrap_err()
+                .kind,
+            ReadErrorKind::NoFaces
+        );
     }
 
     #[test]

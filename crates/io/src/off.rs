@@ -27,7 +27,9 @@ fn check_keyword(kw: &[u8]) -> Result<(), ReadErrorKind> {
         b"OFF" => Ok(()),
         [b'4', ..] => Err(ReadErrorKind::Unsupported("4OFF (homogeneous coordinates)")),
         [b'n', ..] => Err(ReadErrorKind::Unsupported("nOFF (dimension other than 3)")),
-        _ => Err(ReadErrorKind::BadHeader("the first line must be OFF (or COFF, NOFF, STOFF)")),
+        _ => Err(ReadErrorKind::BadHeader(
+            "the first line must be OFF (or COFF, NOFF, STOFF)",
+        )),
     }
 }
 
@@ -35,7 +37,9 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
     let mut lines = Lines::new(input, Some(b'#'));
     let mut report = ReadReport::new(Format::Off);
     if !lines.next_nonblank()? {
-        return Err(lines.error(ReadErrorKind::Truncated { expected: "OFF header" }));
+        return Err(lines.error(ReadErrorKind::Truncated {
+            expected: "OFF header",
+        }));
     }
     let mut toks: Vec<u64> = Vec::new();
     {
@@ -43,7 +47,10 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
         let kw = t.next().unwrap_or_default();
         check_keyword(kw).map_err(|k| lines.error(k))?;
         let rest: Vec<&[u8]> = t.collect();
-        if rest.first().is_some_and(|t| t.eq_ignore_ascii_case(b"BINARY")) {
+        if rest
+            .first()
+            .is_some_and(|t| t.eq_ignore_ascii_case(b"BINARY"))
+        {
             return Err(lines.error(ReadErrorKind::Unsupported("binary OFF")));
         }
         for t in rest {
@@ -52,7 +59,9 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
     }
     if toks.is_empty() {
         if !lines.next_nonblank()? {
-            return Err(lines.error(ReadErrorKind::Truncated { expected: "counts line" }));
+            return Err(lines.error(ReadErrorKind::Truncated {
+                expected: "counts line",
+            }));
         }
         for t in lines.tokens() {
             toks.push(parse_u64(t).ok_or_else(|| lines.error(ReadErrorKind::MalformedNumber))?);
@@ -75,14 +84,19 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
     let mut extra_vertex_columns = 0u64;
     for v in 0..nv {
         if !lines.next_nonblank()? {
-            return Err(lines.error(ReadErrorKind::Truncated { expected: "vertex line" }));
+            return Err(lines.error(ReadErrorKind::Truncated {
+                expected: "vertex line",
+            }));
         }
         let err = |k| lines.error(k);
         let mut p = [0.0; 3];
         let mut t = lines.tokens();
         for (i, c) in p.iter_mut().enumerate() {
             let tok = t.next().ok_or_else(|| {
-                err(ReadErrorKind::WrongValueCount { expected: 3, found: i as u64 })
+                err(ReadErrorKind::WrongValueCount {
+                    expected: 3,
+                    found: i as u64,
+                })
             })?;
             *c = parse_f64(tok).ok_or_else(|| err(ReadErrorKind::MalformedNumber))?;
         }
@@ -95,7 +109,9 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
     let mut coloured = 0u64;
     for f in 0..nf {
         if !lines.next_nonblank()? {
-            return Err(lines.error(ReadErrorKind::Truncated { expected: "face line" }));
+            return Err(lines.error(ReadErrorKind::Truncated {
+                expected: "face line",
+            }));
         }
         let err = |k| lines.error(k);
         let mut t = lines.tokens();
@@ -120,7 +136,10 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
             extra += 1;
         }
         if extra > 4 {
-            return Err(err(ReadErrorKind::WrongValueCount { expected: n.saturating_add(1), found: n + 1 + extra }));
+            return Err(err(ReadErrorKind::WrongValueCount {
+                expected: n.saturating_add(1),
+                found: n + 1 + extra,
+            }));
         }
         if extra > 0 {
             coloured += 1;
@@ -182,10 +201,19 @@ mod tests {
         .unwrap();
         assert_eq!(soup.num_vertices(), 5);
         assert_eq!(soup.faces.len(), 3);
-        assert_eq!(soup, TriangleSoup::from_raw(
-            &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-            &[[0, 1, 2], [0, 2, 3], [0, 1, 4]]
-        ));
+        assert_eq!(
+            soup,
+            TriangleSoup::from_raw(
+                &[
+                    [0.0, 0.0, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [1.0, 1.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [0.0, 0.0, 1.0]
+                ],
+                &[[0, 1, 2], [0, 2, 3], [0, 1, 4]]
+            )
+        );
         assert_eq!(report.polygons_triangulated, 1);
         assert!(report.notes.iter().any(|n| n.contains("colour")));
     }
@@ -196,9 +224,18 @@ mod tests {
         assert_eq!(off(noff).unwrap().0.num_faces(), 1);
         let coff = "COFF 3 1\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n3 0 1 2\n";
         assert_eq!(off(coff).unwrap().0.num_faces(), 1);
-        assert!(matches!(kind("4OFF\n1 1 0\n"), ReadErrorKind::Unsupported(_)));
-        assert!(matches!(kind("nOFF\n4\n1 1 0\n"), ReadErrorKind::Unsupported(_)));
-        assert!(matches!(kind("OFF BINARY\n"), ReadErrorKind::Unsupported(_)));
+        assert!(matches!(
+            kind("4OFF\n1 1 0\n"),
+            ReadErrorKind::Unsupported(_)
+        ));
+        assert!(matches!(
+            kind("nOFF\n4\n1 1 0\n"),
+            ReadErrorKind::Unsupported(_)
+        ));
+        assert!(matches!(
+            kind("OFF BINARY\n"),
+            ReadErrorKind::Unsupported(_)
+        ));
         assert!(matches!(kind("PLY\n"), ReadErrorKind::BadHeader(_)));
     }
 
@@ -207,60 +244,122 @@ mod tests {
         let tri = |v: &str, f: &str| format!("OFF\n3 1 0\n0 0 0\n{v}\n0 1 0\n{f}\n");
         assert_eq!(
             kind(&tri("1 0 -inf", "3 0 1 2")),
-            ReadErrorKind::Coordinate { vertex: 1, axis: Axis::Z, error: CoordError::Infinite }
+            ReadErrorKind::Coordinate {
+                vertex: 1,
+                axis: Axis::Z,
+                error: CoordError::Infinite
+            }
         );
         assert_eq!(
             kind(&tri("1e-200 0 0", "3 0 1 2")),
-            ReadErrorKind::Coordinate { vertex: 1, axis: Axis::X, error: CoordError::TooSmall }
+            ReadErrorKind::Coordinate {
+                vertex: 1,
+                axis: Axis::X,
+                error: CoordError::TooSmall
+            }
         );
-        assert_eq!(kind(&tri("1 0", "3 0 1 2")), ReadErrorKind::WrongValueCount {
-            expected: 3,
-            found: 2
-        });
-        assert_eq!(kind(&tri("1 0 z", "3 0 1 2")), ReadErrorKind::MalformedNumber);
-        assert_eq!(kind(&tri("1 0 0", "3 0 1 3")), ReadErrorKind::IndexOutOfRange {
-            what: "face",
-            element: 0,
-            index: 3,
-            vertices: 3
-        });
-        assert_eq!(kind(&tri("1 0 0", "3 0 -1 2")), ReadErrorKind::IndexOutOfRange {
-            what: "face",
-            element: 0,
-            index: -1,
-            vertices: 3
-        });
-        assert_eq!(kind(&tri("1 0 0", "3 0 1")), ReadErrorKind::WrongValueCount {
-            expected: 4,
-            found: 3
-        });
-        assert_eq!(kind(&tri("1 0 0", "2 0 1")), ReadErrorKind::TooFewCorners {
-            face: 0,
-            corners: 2
-        });
-        assert_eq!(kind(&tri("1 0 0", "3 0 1 2 1 1 1 1 1")), ReadErrorKind::WrongValueCount {
-            expected: 4,
-            found: 9
-        });
-        assert_eq!(kind(&tri("1 0 0", "3 0 1 2 red")), ReadErrorKind::MalformedNumber);
-        assert_eq!(kind(&tri("1 0 0", "3 0 1 2.5")), ReadErrorKind::MalformedNumber);
+        assert_eq!(
+            kind(&tri("1 0", "3 0 1 2")),
+            ReadErrorKind::WrongValueCount {
+                expected: 3,
+                found: 2
+            }
+        );
+        assert_eq!(
+            kind(&tri("1 0 z", "3 0 1 2")),
+            ReadErrorKind::MalformedNumber
+        );
+        assert_eq!(
+            kind(&tri("1 0 0", "3 0 1 3")),
+            ReadErrorKind::IndexOutOfRange {
+                what: "face",
+                element: 0,
+                index: 3,
+                vertices: 3
+            }
+        );
+        assert_eq!(
+            kind(&tri("1 0 0", "3 0 -1 2")),
+            ReadErrorKind::IndexOutOfRange {
+                what: "face",
+                element: 0,
+                index: -1,
+                vertices: 3
+            }
+        );
+        assert_eq!(
+            kind(&tri("1 0 0", "3 0 1")),
+            ReadErrorKind::WrongValueCount {
+                expected: 4,
+                found: 3
+            }
+        );
+        assert_eq!(
+            kind(&tri("1 0 0", "2 0 1")),
+            ReadErrorKind::TooFewCorners {
+                face: 0,
+                corners: 2
+            }
+        );
+        assert_eq!(
+            kind(&tri("1 0 0", "3 0 1 2 1 1 1 1 1")),
+            ReadErrorKind::WrongValueCount {
+                expected: 4,
+                found: 9
+            }
+        );
+        assert_eq!(
+            kind(&tri("1 0 0", "3 0 1 2 red")),
+            ReadErrorKind::MalformedNumber
+        );
+        assert_eq!(
+            kind(&tri("1 0 0", "3 0 1 2.5")),
+            ReadErrorKind::MalformedNumber
+        );
         // Too many items: data after the announced faces.
-        assert_eq!(kind(&tri("1 0 0", "3 0 1 2\n3 0 1 2")), ReadErrorKind::TrailingData);
+        assert_eq!(
+            kind(&tri("1 0 0", "3 0 1 2\n3 0 1 2")),
+            ReadErrorKind::TrailingData
+        );
         // Too few items.
-        assert_eq!(kind("OFF\n3 1 0\n0 0 0\n1 0 0\n"), ReadErrorKind::Truncated {
-            expected: "vertex line"
-        });
-        assert_eq!(kind("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), ReadErrorKind::Truncated {
-            expected: "face line"
-        });
-        assert_eq!(kind("OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"), ReadErrorKind::NoFaces);
+        assert_eq!(
+            kind("OFF\n3 1 0\n0 0 0\n1 0 0\n"),
+            ReadErrorKind::Truncated {
+                expected: "vertex line"
+            }
+        );
+        assert_eq!(
+            kind("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+            ReadErrorKind::Truncated {
+                expected: "face line"
+            }
+        );
+        assert_eq!(
+            kind("OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"),
+            ReadErrorKind::NoFaces
+        );
         assert!(matches!(kind("OFF\n3\n"), ReadErrorKind::BadHeader(_)));
         assert_eq!(kind("OFF\n3 x 0\n"), ReadErrorKind::MalformedNumber);
-        assert_eq!(kind(""), ReadErrorKind::Truncated { expected: "OFF header" });
-        assert_eq!(kind("OFF\n"), ReadErrorKind::Truncated { expected: "counts line" });
-        assert_eq!(kind("OFF\n5000000000 1 0\n"), ReadErrorKind::TooMany("vertices"));
+        assert_eq!(
+            kind(""),
+            ReadErrorKind::Truncated {
+                expected: "OFF header"
+            }
+        );
+        assert_eq!(
+            kind("OFF\n"),
+            ReadErrorKind::Truncated {
+                expected: "counts line"
+            }
+        );
+        assert_eq!(
+            kind("OFF\n5000000000 1 0\n"),
+            ReadErrorKind::TooMany("vertices")
+        );
         assert!(matches!(
-            read(&[0x4f, 0x46, 0x46, 0xff, 0xfe][..], Format::Off).unwrap_err().kind,
+            read(&[0x4f, 0x46, 0x46, 0xff, 0xfe][..], Format::Off)
+                .unwrap_err()
+                .kind,
             ReadErrorKind::BadHeader(_)
         ));
     }
@@ -269,6 +368,10 @@ mod tests {
     fn error_names_the_line() {
         let e = off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n").unwrap_err();
         assert_eq!(e.location, Location::Line(6));
-        assert!(e.to_string().starts_with("<input>: line 6: face 0: vertex index 7"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("<input>: line 6: face 0: vertex index 7"),
+            "{e}"
+        );
     }
 }

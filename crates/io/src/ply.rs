@@ -88,7 +88,9 @@ struct Element {
 
 impl Element {
     fn find(&self, names: &[&[u8]]) -> Option<usize> {
-        self.props.iter().position(|p| names.contains(&p.name.as_slice()))
+        self.props
+            .iter()
+            .position(|p| names.contains(&p.name.as_slice()))
     }
 
     /// Smallest possible encoded size of one item.
@@ -120,7 +122,9 @@ fn read_header<R: Read>(lines: &mut Lines<R>) -> Result<Header, ReadError> {
     let mut elements: Vec<Element> = Vec::new();
     loop {
         if !lines.next()? {
-            return Err(lines.error(ReadErrorKind::Truncated { expected: "end_header" }));
+            return Err(lines.error(ReadErrorKind::Truncated {
+                expected: "end_header",
+            }));
         }
         let t: Vec<&[u8]> = lines.tokens().collect();
         match t.as_slice() {
@@ -139,7 +143,11 @@ fn read_header<R: Read>(lines: &mut Lines<R>) -> Result<Header, ReadError> {
             [b"element", name, count] => {
                 let count =
                     parse_u64(count).ok_or_else(|| lines.error(ReadErrorKind::MalformedNumber))?;
-                elements.push(Element { name: name.to_vec(), count, props: Vec::new() });
+                elements.push(Element {
+                    name: name.to_vec(),
+                    count,
+                    props: Vec::new(),
+                });
             }
             [b"property", b"list", count, item, name] => {
                 let (Some(count), Some(item)) = (Scalar::from_name(count), Scalar::from_name(item))
@@ -150,13 +158,24 @@ fn read_header<R: Read>(lines: &mut Lines<R>) -> Result<Header, ReadError> {
                     return Err(bad(lines, "list count type must be an integer"));
                 }
                 let kind = Kind::List { count, item };
-                let e = elements.last_mut().ok_or_else(|| bad(lines, "property before element"))?;
-                e.props.push(Property { name: name.to_vec(), kind });
+                let e = elements
+                    .last_mut()
+                    .ok_or_else(|| bad(lines, "property before element"))?;
+                e.props.push(Property {
+                    name: name.to_vec(),
+                    kind,
+                });
             }
             [b"property", ty, name] => {
-                let ty = Scalar::from_name(ty).ok_or_else(|| bad(lines, "unknown property type"))?;
-                let e = elements.last_mut().ok_or_else(|| bad(lines, "property before element"))?;
-                e.props.push(Property { name: name.to_vec(), kind: Kind::Scalar(ty) });
+                let ty =
+                    Scalar::from_name(ty).ok_or_else(|| bad(lines, "unknown property type"))?;
+                let e = elements
+                    .last_mut()
+                    .ok_or_else(|| bad(lines, "property before element"))?;
+                e.props.push(Property {
+                    name: name.to_vec(),
+                    kind: Kind::Scalar(ty),
+                });
             }
             [b"end_header"] => break,
             [b"format", ..] | [b"element", ..] | [b"property", ..] => {
@@ -211,7 +230,12 @@ fn roles<R: Read>(lines: &Lines<R>, h: &Header) -> Result<Vec<Role>, ReadError> 
             },
             b"tristrips" => match index_list(e, &[b"vertex_indices"])? {
                 Some(list) => Role::Strips { list },
-                None => return Err(bad(lines, "the tristrips element has no vertex_indices list")),
+                None => {
+                    return Err(bad(
+                        lines,
+                        "the tristrips element has no vertex_indices list",
+                    ));
+                }
             },
             _ => Role::Skip,
         });
@@ -234,9 +258,11 @@ trait Source {
 
     fn list_len(&mut self, t: Scalar, what: &'static str) -> Result<u64, ReadError> {
         let n = self.int(t, what)?;
-        u64::try_from(n).map_err(|_| self.error(ReadErrorKind::Unexpected {
-            expected: "a non-negative list length",
-        }))
+        u64::try_from(n).map_err(|_| {
+            self.error(ReadErrorKind::Unexpected {
+                expected: "a non-negative list length",
+            })
+        })
     }
 
     fn skip_property(&mut self, kind: Kind, what: &'static str) -> Result<(), ReadError> {
@@ -261,7 +287,10 @@ impl<R: Read, const BE: bool> Binary<'_, R, BE> {
         let loc = Location::Byte(self.item_start);
         match self.input.take(n) {
             Ok(Some(b)) => Ok(b),
-            Ok(None) => Err(ReadError::new(loc, ReadErrorKind::Truncated { expected: what })),
+            Ok(None) => Err(ReadError::new(
+                loc,
+                ReadErrorKind::Truncated { expected: what },
+            )),
             Err(e) => Err(io_error(&e, loc)),
         }
     }
@@ -271,7 +300,9 @@ macro_rules! word {
     ($b:expr, $n:literal, $be:expr) => {{
         let mut a = [0u8; $n];
         a.copy_from_slice(&$b[..$n]);
-        if $be { a.reverse() }
+        if $be {
+            a.reverse()
+        }
         a
     }};
 }
@@ -320,9 +351,10 @@ impl<R: Read, const BE: bool> Source for Binary<'_, R, BE> {
         let total = n.checked_mul(t.size() as u64);
         match total.map(|b| self.input.skip(b)) {
             Some(Ok(true)) => Ok(()),
-            None | Some(Ok(false)) => {
-                Err(ReadError::new(loc, ReadErrorKind::Truncated { expected: what }))
-            }
+            None | Some(Ok(false)) => Err(ReadError::new(
+                loc,
+                ReadErrorKind::Truncated { expected: what },
+            )),
             Some(Err(e)) => Err(io_error(&e, loc)),
         }
     }
@@ -382,11 +414,18 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
         acc.saturating_add(e.count.saturating_mul(e.min_bytes(encoding)))
     });
     if lines.input.remaining().is_some_and(|r| r < min_total) {
-        return Err(ReadError::new(body_location, ReadErrorKind::Truncated {
-            expected: "the element data the header announces",
-        }));
+        return Err(ReadError::new(
+            body_location,
+            ReadErrorKind::Truncated {
+                expected: "the element data the header announces",
+            },
+        ));
     }
-    let nv = header.elements.iter().find(|e| e.name == b"vertex").map_or(0, |e| e.count);
+    let nv = header
+        .elements
+        .iter()
+        .find(|e| e.name == b"vertex")
+        .map_or(0, |e| e.count);
     check_vertex_count(nv).map_err(|k| ReadError::new(body_location, k))?;
     let mut out = Output {
         positions: Vec::new(),
@@ -407,26 +446,33 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
             _ => {}
         }
     }
-    let end_loc;
-    match encoding {
+    let end_loc = match encoding {
         PlyEncoding::Ascii => {
-            let mut src = Ascii { tokens: Tokens::new(lines) };
+            let mut src = Ascii {
+                tokens: Tokens::new(lines),
+            };
             read_elements(&mut src, &header, &roles, &mut out)?;
-            end_loc = src.tokens.lines.location();
+            src.tokens.lines.location()
         }
         PlyEncoding::BinaryLittleEndian => {
             let mut input = lines.input;
-            let mut src = Binary::<R, false> { input: &mut input, item_start: 0 };
+            let mut src = Binary::<R, false> {
+                input: &mut input,
+                item_start: 0,
+            };
             read_elements(&mut src, &header, &roles, &mut out)?;
-            end_loc = input.byte_location();
+            input.byte_location()
         }
         PlyEncoding::BinaryBigEndian => {
             let mut input = lines.input;
-            let mut src = Binary::<R, true> { input: &mut input, item_start: 0 };
+            let mut src = Binary::<R, true> {
+                input: &mut input,
+                item_start: 0,
+            };
             read_elements(&mut src, &header, &roles, &mut out)?;
-            end_loc = input.byte_location();
+            input.byte_location()
         }
-    }
+    };
     let (positions, faces) = (out.positions, out.faces);
     for (e, role) in header.elements.iter().zip(&roles) {
         let name = String::from_utf8_lossy(&e.name);
@@ -443,7 +489,10 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
             .map(|i| String::from_utf8_lossy(&e.props[i].name).into_owned())
             .collect();
         if !ignored.is_empty() {
-            report.note(format!("ignored '{name}' properties: {}", ignored.join(", ")));
+            report.note(format!(
+                "ignored '{name}' properties: {}",
+                ignored.join(", ")
+            ));
         }
     }
     finish(positions, faces, report).map_err(|k| ReadError::new(end_loc, k))
@@ -502,7 +551,8 @@ fn read_vertices<S: Source>(
                 kind => src.skip_property(kind, WHAT)?,
             }
         }
-        out.positions.push(checked_position(p, v).map_err(|k| src.error(k))?);
+        out.positions
+            .push(checked_position(p, v).map_err(|k| src.error(k))?);
     }
     Ok(())
 }
@@ -557,7 +607,11 @@ pub(crate) fn write<W: Write>(
         PlyEncoding::BinaryLittleEndian => "binary_little_endian",
         PlyEncoding::BinaryBigEndian => "binary_big_endian",
     };
-    let index_type = if soup.num_vertices() <= i32::MAX as usize { "int" } else { "uint" };
+    let index_type = if soup.num_vertices() <= i32::MAX as usize {
+        "int"
+    } else {
+        "uint"
+    };
     write!(
         w,
         "ply\nformat {enc} 1.0\ncomment written by envelope-io\n\
@@ -589,7 +643,11 @@ pub(crate) fn write<W: Write>(
             rec[0] = 3;
             for f in &soup.faces {
                 for (k, v) in f.iter().enumerate() {
-                    let b = if be { v.0.to_be_bytes() } else { v.0.to_le_bytes() };
+                    let b = if be {
+                        v.0.to_be_bytes()
+                    } else {
+                        v.0.to_le_bytes()
+                    };
                     rec[1 + 4 * k..5 + 4 * k].copy_from_slice(&b);
                 }
                 w.write_all(&rec)?;
@@ -615,7 +673,11 @@ mod tests {
 
     /// A binary file: `ply`, the format line for `be`, then `header` and `data`.
     fn binary(be: bool, header: &str, data: &[u8]) -> Vec<u8> {
-        let enc = if be { "binary_big_endian" } else { "binary_little_endian" };
+        let enc = if be {
+            "binary_big_endian"
+        } else {
+            "binary_little_endian"
+        };
         let mut out = format!("ply\nformat {enc} 1.0\n{header}end_header\n").into_bytes();
         out.extend_from_slice(data);
         out
@@ -638,14 +700,37 @@ mod tests {
         assert_eq!(
             soup,
             TriangleSoup::from_raw(
-                &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+                &[
+                    [0.0, 0.0, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [1.0, 1.0, 0.0],
+                    [0.0, 1.0, 0.0]
+                ],
                 &[[0, 1, 2], [0, 1, 2], [0, 2, 3]]
             )
         );
-        assert_eq!((report.polygons_triangulated, report.triangles_from_polygons), (1, 2));
-        assert!(report.notes.iter().any(|n| n.contains("skipped element 'material'")));
-        assert!(report.notes.iter().any(|n| n.contains("'vertex' properties: nx")));
-        assert!(report.notes.iter().any(|n| n.contains("'face' properties: flags")));
+        assert_eq!(
+            (report.polygons_triangulated, report.triangles_from_polygons),
+            (1, 2)
+        );
+        assert!(
+            report
+                .notes
+                .iter()
+                .any(|n| n.contains("skipped element 'material'"))
+        );
+        assert!(
+            report
+                .notes
+                .iter()
+                .any(|n| n.contains("'vertex' properties: nx"))
+        );
+        assert!(
+            report
+                .notes
+                .iter()
+                .any(|n| n.contains("'face' properties: flags"))
+        );
     }
 
     #[test]
@@ -663,8 +748,14 @@ mod tests {
             10 0 1 2 3 3 4 -1 3 4 5\n";
         let (soup, report) = ply(file.as_bytes()).unwrap();
         // Strip 0 1 2 3 3 4: (0 1 2) (2 1 3) (2 3 3)x (3 3 4)x; strip 3 4 5: (3 4 5).
-        assert_eq!(soup.faces, TriangleSoup::from_raw(&[], &[[0, 1, 2], [2, 1, 3], [3, 4, 5]]).faces);
-        assert_eq!((report.strips_expanded, report.strip_triangles_dropped), (2, 2));
+        assert_eq!(
+            soup.faces,
+            TriangleSoup::from_raw(&[], &[[0, 1, 2], [2, 1, 3], [3, 4, 5]]).faces
+        );
+        assert_eq!(
+            (report.strips_expanded, report.strip_triangles_dropped),
+            (2, 2)
+        );
     }
 
     #[test]
@@ -677,9 +768,17 @@ mod tests {
             for (x, y, z) in [(0.5f64, 0i16, 0.0f32), (1.0, 0, 0.0), (0.0, -3, 2.5)] {
                 data.push(255);
                 let (xb, yb, zb) = if be {
-                    (x.to_be_bytes().to_vec(), y.to_be_bytes().to_vec(), z.to_be_bytes().to_vec())
+                    (
+                        x.to_be_bytes().to_vec(),
+                        y.to_be_bytes().to_vec(),
+                        z.to_be_bytes().to_vec(),
+                    )
                 } else {
-                    (x.to_le_bytes().to_vec(), y.to_le_bytes().to_vec(), z.to_le_bytes().to_vec())
+                    (
+                        x.to_le_bytes().to_vec(),
+                        y.to_le_bytes().to_vec(),
+                        z.to_le_bytes().to_vec(),
+                    )
                 };
                 data.extend(xb.iter().chain(&yb).chain(&zb));
             }
@@ -688,7 +787,11 @@ mod tests {
                 data.extend(word(n));
                 data.extend(vec![7u8; 2 * n as usize]);
             }
-            data.extend(if be { 3u16.to_be_bytes() } else { 3u16.to_le_bytes() });
+            data.extend(if be {
+                3u16.to_be_bytes()
+            } else {
+                3u16.to_le_bytes()
+            });
             for i in [2u32, 1, 0] {
                 data.extend(word(i));
             }
@@ -701,7 +804,11 @@ mod tests {
                     &[[2, 1, 0]]
                 )
             );
-            let enc = if be { PlyEncoding::BinaryBigEndian } else { PlyEncoding::BinaryLittleEndian };
+            let enc = if be {
+                PlyEncoding::BinaryBigEndian
+            } else {
+                PlyEncoding::BinaryLittleEndian
+            };
             assert_eq!(report.format, Format::Ply(enc));
         }
     }
@@ -709,7 +816,11 @@ mod tests {
     fn le_tri(coords: [[f32; 3]; 3], face: [i32; 3], trailing: &[u8]) -> Vec<u8> {
         let header = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
             element face 1\nproperty list uchar int vertex_indices\n";
-        let mut data: Vec<u8> = coords.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
+        let mut data: Vec<u8> = coords
+            .iter()
+            .flatten()
+            .flat_map(|x| x.to_le_bytes())
+            .collect();
         data.push(3);
         data.extend(face.iter().flat_map(|i| i.to_le_bytes()));
         data.extend_from_slice(trailing);
@@ -724,31 +835,52 @@ mod tests {
         nan[2][1] = f32::NAN;
         assert_eq!(
             kind(&le_tri(nan, [0, 1, 2], &[])),
-            ReadErrorKind::Coordinate { vertex: 2, axis: Axis::Y, error: CoordError::NaN }
+            ReadErrorKind::Coordinate {
+                vertex: 2,
+                axis: Axis::Y,
+                error: CoordError::NaN
+            }
         );
-        assert_eq!(kind(&le_tri(ok, [0, 3, 2], &[])), ReadErrorKind::IndexOutOfRange {
-            what: "face",
-            element: 0,
-            index: 3,
-            vertices: 3
-        });
-        assert_eq!(kind(&le_tri(ok, [0, -1, 2], &[])), ReadErrorKind::IndexOutOfRange {
-            what: "face",
-            element: 0,
-            index: -1,
-            vertices: 3
-        });
-        assert_eq!(kind(&le_tri(ok, [0, 1, 2], &[0])), ReadErrorKind::TrailingData);
+        assert_eq!(
+            kind(&le_tri(ok, [0, 3, 2], &[])),
+            ReadErrorKind::IndexOutOfRange {
+                what: "face",
+                element: 0,
+                index: 3,
+                vertices: 3
+            }
+        );
+        assert_eq!(
+            kind(&le_tri(ok, [0, -1, 2], &[])),
+            ReadErrorKind::IndexOutOfRange {
+                what: "face",
+                element: 0,
+                index: -1,
+                vertices: 3
+            }
+        );
+        assert_eq!(
+            kind(&le_tri(ok, [0, 1, 2], &[0])),
+            ReadErrorKind::TrailingData
+        );
         let full = le_tri(ok, [0, 1, 2], &[]);
         let e = ply(&full[..full.len() - 1]).unwrap_err();
-        assert_eq!(e.kind, ReadErrorKind::Truncated { expected: "face data" });
+        assert_eq!(
+            e.kind,
+            ReadErrorKind::Truncated {
+                expected: "face data"
+            }
+        );
         assert!(e.to_string().contains("byte "), "{e}");
         let cut = &full[..full.len() - 20];
         assert!(matches!(kind(cut), ReadErrorKind::Truncated { .. }));
         // A negative list length.
         let header = "element vertex 0\nproperty float x\nproperty float y\nproperty float z\n\
             element face 1\nproperty list char int vertex_indices\n";
-        assert!(matches!(kind(&binary(false, header, &[0xff])), ReadErrorKind::Unexpected { .. }));
+        assert!(matches!(
+            kind(&binary(false, header, &[0xff])),
+            ReadErrorKind::Unexpected { .. }
+        ));
         // Binary garbage after a valid header.
         let garbage: Vec<u8> = (0..200u32).map(|i| (i * 7919 % 251) as u8).collect();
         assert!(ply(&binary(false, header, &garbage)).is_err());
@@ -759,45 +891,111 @@ mod tests {
         let f = |body: &str| format!("{ASCII_TRI}{body}").into_bytes();
         assert_eq!(
             kind(&f("0 0 0\n1 0 0\n0 1 1e39\n3 0 1 2\n")),
-            ReadErrorKind::Coordinate { vertex: 2, axis: Axis::Z, error: CoordError::Infinite }
+            ReadErrorKind::Coordinate {
+                vertex: 2,
+                axis: Axis::Z,
+                error: CoordError::Infinite
+            }
         );
-        assert_eq!(kind(&f("0 0 0\n1 0 0\n0 1 zero\n3 0 1 2\n")), ReadErrorKind::MalformedNumber);
-        assert_eq!(kind(&f("0 0 0\n1 0 0\n0 1 0\n3 0 1 2.0\n")), ReadErrorKind::MalformedNumber);
-        assert_eq!(kind(&f("0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n")), ReadErrorKind::IndexOutOfRange {
-            what: "face",
-            element: 0,
-            index: 5,
-            vertices: 3
-        });
-        assert_eq!(kind(&f("0 0 0\n1 0 0\n0 1 0\n2 0 1\n")), ReadErrorKind::TooFewCorners {
-            face: 0,
-            corners: 2
-        });
-        assert_eq!(kind(&f("0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n")), ReadErrorKind::TrailingData);
-        assert_eq!(kind(&f("0 0 0\n1 0 0\n0 1 0\n3 0 1")), ReadErrorKind::Truncated {
-            expected: "face data"
-        });
+        assert_eq!(
+            kind(&f("0 0 0\n1 0 0\n0 1 zero\n3 0 1 2\n")),
+            ReadErrorKind::MalformedNumber
+        );
+        assert_eq!(
+            kind(&f("0 0 0\n1 0 0\n0 1 0\n3 0 1 2.0\n")),
+            ReadErrorKind::MalformedNumber
+        );
+        assert_eq!(
+            kind(&f("0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n")),
+            ReadErrorKind::IndexOutOfRange {
+                what: "face",
+                element: 0,
+                index: 5,
+                vertices: 3
+            }
+        );
+        assert_eq!(
+            kind(&f("0 0 0\n1 0 0\n0 1 0\n2 0 1\n")),
+            ReadErrorKind::TooFewCorners {
+                face: 0,
+                corners: 2
+            }
+        );
+        assert_eq!(
+            kind(&f("0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n")),
+            ReadErrorKind::TrailingData
+        );
+        assert_eq!(
+            kind(&f("0 0 0\n1 0 0\n0 1 0\n3 0 1")),
+            ReadErrorKind::Truncated {
+                expected: "face data"
+            }
+        );
         let e = ply(&f("0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")).unwrap_err();
-        assert!(e.to_string().starts_with("<input>: line 13: face 0: vertex index 7"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("<input>: line 13: face 0: vertex index 7"),
+            "{e}"
+        );
         let no_faces = ASCII_TRI.replace("element face 1", "element face 0");
-        assert_eq!(kind(format!("{no_faces}0 0 0\n1 0 0\n0 1 0\n").as_bytes()), ReadErrorKind::NoFaces);
+        assert_eq!(
+            kind(format!("{no_faces}0 0 0\n1 0 0\n0 1 0\n").as_bytes()),
+            ReadErrorKind::NoFaces
+        );
     }
 
     #[test]
     fn bad_headers() {
         let bad = |h: &str| kind(h.as_bytes());
         assert!(matches!(bad("plx\n"), ReadErrorKind::BadHeader(_)));
-        assert!(matches!(bad("ply\nelement vertex 1\nproperty float x\n"), ReadErrorKind::Truncated { .. }));
-        assert!(matches!(bad("ply\nformat ascii 1.0\nproperty float x\nend_header\n"), ReadErrorKind::BadHeader(_)));
-        assert!(matches!(bad("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n"), ReadErrorKind::BadHeader(_)));
-        assert!(matches!(bad("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n"), ReadErrorKind::BadHeader(_)));
-        assert!(matches!(bad("ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"), ReadErrorKind::BadHeader(_)));
-        assert!(matches!(bad("ply\nformat binary_middle_endian 1.0\nend_header\n"), ReadErrorKind::Unsupported(_)));
-        assert!(matches!(bad("ply\nformat ascii 2.0\nend_header\n"), ReadErrorKind::Unsupported(_)));
-        assert_eq!(bad("ply\nformat ascii 1.0\nelement vertex many\n"), ReadErrorKind::MalformedNumber);
-        assert!(matches!(bad("ply\nformat ascii 1.0\nelement vertex 1\nproperty list float int x\n"), ReadErrorKind::BadHeader(_)));
-        assert!(matches!(bad("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement face 0\nproperty list uchar float vertex_indices\nend_header\n"), ReadErrorKind::BadHeader(_)));
-        assert!(matches!(bad("ply\nformat ascii 1.0\nwhatever\n"), ReadErrorKind::BadHeader(_)));
+        assert!(matches!(
+            bad("ply\nelement vertex 1\nproperty float x\n"),
+            ReadErrorKind::Truncated { .. }
+        ));
+        assert!(matches!(
+            bad("ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
+            ReadErrorKind::BadHeader(_)
+        ));
+        assert!(matches!(
+            bad("ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n"),
+            ReadErrorKind::BadHeader(_)
+        ));
+        assert!(matches!(
+            bad("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n"),
+            ReadErrorKind::BadHeader(_)
+        ));
+        assert!(matches!(
+            bad(
+                "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+            ),
+            ReadErrorKind::BadHeader(_)
+        ));
+        assert!(matches!(
+            bad("ply\nformat binary_middle_endian 1.0\nend_header\n"),
+            ReadErrorKind::Unsupported(_)
+        ));
+        assert!(matches!(
+            bad("ply\nformat ascii 2.0\nend_header\n"),
+            ReadErrorKind::Unsupported(_)
+        ));
+        assert_eq!(
+            bad("ply\nformat ascii 1.0\nelement vertex many\n"),
+            ReadErrorKind::MalformedNumber
+        );
+        assert!(matches!(
+            bad("ply\nformat ascii 1.0\nelement vertex 1\nproperty list float int x\n"),
+            ReadErrorKind::BadHeader(_)
+        ));
+        assert!(matches!(
+            bad(
+                "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement face 0\nproperty list uchar float vertex_indices\nend_header\n"
+            ),
+            ReadErrorKind::BadHeader(_)
+        ));
+        assert!(matches!(
+            bad("ply\nformat ascii 1.0\nwhatever\n"),
+            ReadErrorKind::BadHeader(_)
+        ));
     }
 
     #[test]
@@ -807,7 +1005,11 @@ mod tests {
         // Unknown size (plain reader): reservations are capped, the data runs out.
         let e = ply(&binary(false, header, &[0; 64])).unwrap_err();
         assert!(matches!(e.kind, ReadErrorKind::Truncated { .. }));
-        let header = "element vertex 4294967295\nproperty float x\nproperty float y\nproperty float z\n";
-        assert_eq!(kind(&binary(false, header, &[0; 64])), ReadErrorKind::TooMany("vertices"));
+        let header =
+            "element vertex 4294967295\nproperty float x\nproperty float y\nproperty float z\n";
+        assert_eq!(
+            kind(&binary(false, header, &[0; 64])),
+            ReadErrorKind::TooMany("vertices")
+        );
     }
 }

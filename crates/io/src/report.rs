@@ -59,7 +59,11 @@ impl ReadReport {
 
 impl fmt::Display for ReadReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: {} vertices, {} triangles", self.format, self.vertices, self.triangles)?;
+        write!(
+            f,
+            "{}: {} vertices, {} triangles",
+            self.format, self.vertices, self.triangles
+        )?;
         if self.polygons_triangulated > 0 {
             write!(
                 f,
@@ -75,7 +79,11 @@ impl fmt::Display for ReadReport {
             )?;
         }
         if self.stl_corners_welded > 0 {
-            write!(f, "\n{} STL corners welded to bitwise-equal vertices", self.stl_corners_welded)?;
+            write!(
+                f,
+                "\n{} STL corners welded to bitwise-equal vertices",
+                self.stl_corners_welded
+            )?;
         }
         for n in &self.notes {
             write!(f, "\n{n}")?;

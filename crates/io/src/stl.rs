@@ -29,7 +29,9 @@ pub(crate) fn binary_size(head: &[u8]) -> u64 {
 }
 
 fn looks_ascii(head: &[u8]) -> bool {
-    let printable = head.iter().all(|&b| b.is_ascii_graphic() || b.is_ascii_whitespace());
+    let printable = head
+        .iter()
+        .all(|&b| b.is_ascii_graphic() || b.is_ascii_whitespace());
     let lower = head.to_ascii_lowercase();
     let has = |w: &[u8]| lower.windows(w.len()).any(|x| x == w);
     printable && (has(b"facet") || has(b"endsolid"))
@@ -93,7 +95,9 @@ impl Welder {
 }
 
 pub(crate) fn read<R: Read>(mut input: Input<R>) -> Result<(TriangleSoup, ReadReport), ReadError> {
-    let head = input.peek(512).map_err(|e| io_error(&e, Location::Byte(0)))?;
+    let head = input
+        .peek(512)
+        .map_err(|e| io_error(&e, Location::Byte(0)))?;
     let text = head.trim_ascii_start();
     let solid = text.len() >= 5 && text[..5].eq_ignore_ascii_case(b"solid");
     if solid && looks_ascii(head) {
@@ -105,16 +109,29 @@ pub(crate) fn read<R: Read>(mut input: Input<R>) -> Result<(TriangleSoup, ReadRe
 
 fn read_binary<R: Read>(mut input: Input<R>) -> Result<(TriangleSoup, ReadReport), ReadError> {
     let at = |o: u64, k| ReadError::new(Location::Byte(o), k);
-    let n = match input.take(84).map_err(|e| io_error(&e, Location::Byte(0)))? {
+    let n = match input
+        .take(84)
+        .map_err(|e| io_error(&e, Location::Byte(0)))?
+    {
         Some(h) => u32::from_le_bytes([h[80], h[81], h[82], h[83]]),
         None => {
-            return Err(at(0, ReadErrorKind::Truncated { expected: "84-byte binary STL header" }));
+            return Err(at(
+                0,
+                ReadErrorKind::Truncated {
+                    expected: "84-byte binary STL header",
+                },
+            ));
         }
     };
     let need = 50 * u64::from(n);
     match input.remaining() {
         Some(r) if r < need => {
-            return Err(at(84 + r - r % 50, ReadErrorKind::Truncated { expected: "facet record" }));
+            return Err(at(
+                84 + r - r % 50,
+                ReadErrorKind::Truncated {
+                    expected: "facet record",
+                },
+            ));
         }
         Some(r) if r > need => return Err(at(84 + need, ReadErrorKind::TrailingData)),
         _ => {}
@@ -122,9 +139,19 @@ fn read_binary<R: Read>(mut input: Input<R>) -> Result<(TriangleSoup, ReadReport
     let mut w = Welder::new(input.reservation(u64::from(n), 50));
     for f in 0..u64::from(n) {
         let offset = input.offset();
-        let rec = match input.take(50).map_err(|e| io_error(&e, Location::Byte(offset)))? {
+        let rec = match input
+            .take(50)
+            .map_err(|e| io_error(&e, Location::Byte(offset)))?
+        {
             Some(r) => r,
-            None => return Err(at(offset, ReadErrorKind::Truncated { expected: "facet record" })),
+            None => {
+                return Err(at(
+                    offset,
+                    ReadErrorKind::Truncated {
+                        expected: "facet record",
+                    },
+                ));
+            }
         };
         let mut corners = [[0f32; 3]; 3];
         for (c, corner) in corners.iter_mut().enumerate() {
@@ -136,7 +163,10 @@ fn read_binary<R: Read>(mut input: Input<R>) -> Result<(TriangleSoup, ReadReport
         w.facet(corners, 3 * f).map_err(|k| at(offset, k))?;
     }
     let end = input.offset();
-    if !input.at_eof().map_err(|e| io_error(&e, Location::Byte(end)))? {
+    if !input
+        .at_eof()
+        .map_err(|e| io_error(&e, Location::Byte(end)))?
+    {
         return Err(at(end, ReadErrorKind::TrailingData));
     }
     w.finish(StlEncoding::Binary, Location::Byte(end))
@@ -150,7 +180,9 @@ fn read_ascii<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport), Re
     let mut f = 0u64;
     loop {
         let Some(tok) = t.next()? else {
-            return Err(t.error(ReadErrorKind::Truncated { expected: "endsolid" }));
+            return Err(t.error(ReadErrorKind::Truncated {
+                expected: "endsolid",
+            }));
         };
         if tok.eq_ignore_ascii_case(b"endsolid") {
             t.skip_rest_of_line();
@@ -164,7 +196,9 @@ fn read_ascii<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport), Re
             }
         }
         if !tok.eq_ignore_ascii_case(b"facet") {
-            return Err(t.error(ReadErrorKind::Unexpected { expected: "facet or endsolid" }));
+            return Err(t.error(ReadErrorKind::Unexpected {
+                expected: "facet or endsolid",
+            }));
         }
         t.expect_keyword("normal")?;
         for _ in 0..3 {
@@ -208,7 +242,11 @@ pub(crate) fn write<W: Write>(
             for f in &soup.faces {
                 let t = tri(f);
                 let n = normal(t);
-                writeln!(w, "  facet normal {:?} {:?} {:?}\n    outer loop", n[0], n[1], n[2])?;
+                writeln!(
+                    w,
+                    "  facet normal {:?} {:?} {:?}\n    outer loop",
+                    n[0], n[1], n[2]
+                )?;
                 for p in t {
                     writeln!(w, "      vertex {:?} {:?} {:?}", p[0], p[1], p[2])?;
                 }
@@ -237,4 +275,170 @@ pub(crate) fn write<W: Write>(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Axis, read};
+    use envelope_mesh::CoordError;
+
+    fn stl(bytes: &[u8]) -> Result<(TriangleSoup, ReadReport), ReadError> {
+        read(bytes, Format::Stl(StlEncoding::Binary))
+    }
+
+    fn kind(bytes: &[u8]) -> ReadErrorKind {
+        stl(bytes).unwrap_err().kind
+    }
+
+    /// A binary file with `header` (padded to 80 bytes), `count` and the facets' corners.
+    fn binary(header: &[u8], count: u32, facets: &[[[f32; 3]; 3]]) -> Vec<u8> {
+        let mut out = header.to_vec();
+        out.resize(80, b' ');
+        out.extend(count.to_le_bytes());
+        for f in facets {
+            out.extend([0u8; 12]);
+            out.extend(f.iter().flatten().flat_map(|x| x.to_le_bytes()));
+            out.extend([0u8; 2]);
+        }
+        out
+    }
+
+    const TWO: [[[f32; 3]; 3]; 2] = [
+        [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        [[1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, -0.0]],
+    ];
+
+    fn expected() -> TriangleSoup {
+        TriangleSoup::from_raw(
+            &[
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [1.0, 1.0, 0.0],
+            ],
+            &[[0, 1, 2], [1, 3, 2]],
+        )
+    }
+
+    #[test]
+    fn ascii_welds_and_allows_several_solids() {
+        let text = "solid two\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n\
+            vertex 0 1 0\n  endloop\n endfacet\nendsolid two\nSOLID more\nFACET NORMAL 0 0 1e-3\n\
+            OUTER LOOP\nVERTEX 1 0 0\nVERTEX 1 1 0\nVERTEX 0 1 -0\nENDLOOP\nENDFACET\nENDSOLID\n";
+        let (soup, report) = stl(text.as_bytes()).unwrap();
+        assert_eq!(soup, expected());
+        assert_eq!(soup.positions[2].z.to_bits(), 0, "-0 is welded to +0");
+        assert_eq!(report.stl_corners_welded, 2);
+        assert_eq!(report.format, Format::Stl(StlEncoding::Ascii));
+    }
+
+    #[test]
+    fn binary_with_solid_header() {
+        for header in [&b"solid but binary"[..], b"exported"] {
+            let (soup, report) = stl(&binary(header, 2, &TWO)).unwrap();
+            assert_eq!(soup, expected());
+            assert_eq!(report.format, Format::Stl(StlEncoding::Binary));
+        }
+    }
+
+    #[test]
+    fn binary_bad_inputs() {
+        let mut bad = TWO;
+        bad[1][2][0] = f32::INFINITY;
+        assert_eq!(
+            kind(&binary(b"x", 2, &bad)),
+            ReadErrorKind::Coordinate {
+                vertex: 5,
+                axis: Axis::X,
+                error: CoordError::Infinite
+            }
+        );
+        bad[1][2][0] = 1e-38;
+        assert_eq!(
+            kind(&binary(b"x", 2, &bad)),
+            ReadErrorKind::Coordinate {
+                vertex: 5,
+                axis: Axis::X,
+                error: CoordError::TooSmall
+            }
+        );
+        let e = stl(&binary(b"x", 3, &TWO)).unwrap_err();
+        assert_eq!(
+            e.kind,
+            ReadErrorKind::Truncated {
+                expected: "facet record"
+            }
+        );
+        assert_eq!(
+            e.to_string(),
+            "<input>: byte 184: file ends early: expected facet record"
+        );
+        assert_eq!(kind(&binary(b"x", 1, &TWO)), ReadErrorKind::TrailingData);
+        assert_eq!(kind(&binary(b"x", 0, &[])), ReadErrorKind::NoFaces);
+        assert!(matches!(kind(b"short"), ReadErrorKind::Truncated { .. }));
+        assert!(matches!(kind(&[0xde; 83]), ReadErrorKind::Truncated { .. }));
+        // A huge announced count in a tiny input fails fast.
+        assert!(matches!(
+            kind(&binary(b"x", u32::MAX, &TWO)),
+            ReadErrorKind::Truncated { .. }
+        ));
+    }
+
+    #[test]
+    fn ascii_bad_inputs() {
+        let facet = |v: &str| {
+            format!(
+                "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n{v}\n\
+                 endloop\nendfacet\nendsolid s\n"
+            )
+        };
+        assert_eq!(
+            kind(facet("vertex 0 nan 0").as_bytes()),
+            ReadErrorKind::Coordinate {
+                vertex: 2,
+                axis: Axis::Y,
+                error: CoordError::NaN
+            }
+        );
+        assert_eq!(
+            kind(facet("vertex 0 1 0.0.0").as_bytes()),
+            ReadErrorKind::MalformedNumber
+        );
+        assert_eq!(
+            kind(facet("vertex 0 1").as_bytes()),
+            ReadErrorKind::MalformedNumber
+        );
+        assert_eq!(
+            kind(facet("vertx 0 1 0").as_bytes()),
+            ReadErrorKind::Unexpected { expected: "vertex" }
+        );
+        assert_eq!(
+            kind(facet("vertex 0 1 0\nvertex 0 1 0").as_bytes()),
+            ReadErrorKind::Unexpected {
+                expected: "endloop"
+            }
+        );
+        let ok = facet("vertex 0 1 0");
+        assert_eq!(
+            kind(ok.replace("endsolid s\n", "").as_bytes()),
+            ReadErrorKind::Truncated {
+                expected: "endsolid"
+            }
+        );
+        assert!(matches!(
+            kind(&ok.as_bytes()[..ok.len() - 30]),
+            ReadErrorKind::Truncated { .. }
+        ));
+        assert_eq!(
+            kind(format!("{ok}junk\n").as_bytes()),
+            ReadErrorKind::TrailingData
+        );
+        assert_eq!(
+            kind(b"solid empty\nendsolid empty\n"),
+            ReadErrorKind::NoFaces
+        );
+        let e = stl(facet("vertex 0 1 x").as_bytes()).unwrap_err();
+        assert_eq!(e.to_string(), "<input>: line 6: malformed number");
+    }
 }
