@@ -29,13 +29,19 @@ if [ "${#missing[@]}" -gt 0 ]; then
   exit 1
 fi
 
+mkdir -p "$out_dir"
+# Serialise concurrent callers (parallel test binaries); the second one then sees "up to date".
+if command -v flock >/dev/null 2>&1; then
+  exec 9>"$out_dir/.build.lock"
+  flock 9
+fi
+
 if [ -z "${FORCE:-}" ] && [ -x "$bin" ] && [ "$bin" -nt "$src" ] && [ "$bin" -nt "${BASH_SOURCE[0]}" ]; then
   echo "$bin is up to date" >&2
   echo "$bin"
   exit 0
 fi
 
-mkdir -p "$out_dir"
 tmp="$bin.tmp.$$"
 trap 'rm -f "$tmp"' EXIT
 echo "building $bin (takes about a minute) ..." >&2
