@@ -408,3 +408,68 @@ pub fn three_triangles_on_edge() -> TriangleSoup {
         &[[0, 1, 2], [1, 0, 3], [0, 1, 4]],
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{FaceId, analyze};
+
+    fn signed_volume(s: &TriangleSoup) -> f64 {
+        s.face_ids()
+            .map(|f| {
+                let [a, b, c] = s.triangle(f);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum()
+    }
+
+    #[test]
+    fn closed_generators_face_outward() {
+        let cases = [
+            (tetrahedron(), 1.0 / 6.0),
+            (icosphere(0, 1.0), 2.536_150_710_120_062),
+            (box_mesh(DVec3::new(1.0, 2.0, 3.0), 2), 6.0),
+            (block_with_pocket(), 17.0),
+            (box_with_tunnel(), 24.0),
+            (plate_with_holes(2), 13.0),
+            (torus(2.0, 0.5, 64, 32), 2.0 * PI * PI * 2.0 * 0.25),
+            (uv_sphere(64, 32, 1.0), 4.0 / 3.0 * PI),
+        ];
+        for (i, (s, v)) in cases.iter().enumerate() {
+            let got = signed_volume(s);
+            assert!(
+                (got - v).abs() < 0.02 * v,
+                "case {i}: volume {got}, expected about {v}"
+            );
+        }
+    }
+
+    #[test]
+    fn open_generators_face_the_right_way() {
+        // The disk faces +z.
+        let d = disk_with_holes(2);
+        for f in d.face_ids() {
+            let [a, b, c] = d.triangle(f);
+            assert!((b - a).cross(c - a).z > 0.0);
+        }
+        // The cylinder faces away from its axis.
+        let c = open_cylinder(1.0, 1.0, 8, 2);
+        for f in c.face_ids() {
+            let [a, b, p] = c.triangle(f);
+            let centre = (a + b + p) / 3.0;
+            assert!((b - a).cross(p - a).dot(centre.with_z(0.0)) > 0.0);
+        }
+    }
+
+    #[test]
+    fn generators_are_deterministic_and_sized() {
+        assert_eq!(icosphere(1, 2.0), icosphere(1, 2.0));
+        let s = icosphere(3, 1.0);
+        assert_eq!((s.num_vertices(), s.num_faces()), (642, 1280));
+        let b = box_mesh(DVec3::ONE, 3);
+        assert_eq!(b.num_faces(), 6 * 9 * 2);
+        assert_eq!(b.num_vertices(), 6 * 9 + 2);
+        let t = analyze(&moebius_strip(5));
+        assert_eq!(t.components[0].first_face, FaceId(0));
+    }
+}

@@ -475,3 +475,223 @@ fn trace_border(
     loop_comps.extend(chain_comps);
     (loops, chains, loop_comps)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{degeneracy, generate};
+
+    fn one(t: &Topology) -> &Component {
+        assert_eq!(t.components.len(), 1, "{t:?}");
+        &t.components[0]
+    }
+
+    /// A grid of unit squares in `z = 0` keeping the squares `keep(i, j)`.
+    fn grid(nx: u32, ny: u32, keep: impl Fn(u32, u32) -> bool) -> TriangleSoup {
+        let id = |i: u32, j: u32| j * (nx + 1) + i;
+        let mut pos = Vec::new();
+        for j in 0..=ny {
+            for i in 0..=nx {
+                pos.push([f64::from(i), f64::from(j), 0.0]);
+            }
+        }
+        let mut faces = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                if keep(i, j) {
+                    let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+                    faces.push([q[0], q[1], q[2]]);
+                    faces.push([q[0], q[2], q[3]]);
+                }
+            }
+        }
+        TriangleSoup::from_raw(&pos, &faces)
+    }
+
+    #[test]
+    fn tetrahedron_by_hand() {
+        let t = analyze(&generate::tetrahedron());
+        let c = one(&t);
+        assert_eq!((c.vertices, c.edges, c.faces, c.euler), (4, 6, 4, 2));
+        assert_eq!((t.num_vertices, t.num_edges, t.num_faces), (4, 6, 4));
+        assert_eq!((c.genus, t.genus, t.euler), (Some(0), Some(0), 2));
+        assert!(c.closed && c.manifold && c.orientable);
+        assert!(t.manifold && t.orientable && t.consistently_oriented);
+        assert!(t.border_edges.is_empty() && t.border_loops.is_empty());
+    }
+
+    #[test]
+    fn closed_surfaces_have_expected_genus() {
+        let cases: Vec<(&str, TriangleSoup, u32)> = vec![
+            ("icosphere", generate::icosphere(2, 1.0), 0),
+            ("uv_sphere", generate::uv_sphere(8, 5, 1.0), 0),
+            (
+                "box",
+                generate::box_mesh(glam::DVec3::new(1.0, 2.0, 3.0), 3),
+                0,
+            ),
+            ("pocket", generate::block_with_pocket(), 0),
+            ("torus", generate::torus(2.0, 0.5, 10, 7), 1),
+            ("tunnel", generate::box_with_tunnel(), 1),
+            ("plate0", generate::plate_with_holes(0), 0),
+            ("plate1", generate::plate_with_holes(1), 1),
+            ("double torus", generate::plate_with_holes(2), 2),
+            ("plate5", generate::plate_with_holes(5), 5),
+        ];
+        for (name, s, g) in cases {
+            let t = analyze(&s);
+            let c = one(&t);
+            assert!(c.closed && t.manifold && t.consistently_oriented, "{name}");
+            assert_eq!(t.genus, Some(g), "{name}");
+            assert_eq!(t.euler, 2 - 2 * i64::from(g), "{name}");
+            assert!(t.unreferenced_vertices.is_empty(), "{name}");
+        }
+    }
+
+    #[test]
+    fn open_cylinder_has_two_loops_running_with_the_faces() {
+        let t = analyze(&generate::open_cylinder(1.0, 2.0, 9, 3));
+        let c = one(&t);
+        assert_eq!((c.border_loops, c.euler, c.genus), (2, 0, Some(0)));
+        assert_eq!(t.border_loops.len(), 2);
+        assert!(t.border_chains.is_empty());
+        let directed: std::collections::HashSet<[VertexId; 2]> =
+            t.border_edges.iter().copied().collect();
+        for l in &t.border_loops {
+            assert_eq!(l.len(), 9);
+            for i in 0..l.len() {
+                assert!(directed.contains(&[l[i], l[(i + 1) % l.len()]]));
+            }
+        }
+    }
+
+    #[test]
+    fn disk_with_three_holes_has_four_loops() {
+        let t = analyze(&generate::disk_with_holes(3));
+        let c = one(&t);
+        assert_eq!((c.border_loops, c.genus, c.euler), (4, Some(0), -2));
+        let mut lens: Vec<usize> = t.border_loops.iter().map(Vec::len).collect();
+        lens.sort_unstable();
+        assert_eq!(lens, vec![4, 4, 4, 20]);
+    }
+
+    #[test]
+    fn moebius_strip_is_non_orientable() {
+        let t = analyze(&generate::moebius_strip(7));
+        let c = one(&t);
+        assert_eq!((c.euler, c.border_loops, c.genus), (0, 1, None));
+        assert!(c.manifold && !c.orientable && !t.orientable && !t.consistently_oriented);
+        assert_eq!(t.border_loops[0].len(), 14);
+        assert_eq!(t.genus, None);
+    }
+
+    #[test]
+    fn bow_tie_is_two_components_pinched() {
+        let s = generate::bow_tie();
+        let t = analyze(&s);
+        assert_eq!(t.components.len(), 2);
+        assert!(!t.manifold);
+        assert!(
+            t.components
+                .iter()
+                .all(|c| c.manifold && c.genus == Some(0))
+        );
+        assert_eq!(t.border_loops.len(), 2);
+        assert_eq!(t.euler, 2);
+        assert_eq!(degeneracy::non_manifold_vertices(&s), vec![VertexId(0)]);
+    }
+
+    #[test]
+    fn three_triangles_on_one_edge() {
+        let s = generate::three_triangles_on_edge();
+        let t = analyze(&s);
+        let c = one(&t);
+        assert!(!c.manifold && !t.manifold && !t.consistently_oriented);
+        assert_eq!(c.genus, None);
+        let e = degeneracy::non_manifold_edges(&s);
+        assert_eq!(e.len(), 1);
+        assert_eq!(e[0].vertices, [VertexId(0), VertexId(1)]);
+        assert_eq!(e[0].faces, vec![FaceId(0), FaceId(1), FaceId(2)]);
+        assert_eq!(
+            degeneracy::non_manifold_vertices(&s),
+            vec![VertexId(0), VertexId(1)]
+        );
+        let o = degeneracy::inconsistent_orientations(&s);
+        assert_eq!(o.len(), 1);
+        assert_eq!(o[0].faces, [FaceId(0), FaceId(2)]);
+        assert_eq!(o[0].edge, [VertexId(0), VertexId(1)]);
+        // Six border edges; each apex's two pair up in its own fan; at 0 and at 1 three
+        // single-edge fans remain: (2, 3) pair by other endpoint, 4 is left a dead end.
+        assert_eq!(t.border_edges.len(), 6);
+        assert_eq!(t.border_loops.len(), 1);
+        assert_eq!(t.border_loops[0].len(), 4);
+        assert_eq!(
+            t.border_chains,
+            vec![vec![VertexId(1), VertexId(4), VertexId(0)]]
+        );
+        assert_eq!(c.border_loops, 2);
+    }
+
+    #[test]
+    fn pinched_border_loop_follows_the_fans() {
+        // 3x3 squares without the centre and the top-right corner: squares (2,1) and (1,2) meet
+        // only at lattice point (2,2) = vertex 10.
+        let s = grid(3, 3, |i, j| !((i, j) == (1, 1) || (i, j) == (2, 2)));
+        let t = analyze(&s);
+        let c = one(&t);
+        assert!(!c.manifold && c.genus.is_none());
+        assert_eq!(degeneracy::non_manifold_vertices(&s), vec![VertexId(10)]);
+        assert_eq!(t.border_loops.len(), 1);
+        let l = &t.border_loops[0];
+        assert_eq!(l.len(), 16);
+        assert_eq!(l.iter().filter(|&&v| v == VertexId(10)).count(), 2);
+    }
+
+    #[test]
+    fn excluded_and_unreferenced() {
+        let s = TriangleSoup::from_raw(
+            &[
+                [0.0; 3],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [9.0; 3],
+                [0.0; 3],
+            ],
+            &[[0, 1, 2], [0, 0, 1], [1, 2, 7]],
+        );
+        let t = analyze(&s);
+        assert_eq!(t.excluded_faces, vec![FaceId(1), FaceId(2)]);
+        assert_eq!(t.unreferenced_vertices, vec![VertexId(3), VertexId(4)]);
+        assert_eq!(t.num_referenced_vertices, 3);
+        assert_eq!(degeneracy::degenerate_faces(&s), vec![FaceId(1)]);
+        assert_eq!(
+            degeneracy::unreferenced_vertices(&s),
+            vec![VertexId(3), VertexId(4)]
+        );
+        assert_eq!(
+            degeneracy::duplicate_vertices(&s),
+            vec![vec![VertexId(0), VertexId(4)]]
+        );
+        assert_eq!(one(&t).genus, Some(0));
+    }
+
+    #[test]
+    fn duplicate_faces_any_orientation() {
+        let s = TriangleSoup::from_raw(
+            &[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+            &[[0, 1, 2], [1, 2, 0], [2, 1, 0]],
+        );
+        assert_eq!(
+            degeneracy::duplicate_faces(&s),
+            vec![[FaceId(0), FaceId(1)], [FaceId(0), FaceId(2)]]
+        );
+        assert!(!analyze(&s).manifold);
+    }
+
+    #[test]
+    fn empty_soup() {
+        let t = analyze(&TriangleSoup::default());
+        assert_eq!((t.euler, t.genus, t.components.len()), (0, Some(0), 0));
+        assert!(t.manifold && t.orientable);
+    }
+}
