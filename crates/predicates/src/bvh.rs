@@ -108,7 +108,7 @@ impl Aabb {
     /// use glam::DVec3;
     /// let b = Aabb::from_points(&[DVec3::ZERO, DVec3::ONE]);
     /// let d2 = b.sq_distance_lower_bound(DVec3::new(4.0, 0.5, -3.0));
-    /// assert!(d2 <= 25.0 && d2 > 24.99);
+    /// assert!(d2 <= 18.0 && d2 > 17.99);
     /// ```
     #[must_use]
     pub fn sq_distance_lower_bound(&self, p: DVec3) -> f64 {

@@ -196,7 +196,7 @@ pub fn faces_intersect(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> bool {
 /// use envelope_predicates::self_intersections;
 /// use glam::DVec3;
 /// let pos = [DVec3::ZERO, DVec3::X, DVec3::Y, // face 0
-///            DVec3::new(0.2, 0.2, -1.0), DVec3::new(0.2, 0.2, 1.0), DVec3::new(3.0, 3.0, 0.0), // face 1 pierces 0
+///            DVec3::new(0.2, 0.2, -1.0), DVec3::new(0.2, 0.2, 1.0), DVec3::new(0.4, 0.4, 0.0), // face 1 pierces 0
 ///            DVec3::new(1.0, 1.0, 0.0)]; // face 2 shares the edge (1, 2) with face 0, flat
 /// let faces = [[0, 1, 2], [3, 4, 5], [2, 1, 6]];
 /// assert_eq!(self_intersections(&pos, &faces), vec![(0, 1)]);
