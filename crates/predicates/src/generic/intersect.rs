@@ -158,7 +158,7 @@ pub fn triangles_intersect<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool {
     if strictly_one_side(s1) {
         return false;
     }
-    edges_meet::<K>(t1, t2, s2) || edges_meet::<K>(t2, t1, s1)
+    edges_meet::<K>(t1, t2, s1) || edges_meet::<K>(t2, t1, s2)
 }
 
 /// Some edge of `a` meets the closed triangle `b`; `sides[i]` is `orient3d(b, a[i])`.
