@@ -1,0 +1,186 @@
+//! BVH queries against brute force, and self-intersection detection on hand-made meshes.
+
+use envelope_predicates::bvh::{Aabb, Bvh, NodeKind};
+use envelope_predicates::{faces_intersect, self_intersections};
+use glam::DVec3;
+
+struct Lcg(u64);
+impl Lcg {
+    fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((self.0 ^ (self.0 >> 29)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn point(&mut self, s: f64) -> DVec3 {
+        DVec3::new(self.unit() * s, self.unit() * s, self.unit() * s)
+    }
+}
+
+fn random_boxes(g: &mut Lcg, n: usize) -> Vec<Aabb> {
+    (0..n)
+        .map(|_| {
+            let p = g.point(10.0);
+            Aabb::from_points(&[p, p + g.point(0.8)])
+        })
+        .collect()
+}
+
+#[test]
+fn queries_match_brute_force() {
+    let mut g = Lcg(7);
+    for n in [0, 1, 3, 5, 17, 300, 9000] {
+        let boxes = random_boxes(&mut g, n);
+        let bvh = Bvh::new(&boxes);
+        assert_eq!(bvh.len(), n);
+        let mut brute = Vec::new();
+        for i in 0..n {
+            for j in i + 1..n {
+                if boxes[i].overlaps(&boxes[j]) {
+                    brute.push((i as u32, j as u32));
+                }
+            }
+        }
+        if n <= 300 {
+            assert_eq!(bvh.self_pairs(), brute, "n = {n}");
+        } else {
+            // Large: compare counts and a filtered subset.
+            let pairs = bvh.self_pairs();
+            assert_eq!(pairs.len(), brute.len());
+            assert_eq!(pairs, brute);
+        }
+        let q = Aabb::from_points(&[DVec3::splat(3.0), DVec3::splat(5.0)]);
+        let expect: Vec<u32> = (0..n as u32).filter(|&i| boxes[i as usize].overlaps(&q)).collect();
+        assert_eq!(bvh.overlapping(&q), expect);
+        let other = random_boxes(&mut g, 50);
+        let t2 = Bvh::new(&other);
+        let mut cross = Vec::new();
+        for i in 0..n {
+            for j in 0..other.len() {
+                if boxes[i].overlaps(&other[j]) {
+                    cross.push((i as u32, j as u32));
+                }
+            }
+        }
+        assert_eq!(bvh.pairs_with(&t2), cross);
+        // Every node box contains its items' boxes.
+        if let Some(root) = bvh.root() {
+            let mut stack = vec![root];
+            let mut seen = 0;
+            while let Some(nd) = stack.pop() {
+                let b = bvh.bounds(nd);
+                match bvh.kind(nd) {
+                    NodeKind::Leaf(items) => {
+                        for &i in items {
+                            let bi = boxes[i as usize];
+                            assert!(b.contains(bi.min) && b.contains(bi.max));
+                            seen += 1;
+                        }
+                    }
+                    NodeKind::Interior(l, r) => stack.extend([l, r]),
+                }
+            }
+            assert_eq!(seen, n);
+        }
+    }
+}
+
+#[test]
+fn distance_lower_bound_is_a_lower_bound() {
+    let mut g = Lcg(9);
+    for _ in 0..1000 {
+        let b = Aabb::from_points(&[g.point(1.0), g.point(1.0)]);
+        let p = g.point(3.0) - DVec3::splat(1.0);
+        let lb = b.sq_distance_lower_bound(p);
+        let c = p.clamp(b.min, b.max);
+        assert!(lb <= (p - c).length_squared() * (1.0 + 1e-15));
+        assert!(b.distance_lower_bound(p) <= (p - c).length());
+        assert!(b.inflated(0.1).contains(c + (p - c).normalize_or_zero() * 0.1));
+    }
+}
+
+/// A torus of `n x m` quads split into triangles (closed, no self-intersections).
+fn torus(n: u32, m: u32, r_major: f64, r_minor: f64) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let mut pos = Vec::new();
+    for i in 0..n {
+        let u = i as f64 / n as f64 * std::f64::consts::TAU;
+        for j in 0..m {
+            let v = j as f64 / m as f64 * std::f64::consts::TAU;
+            let r = r_major + r_minor * v.cos();
+            pos.push(DVec3::new(r * u.cos(), r * u.sin(), r_minor * v.sin()));
+        }
+    }
+    let id = |i: u32, j: u32| (i % n) * m + (j % m);
+    let mut faces = Vec::new();
+    for i in 0..n {
+        for j in 0..m {
+            faces.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            faces.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    (pos, faces)
+}
+
+fn brute_self_intersections(pos: &[DVec3], faces: &[[u32; 3]]) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    for i in 0..faces.len() {
+        for j in i + 1..faces.len() {
+            if faces_intersect(pos, faces[i], faces[j]) {
+                out.push((i as u32, j as u32));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn torus_is_clean_and_a_dent_is_found() {
+    let (mut pos, faces) = torus(24, 12, 2.0, 0.7);
+    assert!(self_intersections(&pos, &faces).is_empty());
+    assert!(brute_self_intersections(&pos, &faces).is_empty());
+    // Push one vertex through the opposite side of the tube.
+    pos[0] = DVec3::new(1.0, 0.0, 0.0);
+    let found = self_intersections(&pos, &faces);
+    assert!(!found.is_empty());
+    assert_eq!(found, brute_self_intersections(&pos, &faces));
+}
+
+#[test]
+fn flat_grid_fold_and_duplicate_faces() {
+    // A 3x3 vertex grid in z = 0, 8 faces.
+    let mut pos: Vec<DVec3> = (0..9).map(|k| DVec3::new((k % 3) as f64, (k / 3) as f64, 0.0)).collect();
+    let mut faces = Vec::new();
+    for y in 0..2u32 {
+        for x in 0..2u32 {
+            let v = y * 3 + x;
+            faces.push([v, v + 1, v + 4]);
+            faces.push([v, v + 4, v + 3]);
+        }
+    }
+    assert!(self_intersections(&pos, &faces).is_empty());
+    // Fold: move the centre vertex across the diagonal so neighbours overlap in the plane.
+    pos[4] = DVec3::new(-0.5, -0.4, 0.0);
+    let found = self_intersections(&pos, &faces);
+    assert!(!found.is_empty());
+    assert_eq!(found, brute_self_intersections(&pos, &faces));
+    // A duplicated face always counts.
+    pos[4] = DVec3::new(1.0, 1.0, 0.0);
+    faces.push(faces[0]);
+    assert_eq!(self_intersections(&pos, &faces), vec![(0, 8)]);
+}
+
+#[test]
+fn random_soups_match_brute_force() {
+    let mut g = Lcg(11);
+    for _ in 0..5 {
+        let pos: Vec<DVec3> = (0..120).map(|_| g.point(4.0)).collect();
+        let faces: Vec<[u32; 3]> = (0..100)
+            .map(|_| {
+                let mut f = [0u32; 3];
+                for v in &mut f {
+                    *v = (g.unit() * 120.0) as u32;
+                }
+                f
+            })
+            .collect();
+        assert_eq!(self_intersections(&pos, &faces), brute_self_intersections(&pos, &faces));
+    }
+}

@@ -1,0 +1,157 @@
+//! Property tests: filtered == exact on near-degenerate inputs (through `Checked`), symmetry
+//! and permutation laws, and consistency between intersection and distance predicates.
+
+use envelope_predicates::generic as g;
+use envelope_predicates::{Checked, Exact, Filtered, Kernel, Orientation, Sign};
+use glam::DVec3;
+use proptest::prelude::*;
+
+type K = Checked<Filtered, Exact>;
+
+fn coord() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        // Small integer grid, scaled by a power of ten: many exact degeneracies.
+        (-4i32..=4, 0u32..4).prop_map(|(i, k)| i as f64 / 10f64.powi(k as i32)),
+        // Plain doubles.
+        -10.0f64..10.0,
+    ]
+}
+
+fn point() -> impl Strategy<Value = DVec3> {
+    (coord(), coord(), coord()).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+}
+
+/// A point, or a point snapped onto a line/plane through other points (near-degenerate).
+fn near_point(a: DVec3, b: DVec3, c: DVec3) -> impl Strategy<Value = DVec3> {
+    prop_oneof![
+        point(),
+        (-2.0f64..3.0).prop_map(move |t| a + (b - a) * t),
+        (-1.0f64..2.0, -1.0f64..2.0).prop_map(move |(s, t)| a + (b - a) * s + (c - a) * t),
+        Just(a),
+        Just((a + b) * 0.5),
+    ]
+}
+
+fn tri_pair() -> impl Strategy<Value = ([DVec3; 3], [DVec3; 3])> {
+    (point(), point(), point()).prop_flat_map(|(a, b, c)| {
+        let t1 = [a, b, c];
+        (near_point(a, b, c), near_point(a, b, c), near_point(b, c, a)).prop_map(move |(p, q, r)| (t1, [p, q, r]))
+    })
+}
+
+fn eps2() -> impl Strategy<Value = f64> {
+    prop_oneof![Just(0.0), (0u32..40).prop_map(|i| i as f64 / 16.0), 0.0f64..4.0]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn orient3d_permutation_laws((t, u) in tri_pair()) {
+        let [a, b, c] = t;
+        let d = u[0];
+        let o = K::orient3d(a, b, c, d);
+        prop_assert_eq!(K::orient3d(b, a, c, d), o.reverse());
+        prop_assert_eq!(K::orient3d(a, c, b, d), o.reverse());
+        prop_assert_eq!(K::orient3d(a, b, d, c), o.reverse());
+        prop_assert_eq!(K::orient3d(b, c, a, d), o);
+        prop_assert_eq!(K::orient3d(d, a, b, c).reverse(), o);
+        let _ = K::insphere(a, b, c, d, u[1]);
+    }
+
+    #[test]
+    fn tri_tri_symmetric_and_rotation_invariant((t1, t2) in tri_pair()) {
+        let r = g::triangles_intersect::<K>(t1, t2);
+        prop_assert_eq!(g::triangles_intersect::<K>(t2, t1), r);
+        prop_assert_eq!(g::triangles_intersect::<K>([t1[1], t1[2], t1[0]], t2), r);
+        prop_assert_eq!(g::triangles_intersect::<K>(t1, [t2[2], t2[0], t2[1]]), r);
+        prop_assert_eq!(g::triangles_intersect::<K>([t1[0], t1[2], t1[1]], [t2[1], t2[0], t2[2]]), r);
+        // Intersection iff distance zero.
+        prop_assert_eq!(g::cmp_triangle_triangle::<K>(t1, t2, 0.0) == Sign::Zero, r);
+        let ov = g::triangles_overlap_with_area::<K>(t1, t2);
+        prop_assert_eq!(g::triangles_overlap_with_area::<K>(t2, [t1[2], t1[1], t1[0]]), ov);
+        prop_assert!(!ov || r);
+    }
+
+    #[test]
+    fn segment_triangle_consistent((t, u) in tri_pair()) {
+        let (p, q) = (u[0], u[1]);
+        let st = g::segment_triangle::<K>(p, q, t);
+        prop_assert_eq!(g::segment_triangle::<K>(q, p, t).intersects(), st.intersects());
+        prop_assert_eq!(g::segment_triangle::<K>(p, q, [t[1], t[2], t[0]]).intersects(), st.intersects());
+        prop_assert_eq!(g::cmp_segment_triangle::<K>(p, q, t, 0.0) == Sign::Zero, st.intersects());
+        // A segment meets a triangle iff the degenerate triangle (p, q, q) meets it.
+        prop_assert_eq!(g::triangles_intersect::<K>([p, q, q], t), st.intersects());
+    }
+
+    #[test]
+    fn distances_agree_and_are_monotone((t1, t2) in tri_pair(), e in eps2()) {
+        let p = t2[0];
+        let s = g::cmp_point_triangle::<K>(p, t1, e);
+        prop_assert_eq!(g::cmp_point_triangle::<K>(p, [t1[2], t1[0], t1[1]], e), s);
+        // Monotone in eps2.
+        if s == Sign::Negative { prop_assert_eq!(g::cmp_point_triangle::<K>(p, t1, e + 1.0), Sign::Negative); }
+        let tt = g::cmp_triangle_triangle::<K>(t1, t2, e);
+        prop_assert_eq!(g::cmp_triangle_triangle::<K>(t2, t1, e), tt);
+        // dist(t1, t2) <= dist(p, t1) since p is a vertex of t2.
+        prop_assert!(tt <= s);
+        let ss = g::cmp_segment_segment::<K>(t1[0], t1[1], t2[0], t2[1], e);
+        prop_assert_eq!(g::cmp_segment_segment::<K>(t2[1], t2[0], t1[1], t1[0], e), ss);
+        prop_assert!(tt <= ss);
+        let st = g::cmp_segment_triangle::<K>(t2[0], t2[1], t1, e);
+        prop_assert!(tt <= st && st <= s);
+    }
+
+    #[test]
+    fn point_triangle_distance_matches_float_reference(t in (point(), point(), point()), p in point()) {
+        let t = [t.0, t.1, t.2];
+        let d2 = reference_sq_dist(p, t);
+        // Away from the decision boundary the exact answer must match the f64 reference.
+        if d2 > 1e-6 {
+            prop_assert_eq!(g::cmp_point_triangle::<K>(p, t, d2 * (1.0 + 1e-9)), Sign::Negative);
+            prop_assert_eq!(g::cmp_point_triangle::<K>(p, t, d2 * (1.0 - 1e-9)), Sign::Positive);
+        }
+    }
+
+    #[test]
+    fn collinear_and_segment_laws(a in point(), b in point(), t in -2.0f64..3.0) {
+        let p = a + (b - a) * t;
+        let c = g::collinear::<K>(a, b, p);
+        prop_assert_eq!(g::collinear::<K>(p, b, a), c);
+        prop_assert_eq!(g::collinear::<K>(b, p, a), c);
+        let inside = g::point_strictly_inside_segment::<K>(p, a, b);
+        prop_assert_eq!(g::point_strictly_inside_segment::<K>(p, b, a), inside);
+        prop_assert!(!inside || (c && p != a && p != b));
+    }
+
+    #[test]
+    fn orient2d_laws(a in point(), b in point(), c in point()) {
+        let (a, b, c) = (a.truncate(), b.truncate(), c.truncate());
+        let o = K::orient2d(a, b, c);
+        prop_assert_eq!(K::orient2d(b, c, a), o);
+        prop_assert_eq!(K::orient2d(b, a, c), o.reverse());
+        prop_assert_eq!(o == Orientation::Degenerate, K::orient2d(a, c, b) == Orientation::Degenerate);
+    }
+}
+
+/// Plain f64 point–triangle squared distance (Ericson, Real-Time Collision Detection 5.1.5).
+fn reference_sq_dist(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
+    let seg = |a: DVec3, b: DVec3| {
+        let ab = b - a;
+        let l = ab.length_squared();
+        let t = if l > 0.0 { ((p - a).dot(ab) / l).clamp(0.0, 1.0) } else { 0.0 };
+        (a + ab * t - p).length_squared()
+    };
+    let mut best = seg(a, b).min(seg(b, c)).min(seg(c, a));
+    let n = (b - a).cross(c - a);
+    let nn = n.length_squared();
+    if nn > 1e-12 {
+        let d = (p - a).dot(n);
+        let q = p - n * (d / nn);
+        let inside = [(a, b), (b, c), (c, a)].iter().all(|&(x, y)| (y - x).cross(q - x).dot(n) >= 0.0);
+        if inside {
+            best = best.min(d * d / nn);
+        }
+    }
+    best
+}
