@@ -799,6 +799,10 @@ impl HalfEdgeMesh {
     /// When the face closes a gap at a vertex with several border gaps, the border cycles are
     /// relinked as in OpenMesh's `add_face`. O(sum of the corners' valences).
     ///
+    /// Because of the new-fan rule, some hole fillings cannot be added one face at a time in
+    /// any order (for instance when the hole's border is pinched); use [`Self::add_faces`]
+    /// for those.
+    ///
     /// ```
     /// use envelope_mesh::{AddFaceError, HalfEdgeMesh, TriangleSoup, VertexId};
     /// let s = TriangleSoup::from_raw(&[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]], &[[0, 1, 2]]);
@@ -806,10 +810,15 @@ impl HalfEdgeMesh {
     /// assert!(m.add_face([VertexId(1), VertexId(3), VertexId(2)]).is_ok());
     /// assert_eq!(
     ///     m.add_face([VertexId(0), VertexId(1), VertexId(3)]),
-    ///     Err(AddFaceError::HalfedgeOccupied { from: VertexId(1), to: VertexId(3) })
+    ///     Err(AddFaceError::HalfedgeOccupied { from: VertexId(0), to: VertexId(1) })
     /// );
     /// ```
     pub fn add_face(&mut self, v: [VertexId; 3]) -> Result<FaceId, AddFaceError> {
+        self.add_face_impl(v, true)
+    }
+
+    /// [`Self::add_face`]; `strict` refuses a new fan at a non-isolated vertex.
+    fn add_face_impl(&mut self, v: [VertexId; 3], strict: bool) -> Result<FaceId, AddFaceError> {
         for i in 0..3 {
             if !self.contains_vertex(v[i]) {
                 return Err(AddFaceError::DeadVertex(v[i]));
@@ -838,7 +847,7 @@ impl HalfEdgeMesh {
         }
         for i in 0..3 {
             let ii = (i + 1) % 3;
-            if is_new[i] && is_new[ii] && self.v_out[v[ii].index()].is_valid() {
+            if strict && is_new[i] && is_new[ii] && self.v_out[v[ii].index()].is_valid() {
                 return Err(AddFaceError::NewFan(v[ii]));
             }
         }
@@ -899,9 +908,17 @@ impl HalfEdgeMesh {
                     self.set_out(vh, boundary_next);
                 }
                 (true, true) => {
-                    // `vh` is isolated (checked above).
-                    self.set_out(vh, outer_next);
-                    next_cache.push((outer_prev, outer_next));
+                    let boundary_next = self.v_out[vh.index()];
+                    if boundary_next.is_valid() {
+                        // A new fan at a border vertex (non-strict only): splice it into the
+                        // border cycle before the existing gap.
+                        let boundary_prev = self.prev(boundary_next);
+                        next_cache.push((boundary_prev, outer_next));
+                        next_cache.push((outer_prev, boundary_next));
+                    } else {
+                        self.set_out(vh, outer_next);
+                        next_cache.push((outer_prev, outer_next));
+                    }
                 }
                 (false, false) => needs_adjust[ii] = self.v_out[vh.index()] == inner_next,
             }
@@ -920,6 +937,51 @@ impl HalfEdgeMesh {
         }
         self.debug_check();
         Ok(f)
+    }
+
+    /// Adds a batch of faces (a hole filling), all or nothing. Inside the batch a face may
+    /// transiently give a vertex a second fan (as OpenMesh allows), so any order works; at
+    /// the end no corner may have more border gaps than `max(1, gaps before)`, otherwise the
+    /// batch is undone and [`AddFaceError::NewFan`] names the vertex. Returns the new face ids
+    /// in input order. On any error nothing is changed. O(sum of the corners' valences).
+    ///
+    /// ```
+    /// use envelope_mesh::{generate, HalfEdgeMesh, VertexId};
+    /// let mut m = HalfEdgeMesh::from_soup(&generate::icosphere(0, 1.0)).unwrap();
+    /// let hole = m.remove_vertex_fan(VertexId(0)).unwrap();
+    /// // The middle triangle of the pentagon first: a new fan at three vertices for a while.
+    /// let fill = [[hole[1], hole[3], hole[0]], [hole[1], hole[2], hole[3]], [hole[0], hole[3], hole[4]]];
+    /// let ids = m.add_faces(&fill).unwrap();
+    /// assert_eq!(ids.len(), 3);
+    /// assert_eq!(m.topology().genus, Some(0));
+    /// ```
+    pub fn add_faces(&mut self, faces: &[[VertexId; 3]]) -> Result<Vec<FaceId>, AddFaceError> {
+        let mut corners: Vec<VertexId> = faces.iter().flatten().copied().collect();
+        corners.sort_unstable();
+        corners.dedup();
+        if let Some(&v) = corners.iter().find(|&&v| !self.contains_vertex(v)) {
+            return Err(AddFaceError::DeadVertex(v));
+        }
+        let before: Vec<usize> = corners.iter().map(|&v| self.border_gaps(v)).collect();
+        let cp = self.begin();
+        let mut ids = Vec::with_capacity(faces.len());
+        for &f in faces {
+            match self.add_face_impl(f, false) {
+                Ok(id) => ids.push(id),
+                Err(e) => {
+                    self.rollback(cp);
+                    return Err(e);
+                }
+            }
+        }
+        for (&v, &b) in corners.iter().zip(&before) {
+            if self.border_gaps(v) > b.max(1) {
+                self.rollback(cp);
+                return Err(AddFaceError::NewFan(v));
+            }
+        }
+        self.commit(cp);
+        Ok(ids)
     }
 
     /// Removes one face, leaving a hole (OpenMesh's `delete_face`): edges left with no face
