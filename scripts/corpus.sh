@@ -17,21 +17,23 @@ if compgen -G "$meshes/*.off" >/dev/null; then
 fi
 
 if [ ! -f "$archive" ]; then
-  if [ "$(id -u)" = 0 ]; then
-    echo "corpus: $archive missing; installing libcgal-demo ..." >&2
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get install -y libcgal-demo >&2 || { apt-get update >&2 && apt-get install -y libcgal-demo >&2; }
-  else
-    echo "error: $archive is missing; install it with (as root):" >&2
-    echo "  apt-get update && apt-get install -y libcgal-demo" >&2
-    exit 1
-  fi
+  # Only the data archive is needed: fetch the package file and take it out, rather than
+  # installing libcgal-demo with its Qt dependencies.
+  deb_dir="$(mktemp -d)"
+  trap 'rm -rf "$deb_dir"' EXIT
+  echo "corpus: $archive missing; fetching libcgal-demo ..." >&2
+  ( cd "$deb_dir" && { apt-get download libcgal-demo >&2 2>&1 \
+      || { [ "$(id -u)" = 0 ] && apt-get update -qq >&2 && apt-get download libcgal-demo >&2; }; } ) \
+    || { echo "error: cannot fetch libcgal-demo; as root run: apt-get update && apt-get install -y libcgal-demo" >&2; exit 1; }
+  dpkg-deb --fsys-tarfile "$deb_dir"/libcgal-demo_*.deb \
+    | tar -x -C "$deb_dir" ./usr/share/doc/libcgal-dev/data.tar.gz
+  archive="$deb_dir/usr/share/doc/libcgal-dev/data.tar.gz"
 fi
-[ -f "$archive" ] || { echo "error: $archive still missing after installing libcgal-demo" >&2; exit 1; }
+[ -f "$archive" ] || { echo "error: no libcgal-demo data archive" >&2; exit 1; }
 
 mkdir -p "$dest"
 tmp="$(mktemp -d "$dest/.unpack.XXXXXX")"
-trap 'rm -rf "$tmp"' EXIT
+trap 'rm -rf "$tmp" "${deb_dir:-}"' EXIT
 tar -xzf "$archive" -C "$tmp" data/meshes
 mkdir -p "$dest/data"
 rm -rf "$meshes"
