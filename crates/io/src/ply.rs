@@ -517,6 +517,8 @@ fn read_elements<S: Source>(
             Role::Vertex { xyz } => read_vertices(src, e, xyz, out)?,
             Role::Faces { list } => read_faces(src, e, list, false, out)?,
             Role::Strips { list } => read_faces(src, e, list, true, out)?,
+            // An element without properties occupies no bytes, whatever its count.
+            Role::Skip if e.props.is_empty() => {}
             Role::Skip => {
                 for _ in 0..e.count {
                     src.begin_item();
@@ -996,6 +998,17 @@ mod tests {
             bad("ply\nformat ascii 1.0\nwhatever\n"),
             ReadErrorKind::BadHeader(_)
         ));
+    }
+
+    #[test]
+    fn empty_element_with_huge_count_is_skipped_at_once() {
+        let header = format!("{ASCII_TRI}0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").replace(
+            "end_header",
+            "element nothing 18446744073709551615\nend_header",
+        );
+        let start = std::time::Instant::now();
+        assert_eq!(ply(header.as_bytes()).unwrap().0.num_faces(), 1);
+        assert!(start.elapsed().as_secs() < 2);
     }
 
     #[test]
