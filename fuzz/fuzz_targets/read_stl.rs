@@ -11,22 +11,34 @@ use envelope_mesh::{TriangleSoup, check_coordinate};
 const FORMAT: Format = Format::Stl(StlEncoding::Binary);
 
 fn bits(s: &TriangleSoup) -> (Vec<[u64; 3]>, Vec<[u32; 3]>) {
-    let p = s.positions.iter().map(|p| p.to_array().map(f64::to_bits)).collect();
+    let p = s
+        .positions
+        .iter()
+        .map(|p| p.to_array().map(f64::to_bits))
+        .collect();
     (p, s.faces.iter().map(|f| f.map(|v| v.0)).collect())
 }
 
 fn check(data: &[u8]) -> Result<(), String> {
-    let Ok((soup, report)) = read(data, FORMAT) else { return Ok(()) };
+    let Ok((soup, report)) = read(data, FORMAT) else {
+        return Ok(());
+    };
     if !soup.indices_in_range() {
         return Err("index out of range".into());
     }
     if soup.faces.is_empty() {
         return Err("no faces accepted".into());
     }
-    if let Some(x) = soup.positions.iter().flat_map(|p| p.to_array()).find(|&x| check_coordinate(x).is_err()) {
+    if let Some(x) = soup
+        .positions
+        .iter()
+        .flat_map(|p| p.to_array())
+        .find(|&x| check_coordinate(x).is_err())
+    {
         return Err(format!("coordinate {x:e} accepted"));
     }
-    if (report.vertices, report.triangles) != (soup.positions.len() as u64, soup.faces.len() as u64) {
+    if (report.vertices, report.triangles) != (soup.positions.len() as u64, soup.faces.len() as u64)
+    {
         return Err("report counts disagree with the soup".into());
     }
     for format in [report.format, Format::Ply(PlyEncoding::BinaryLittleEndian)] {
@@ -42,7 +54,11 @@ fn check(data: &[u8]) -> Result<(), String> {
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
     if let Err(why) = check(data) {
-        let escaped: String = data.iter().flat_map(|&b| std::ascii::escape_default(b)).map(char::from).collect();
+        let escaped: String = data
+            .iter()
+            .flat_map(|&b| std::ascii::escape_default(b))
+            .map(char::from)
+            .collect();
         panic!("{why}\nlet data: &[u8] = b\"{escaped}\";");
     }
 });

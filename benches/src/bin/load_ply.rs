@@ -92,7 +92,10 @@ fn run(dir: &PathBuf, faces: u64) -> Result<(), Box<dyn std::error::Error>> {
     let vertices = write_grid(&path, faces)?;
     let write_secs = t.elapsed().as_secs_f64();
     let size = std::fs::metadata(&path)?.len();
-    let out = Command::new(std::env::current_exe()?).arg("--child").arg(&path).output()?;
+    let out = Command::new(std::env::current_exe()?)
+        .arg("--child")
+        .arg(&path)
+        .output()?;
     if !out.status.success() {
         return Err(format!("child failed: {}", String::from_utf8_lossy(&out.stderr)).into());
     }
@@ -106,7 +109,11 @@ fn run(dir: &PathBuf, faces: u64) -> Result<(), Box<dyn std::error::Error>> {
     let [secs, nv, nf, hwm_kib] = fields[..] else {
         return Err(format!("unexpected child output: {stdout}").into());
     };
-    assert_eq!((nv as u64, nf as u64), (vertices, faces), "child read a different mesh");
+    assert_eq!(
+        (nv as u64, nf as u64),
+        (vertices, faces),
+        "child read a different mesh"
+    );
     let arrays = 24.0 * nv + 12.0 * nf;
     let hwm = hwm_kib * 1024.0;
     let mib = |b: f64| b / (1024.0 * 1024.0);
@@ -116,7 +123,11 @@ fn run(dir: &PathBuf, faces: u64) -> Result<(), Box<dyn std::error::Error>> {
     println!("{:<28}{:>14.1}", "file size (MiB)", mib(size as f64));
     println!("{:<28}{:>14.2}", "generate (s, parent)", write_secs);
     println!("{:<28}{:>14.3}", "load (s)", secs);
-    println!("{:<28}{:>14.1}", "load rate (MiB/s)", mib(size as f64) / secs);
+    println!(
+        "{:<28}{:>14.1}",
+        "load rate (MiB/s)",
+        mib(size as f64) / secs
+    );
     println!("{:<28}{:>14.1}", "peak RSS, VmHWM (MiB)", mib(hwm));
     println!("{:<28}{:>14.1}", "final arrays (MiB)", mib(arrays));
     println!("{:<28}{:>14.3}", "peak RSS / arrays", hwm / arrays);
@@ -140,6 +151,10 @@ fn child(path: &Path) -> ExitCode {
         .find_map(|l| l.strip_prefix("VmHWM:"))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
         .unwrap_or(0);
-    println!("RESULT {secs} {} {} {hwm_kib}", soup.num_vertices(), soup.num_faces());
+    println!(
+        "RESULT {secs} {} {} {hwm_kib}",
+        soup.num_vertices(),
+        soup.num_faces()
+    );
     ExitCode::SUCCESS
 }
