@@ -38,12 +38,18 @@ impl Num for ErrF64 {
     fn add(&self, o: &Self) -> Self {
         let v = self.v + o.v;
         // |fl(x~ + y~) - (x~ + y~)| <= U |fl(...)|; input errors add up.
-        ErrF64 { v, e: (self.e + o.e + U * v.abs() + TINY) * INFLATE }
+        ErrF64 {
+            v,
+            e: (self.e + o.e + U * v.abs() + TINY) * INFLATE,
+        }
     }
     #[inline]
     fn sub(&self, o: &Self) -> Self {
         let v = self.v - o.v;
-        ErrF64 { v, e: (self.e + o.e + U * v.abs() + TINY) * INFLATE }
+        ErrF64 {
+            v,
+            e: (self.e + o.e + U * v.abs() + TINY) * INFLATE,
+        }
     }
     #[inline]
     fn mul(&self, o: &Self) -> Self {
@@ -66,7 +72,13 @@ impl ErrF64 {
             Some(Sign::Negative)
         } else if self.e == 0.0 {
             // Only reachable for an exact literal.
-            Some(if self.v == 0.0 { Sign::Zero } else if self.v > 0.0 { Sign::Positive } else { Sign::Negative })
+            Some(if self.v == 0.0 {
+                Sign::Zero
+            } else if self.v > 0.0 {
+                Sign::Positive
+            } else {
+                Sign::Negative
+            })
         } else {
             None
         }
@@ -116,7 +128,10 @@ impl<N: Num> V<N> {
         V(b.0.sub(&a.0), b.1.sub(&a.1), b.2.sub(&a.2))
     }
     pub(crate) fn dot(&self, o: &Self) -> N {
-        self.0.mul(&o.0).add(&self.1.mul(&o.1)).add(&self.2.mul(&o.2))
+        self.0
+            .mul(&o.0)
+            .add(&self.1.mul(&o.1))
+            .add(&self.2.mul(&o.2))
     }
     pub(crate) fn cross(&self, o: &Self) -> Self {
         V(
@@ -149,8 +164,16 @@ pub(crate) fn insphere<N: Num>(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3)
         let w = v.dot(&v);
         [v.0, v.1, v.2, w]
     });
-    let m = |i: usize, j: usize| rows[i][0].mul(&rows[j][1]).sub(&rows[j][0].mul(&rows[i][1]));
-    let n = |k: usize, l: usize| rows[k][2].mul(&rows[l][3]).sub(&rows[l][2].mul(&rows[k][3]));
+    let m = |i: usize, j: usize| {
+        rows[i][0]
+            .mul(&rows[j][1])
+            .sub(&rows[j][0].mul(&rows[i][1]))
+    };
+    let n = |k: usize, l: usize| {
+        rows[k][2]
+            .mul(&rows[l][3])
+            .sub(&rows[l][2].mul(&rows[k][3]))
+    };
     let det = m(0, 1)
         .mul(&n(2, 3))
         .sub(&m(0, 2).mul(&n(1, 3)))
@@ -206,8 +229,18 @@ pub(crate) fn edge_side<N: Num>(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> N {
 /// `s = (be - cd)/den`, `t = (ae - bd)/den`. Returns `[be-cd, den-(be-cd), ae-bd, den-(ae-bd)]`;
 /// all four are positive exactly when the closest points are interior to both segments.
 pub(crate) fn closest_params<N: Num>(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> [N; 4] {
-    let (d1, d2, r) = (V::<N>::diff(p1, p0), V::<N>::diff(q1, q0), V::<N>::diff(p0, q0));
-    let (a, b, c, d, e) = (d1.dot(&d1), d1.dot(&d2), d2.dot(&d2), d1.dot(&r), d2.dot(&r));
+    let (d1, d2, r) = (
+        V::<N>::diff(p1, p0),
+        V::<N>::diff(q1, q0),
+        V::<N>::diff(p0, q0),
+    );
+    let (a, b, c, d, e) = (
+        d1.dot(&d1),
+        d1.dot(&d2),
+        d2.dot(&d2),
+        d1.dot(&r),
+        d2.dot(&r),
+    );
     let den = a.mul(&c).sub(&b.mul(&b));
     let s = b.mul(&e).sub(&c.mul(&d));
     let t = a.mul(&e).sub(&b.mul(&d));

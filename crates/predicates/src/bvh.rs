@@ -26,7 +26,10 @@ pub struct Aabb {
 
 impl Aabb {
     /// The empty box (union identity).
-    pub const EMPTY: Aabb = Aabb { min: DVec3::INFINITY, max: DVec3::NEG_INFINITY };
+    pub const EMPTY: Aabb = Aabb {
+        min: DVec3::INFINITY,
+        max: DVec3::NEG_INFINITY,
+    };
 
     /// The smallest box containing the points (exact).
     ///
@@ -39,21 +42,30 @@ impl Aabb {
     /// ```
     #[must_use]
     pub fn from_points(points: &[DVec3]) -> Aabb {
-        points.iter().fold(Aabb::EMPTY, |b, &p| Aabb { min: b.min.min(p), max: b.max.max(p) })
+        points.iter().fold(Aabb::EMPTY, |b, &p| Aabb {
+            min: b.min.min(p),
+            max: b.max.max(p),
+        })
     }
 
     /// The box of a triangle (exact).
     #[inline]
     #[must_use]
     pub fn from_triangle(t: [DVec3; 3]) -> Aabb {
-        Aabb { min: t[0].min(t[1]).min(t[2]), max: t[0].max(t[1]).max(t[2]) }
+        Aabb {
+            min: t[0].min(t[1]).min(t[2]),
+            max: t[0].max(t[1]).max(t[2]),
+        }
     }
 
     /// The smallest box containing both (exact).
     #[inline]
     #[must_use]
     pub fn union(&self, o: &Aabb) -> Aabb {
-        Aabb { min: self.min.min(o.min), max: self.max.max(o.max) }
+        Aabb {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
     }
 
     /// True when the closed boxes share a point (exact).
@@ -197,22 +209,35 @@ impl Bvh {
     /// ```
     #[must_use]
     pub fn new(boxes: &[Aabb]) -> Bvh {
-        assert!(boxes.len() < u32::MAX as usize, "too many items for u32 ids");
+        assert!(
+            boxes.len() < u32::MAX as usize,
+            "too many items for u32 ids"
+        );
         let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
         if boxes.is_empty() {
-            return Bvh { nodes: Vec::new(), items, boxes: Vec::new() };
+            return Bvh {
+                nodes: Vec::new(),
+                items,
+                boxes: Vec::new(),
+            };
         }
         let centers: Vec<DVec3> = boxes.iter().map(Aabb::center).collect();
         let nodes = build(boxes, &centers, &mut items, 0);
         let ordered = items.iter().map(|&i| boxes[i as usize]).collect();
-        Bvh { nodes, items, boxes: ordered }
+        Bvh {
+            nodes,
+            items,
+            boxes: ordered,
+        }
     }
 
     /// Builds a tree over the boxes of the triangles `faces` of `positions` (item id = face index).
     #[must_use]
     pub fn from_triangles(positions: &[DVec3], faces: &[[u32; 3]]) -> Bvh {
-        let boxes: Vec<Aabb> =
-            faces.iter().map(|f| Aabb::from_triangle(f.map(|i| positions[i as usize]))).collect();
+        let boxes: Vec<Aabb> = faces
+            .iter()
+            .map(|f| Aabb::from_triangle(f.map(|i| positions[i as usize])))
+            .collect();
         Bvh::new(&boxes)
     }
 
@@ -303,11 +328,17 @@ impl Bvh {
 
     /// All pairs `(i, j)` with `i` an item of `self` and `j` an item of `other` whose boxes
     /// overlap and for which `keep(i, j)` holds; sorted. Runs in parallel.
-    pub fn pairs_with_where<F: Fn(u32, u32) -> bool + Sync>(&self, other: &Bvh, keep: F) -> Vec<(u32, u32)> {
+    pub fn pairs_with_where<F: Fn(u32, u32) -> bool + Sync>(
+        &self,
+        other: &Bvh,
+        keep: F,
+    ) -> Vec<(u32, u32)> {
         if self.nodes.is_empty() || other.nodes.is_empty() {
             return Vec::new();
         }
-        let mut out = cross_rec(self, 0, other, 0, &|a: u32, b: u32| keep(a, b).then_some((a, b)));
+        let mut out = cross_rec(self, 0, other, 0, &|a: u32, b: u32| {
+            keep(a, b).then_some((a, b))
+        });
         out.sort_unstable();
         out
     }
@@ -421,28 +452,66 @@ fn build(boxes: &[Aabb], centers: &[DVec3], items: &mut [u32], offset: u32) -> V
     }
     let (bounds, mid) = split(boxes, centers, items);
     let (li, ri) = items.split_at_mut(mid);
-    let (left, right) =
-        rayon::join(|| build(boxes, centers, li, offset), || build(boxes, centers, ri, offset + mid as u32));
+    let (left, right) = rayon::join(
+        || build(boxes, centers, li, offset),
+        || build(boxes, centers, ri, offset + mid as u32),
+    );
     let mut nodes = Vec::with_capacity(1 + left.len() + right.len());
     let (lo, ro) = (1u32, 1 + left.len() as u32);
-    nodes.push(Node { bounds, a: lo, b: ro, count: (li.len() + ri.len()) as u32, leaf: false });
-    let shift = |n: &Node, by: u32| if n.leaf { *n } else { Node { a: n.a + by, b: n.b + by, ..*n } };
+    nodes.push(Node {
+        bounds,
+        a: lo,
+        b: ro,
+        count: (li.len() + ri.len()) as u32,
+        leaf: false,
+    });
+    let shift = |n: &Node, by: u32| {
+        if n.leaf {
+            *n
+        } else {
+            Node {
+                a: n.a + by,
+                b: n.b + by,
+                ..*n
+            }
+        }
+    };
     nodes.extend(left.iter().map(|n| shift(n, lo)));
     nodes.extend(right.iter().map(|n| shift(n, ro)));
     nodes
 }
 
 /// Sequential pre-order build appending to `nodes`; returns the index of the subtree root.
-fn build_into(nodes: &mut Vec<Node>, boxes: &[Aabb], centers: &[DVec3], items: &mut [u32], offset: u32) -> u32 {
+fn build_into(
+    nodes: &mut Vec<Node>,
+    boxes: &[Aabb],
+    centers: &[DVec3],
+    items: &mut [u32],
+    offset: u32,
+) -> u32 {
     let me = nodes.len() as u32;
     if items.len() <= LEAF_SIZE {
-        let bounds = items.iter().fold(Aabb::EMPTY, |b, &i| b.union(&boxes[i as usize]));
+        let bounds = items
+            .iter()
+            .fold(Aabb::EMPTY, |b, &i| b.union(&boxes[i as usize]));
         let n = items.len() as u32;
-        nodes.push(Node { bounds, a: offset, b: n, count: n, leaf: true });
+        nodes.push(Node {
+            bounds,
+            a: offset,
+            b: n,
+            count: n,
+            leaf: true,
+        });
         return me;
     }
     let (bounds, mid) = split(boxes, centers, items);
-    nodes.push(Node { bounds, a: 0, b: 0, count: items.len() as u32, leaf: false });
+    nodes.push(Node {
+        bounds,
+        a: 0,
+        b: 0,
+        count: items.len() as u32,
+        leaf: false,
+    });
     let (li, ri) = items.split_at_mut(mid);
     let l = build_into(nodes, boxes, centers, li, offset);
     let r = build_into(nodes, boxes, centers, ri, offset + mid as u32);
@@ -458,7 +527,10 @@ fn split(boxes: &[Aabb], centers: &[DVec3], items: &mut [u32]) -> (Aabb, usize) 
     for &i in items.iter() {
         bounds = bounds.union(&boxes[i as usize]);
         let c = centers[i as usize];
-        cb = Aabb { min: cb.min.min(c), max: cb.max.max(c) };
+        cb = Aabb {
+            min: cb.min.min(c),
+            max: cb.max.max(c),
+        };
     }
     let ext = cb.max - cb.min;
     let axis = if ext.x >= ext.y && ext.x >= ext.z {
@@ -469,6 +541,8 @@ fn split(boxes: &[Aabb], centers: &[DVec3], items: &mut [u32]) -> (Aabb, usize) 
         2
     };
     let mid = items.len() / 2;
-    items.select_nth_unstable_by(mid, |&i, &j| centers[i as usize][axis].total_cmp(&centers[j as usize][axis]));
+    items.select_nth_unstable_by(mid, |&i, &j| {
+        centers[i as usize][axis].total_cmp(&centers[j as usize][axis])
+    });
     (bounds, mid)
 }

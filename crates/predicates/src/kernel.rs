@@ -75,7 +75,11 @@ macro_rules! exact {
 }
 
 fn robust3(p: DVec3) -> robust::Coord3D<f64> {
-    robust::Coord3D { x: p.x, y: p.y, z: p.z }
+    robust::Coord3D {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    }
 }
 
 fn closest_interior_from(signs: [Sign; 4]) -> bool {
@@ -135,14 +139,18 @@ impl Kernel for Exact {
         exact!(edge_side(a, b, c, p))
     }
     fn closest_points_interior(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> bool {
-        closest_interior_from(arith::closest_params::<Rational>(p0, p1, q0, q1).map(|r| rational_sign(&r)))
+        closest_interior_from(
+            arith::closest_params::<Rational>(p0, p1, q0, q1).map(|r| rational_sign(&r)),
+        )
     }
 }
 
 impl Kernel for Filtered {
     #[inline]
     fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Orientation {
-        let in_range = [a, b, c].iter().all(|p| in_exact_range(p.x) && in_exact_range(p.y));
+        let in_range = [a, b, c]
+            .iter()
+            .all(|p| in_exact_range(p.x) && in_exact_range(p.y));
         if !in_range {
             return Exact::orient2d(a, b, c);
         }
@@ -191,7 +199,9 @@ impl Kernel for Filtered {
     }
     fn closest_points_interior(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> bool {
         let f = arith::closest_params::<ErrF64>(p0, p1, q0, q1).map(ErrF64::sign);
-        if f.iter().any(|s| *s == Some(Sign::Negative) || *s == Some(Sign::Zero)) {
+        if f.iter()
+            .any(|s| *s == Some(Sign::Negative) || *s == Some(Sign::Zero))
+        {
             return false;
         }
         if f.iter().all(|s| *s == Some(Sign::Positive)) {
@@ -209,7 +219,10 @@ fn float_sign(r: f64) -> Sign {
     } else if r < 0.0 {
         Sign::Negative
     } else {
-        assert!(r == 0.0, "adaptive predicate returned NaN on in-range input");
+        assert!(
+            r == 0.0,
+            "adaptive predicate returned NaN on in-range input"
+        );
         Sign::Zero
     }
 }
@@ -228,8 +241,10 @@ pub struct Checked<A, B>(PhantomData<(A, B)>);
 
 /// Formats arguments as Rust source that reproduces the call.
 fn repro(call: &str, points: &[DVec3], scalars: &[f64]) -> String {
-    let mut args: Vec<String> =
-        points.iter().map(|p| format!("DVec3::new({:?}, {:?}, {:?})", p.x, p.y, p.z)).collect();
+    let mut args: Vec<String> = points
+        .iter()
+        .map(|p| format!("DVec3::new({:?}, {:?}, {:?})", p.x, p.y, p.z))
+        .collect();
     args.extend(scalars.iter().map(|s| format!("{s:?}")));
     format!("{call}({})", args.join(", "))
 }
@@ -257,8 +272,10 @@ impl<A: Kernel, B: Kernel> Kernel for Checked<A, B> {
         let ra = A::orient2d(a, b, c);
         let rb = B::orient2d(a, b, c);
         if ra != rb {
-            let args: Vec<String> =
-                [a, b, c].iter().map(|p| format!("DVec2::new({:?}, {:?})", p.x, p.y)).collect();
+            let args: Vec<String> = [a, b, c]
+                .iter()
+                .map(|p| format!("DVec2::new({:?}, {:?})", p.x, p.y))
+                .collect();
             panic!(
                 "kernel disagreement in orient2d: {ra:?} vs {rb:?}\nreproduce with:\n    \
                  Checked::<Filtered, Exact>::orient2d({});",
@@ -268,16 +285,40 @@ impl<A: Kernel, B: Kernel> Kernel for Checked<A, B> {
         ra
     }
     fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Orientation {
-        check!("orient3d", A::orient3d(a, b, c, d), B::orient3d(a, b, c, d), &[a, b, c, d], &[])
+        check!(
+            "orient3d",
+            A::orient3d(a, b, c, d),
+            B::orient3d(a, b, c, d),
+            &[a, b, c, d],
+            &[]
+        )
     }
     fn insphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) -> Sign {
-        check!("insphere", A::insphere(a, b, c, d, e), B::insphere(a, b, c, d, e), &[a, b, c, d, e], &[])
+        check!(
+            "insphere",
+            A::insphere(a, b, c, d, e),
+            B::insphere(a, b, c, d, e),
+            &[a, b, c, d, e],
+            &[]
+        )
     }
     fn dot(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
-        check!("dot", A::dot(a, b, c, d), B::dot(a, b, c, d), &[a, b, c, d], &[])
+        check!(
+            "dot",
+            A::dot(a, b, c, d),
+            B::dot(a, b, c, d),
+            &[a, b, c, d],
+            &[]
+        )
     }
     fn cmp_sq_dist(p: DVec3, q: DVec3, eps2: f64) -> Sign {
-        check!("cmp_sq_dist", A::cmp_sq_dist(p, q, eps2), B::cmp_sq_dist(p, q, eps2), &[p, q], &[eps2])
+        check!(
+            "cmp_sq_dist",
+            A::cmp_sq_dist(p, q, eps2),
+            B::cmp_sq_dist(p, q, eps2),
+            &[p, q],
+            &[eps2]
+        )
     }
     fn cmp_sq_dist_point_line(p: DVec3, a: DVec3, b: DVec3, eps2: f64) -> Sign {
         check!(
@@ -307,7 +348,13 @@ impl<A: Kernel, B: Kernel> Kernel for Checked<A, B> {
         )
     }
     fn edge_side(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> Sign {
-        check!("edge_side", A::edge_side(a, b, c, p), B::edge_side(a, b, c, p), &[a, b, c, p], &[])
+        check!(
+            "edge_side",
+            A::edge_side(a, b, c, p),
+            B::edge_side(a, b, c, p),
+            &[a, b, c, p],
+            &[]
+        )
     }
     fn closest_points_interior(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> bool {
         check!(

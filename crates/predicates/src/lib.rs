@@ -49,7 +49,11 @@ pub type DefaultKernel = Filtered;
 pub fn square_rounded_up(eps: f64) -> f64 {
     let s = eps * eps;
     // Exact iff the fused remainder is zero.
-    if eps.mul_add(eps, -s) > 0.0 { next_up(s) } else { s }
+    if eps.mul_add(eps, -s) > 0.0 {
+        next_up(s)
+    } else {
+        s
+    }
 }
 
 /// Orientation of `a, b, c` in the plane: `Positive` when counter-clockwise.
@@ -166,7 +170,10 @@ fn shared_indices(f: [u32; 3], g: [u32; 3]) -> Option<Option<Shared>> {
     match n {
         0 => None,
         1 => Some(Some(Shared::Vertex(pairs[0].0, pairs[0].1))),
-        2 => Some(Some(Shared::Edge([pairs[0].0, pairs[1].0], [pairs[0].1, pairs[1].1]))),
+        2 => Some(Some(Shared::Edge(
+            [pairs[0].0, pairs[1].0],
+            [pairs[0].1, pairs[1].1],
+        ))),
         _ => Some(None),
     }
 }

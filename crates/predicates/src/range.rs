@@ -32,7 +32,9 @@ pub fn in_exact_range(x: f64) -> bool {
 /// True when every coordinate of every point is [`in_exact_range`].
 #[inline]
 pub(crate) fn all_in_range(points: &[glam::DVec3]) -> bool {
-    points.iter().all(|p| in_exact_range(p.x) && in_exact_range(p.y) && in_exact_range(p.z))
+    points
+        .iter()
+        .all(|p| in_exact_range(p.x) && in_exact_range(p.y) && in_exact_range(p.z))
 }
 
 /// Rounds up to the next representable double (identity on `+inf` and NaN).

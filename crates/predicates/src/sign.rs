@@ -24,16 +24,6 @@ impl Sign {
         }
     }
 
-    /// The sign of `x * y` given the signs of `x` and `y`.
-    #[must_use]
-    pub fn mul(self, other: Sign) -> Sign {
-        match (self, other) {
-            (Sign::Zero, _) | (_, Sign::Zero) => Sign::Zero,
-            (a, b) if a == b => Sign::Positive,
-            _ => Sign::Negative,
-        }
-    }
-
     /// The sign of an [`Ordering`](std::cmp::Ordering) of `x` against 0.
     #[must_use]
     pub fn from_ordering(o: std::cmp::Ordering) -> Sign {
@@ -51,6 +41,18 @@ impl Sign {
             Sign::Negative => std::cmp::Ordering::Less,
             Sign::Zero => std::cmp::Ordering::Equal,
             Sign::Positive => std::cmp::Ordering::Greater,
+        }
+    }
+}
+
+/// The sign of `x * y` given the signs of `x` and `y`.
+impl std::ops::Mul for Sign {
+    type Output = Sign;
+    fn mul(self, other: Sign) -> Sign {
+        match (self, other) {
+            (Sign::Zero, _) | (_, Sign::Zero) => Sign::Zero,
+            (a, b) if a == b => Sign::Positive,
+            _ => Sign::Negative,
         }
     }
 }
@@ -113,7 +115,8 @@ impl Orientation {
     pub fn is_opposite(self, other: Orientation) -> bool {
         matches!(
             (self, other),
-            (Orientation::Positive, Orientation::Negative) | (Orientation::Negative, Orientation::Positive)
+            (Orientation::Positive, Orientation::Negative)
+                | (Orientation::Negative, Orientation::Positive)
         )
     }
 }

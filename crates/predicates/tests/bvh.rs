@@ -7,7 +7,10 @@ use glam::DVec3;
 struct Lcg(u64);
 impl Lcg {
     fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         ((self.0 ^ (self.0 >> 29)) >> 11) as f64 / (1u64 << 53) as f64
     }
     fn point(&mut self, s: f64) -> DVec3 {
@@ -48,7 +51,9 @@ fn queries_match_brute_force() {
             assert_eq!(pairs, brute);
         }
         let q = Aabb::from_points(&[DVec3::splat(3.0), DVec3::splat(5.0)]);
-        let expect: Vec<u32> = (0..n as u32).filter(|&i| boxes[i as usize].overlaps(&q)).collect();
+        let expect: Vec<u32> = (0..n as u32)
+            .filter(|&i| boxes[i as usize].overlaps(&q))
+            .collect();
         assert_eq!(bvh.overlapping(&q), expect);
         let other = random_boxes(&mut g, 50);
         let t2 = Bvh::new(&other);
@@ -93,7 +98,10 @@ fn distance_lower_bound_is_a_lower_bound() {
         let c = p.clamp(b.min, b.max);
         assert!(lb <= (p - c).length_squared() * (1.0 + 1e-15));
         assert!(b.distance_lower_bound(p) <= (p - c).length());
-        assert!(b.inflated(0.1).contains(c + (p - c).normalize_or_zero() * 0.1));
+        assert!(
+            b.inflated(0.1)
+                .contains(c + (p - c).normalize_or_zero() * 0.1)
+        );
     }
 }
 
@@ -146,7 +154,9 @@ fn torus_is_clean_and_a_dent_is_found() {
 #[test]
 fn flat_grid_fold_and_duplicate_faces() {
     // A 3x3 vertex grid in z = 0, 8 faces.
-    let mut pos: Vec<DVec3> = (0..9).map(|k| DVec3::new((k % 3) as f64, (k / 3) as f64, 0.0)).collect();
+    let mut pos: Vec<DVec3> = (0..9)
+        .map(|k| DVec3::new((k % 3) as f64, (k / 3) as f64, 0.0))
+        .collect();
     let mut faces = Vec::new();
     for y in 0..2u32 {
         for x in 0..2u32 {
@@ -181,6 +191,9 @@ fn random_soups_match_brute_force() {
                 f
             })
             .collect();
-        assert_eq!(self_intersections(&pos, &faces), brute_self_intersections(&pos, &faces));
+        assert_eq!(
+            self_intersections(&pos, &faces),
+            brute_self_intersections(&pos, &faces)
+        );
     }
 }

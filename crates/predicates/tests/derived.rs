@@ -1,7 +1,9 @@
 //! Hand-known answers for every derived predicate and its degenerate cases, on the checked kernel.
 
 use envelope_predicates::generic::{self as g};
-use envelope_predicates::{Checked, Containment, Exact, Filtered, SegmentTriangle, Shared, Sign, TriangleLocation};
+use envelope_predicates::{
+    Checked, Containment, Exact, Filtered, SegmentTriangle, Shared, Sign, TriangleLocation,
+};
 use glam::DVec3;
 
 type K = Checked<Filtered, Exact>;
@@ -10,7 +12,11 @@ fn d3(x: f64, y: f64, z: f64) -> DVec3 {
     DVec3::new(x, y, z)
 }
 
-const T: [DVec3; 3] = [DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 2.0, 0.0)];
+const T: [DVec3; 3] = [
+    DVec3::ZERO,
+    DVec3::new(2.0, 0.0, 0.0),
+    DVec3::new(0.0, 2.0, 0.0),
+];
 
 #[test]
 fn collinear_and_t_junctions() {
@@ -18,9 +24,17 @@ fn collinear_and_t_junctions() {
     assert!(g::collinear::<K>(a, b, d3(1.0, 1.0, 1.0)));
     assert!(g::collinear::<K>(a, a, d3(1.0, 2.0, 3.0)));
     assert!(!g::collinear::<K>(a, b, d3(1.0, 1.0, 1.0 + 1e-15)));
-    assert!(g::point_strictly_inside_segment::<K>(d3(1.0, 1.0, 1.0), a, b));
+    assert!(g::point_strictly_inside_segment::<K>(
+        d3(1.0, 1.0, 1.0),
+        a,
+        b
+    ));
     assert!(!g::point_strictly_inside_segment::<K>(a, a, b));
-    assert!(!g::point_strictly_inside_segment::<K>(d3(4.0, 4.0, 4.0), a, b));
+    assert!(!g::point_strictly_inside_segment::<K>(
+        d3(4.0, 4.0, 4.0),
+        a,
+        b
+    ));
     assert!(!g::point_strictly_inside_segment::<K>(a, a, a));
     assert!(g::point_on_segment::<K>(b, a, b));
     assert!(g::point_on_segment::<K>(a, a, a));
@@ -71,8 +85,20 @@ fn segment_triangle_all_cases() {
     let (p, q) = vert(2.0, 2.0);
     assert_eq!(st(p, q), Disjoint);
     // Endpoint touching.
-    assert_eq!(st(d3(0.5, 0.5, 0.0), d3(0.5, 0.5, 1.0)), Endpoint { endpoint: 0, location: Interior });
-    assert_eq!(st(d3(9.0, 9.0, 1.0), d3(0.0, 2.0, 0.0)), Endpoint { endpoint: 1, location: Vertex(2) });
+    assert_eq!(
+        st(d3(0.5, 0.5, 0.0), d3(0.5, 0.5, 1.0)),
+        Endpoint {
+            endpoint: 0,
+            location: Interior
+        }
+    );
+    assert_eq!(
+        st(d3(9.0, 9.0, 1.0), d3(0.0, 2.0, 0.0)),
+        Endpoint {
+            endpoint: 1,
+            location: Vertex(2)
+        }
+    );
     assert_eq!(st(d3(3.0, 3.0, 0.0), d3(3.0, 3.0, 1.0)), Disjoint);
     // Same side.
     assert_eq!(st(d3(0.5, 0.5, 1.0), d3(0.5, 0.5, 2.0)), Disjoint);
@@ -86,16 +112,33 @@ fn segment_triangle_all_cases() {
     assert_eq!(st(d3(0.5, 0.5, 1.0), d3(0.5, 0.5, 1.0)), Disjoint);
     // Degenerate triangle (a segment on the x axis).
     let dt = [d3(0.0, 0.0, 0.0), d3(1.0, 0.0, 0.0), d3(2.0, 0.0, 0.0)];
-    assert_eq!(g::segment_triangle::<K>(d3(1.5, -1.0, 0.0), d3(1.5, 1.0, 0.0), dt), DegenerateTriangle);
-    assert_eq!(g::segment_triangle::<K>(d3(1.5, -1.0, 1.0), d3(1.5, 1.0, 1.0), dt), Disjoint);
-    assert_eq!(g::segment_triangle::<K>(d3(2.0, 0.0, 0.0), d3(5.0, 0.0, 0.0), dt), DegenerateTriangle);
-    assert_eq!(g::segment_triangle::<K>(d3(2.5, 0.0, 0.0), d3(5.0, 0.0, 0.0), dt), Disjoint);
+    assert_eq!(
+        g::segment_triangle::<K>(d3(1.5, -1.0, 0.0), d3(1.5, 1.0, 0.0), dt),
+        DegenerateTriangle
+    );
+    assert_eq!(
+        g::segment_triangle::<K>(d3(1.5, -1.0, 1.0), d3(1.5, 1.0, 1.0), dt),
+        Disjoint
+    );
+    assert_eq!(
+        g::segment_triangle::<K>(d3(2.0, 0.0, 0.0), d3(5.0, 0.0, 0.0), dt),
+        DegenerateTriangle
+    );
+    assert_eq!(
+        g::segment_triangle::<K>(d3(2.5, 0.0, 0.0), d3(5.0, 0.0, 0.0), dt),
+        Disjoint
+    );
 }
 
 #[test]
 fn segments_intersect_cases() {
     let s = |a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]| {
-        g::segments_intersect::<K>(DVec3::from(a), DVec3::from(b), DVec3::from(c), DVec3::from(d))
+        g::segments_intersect::<K>(
+            DVec3::from(a),
+            DVec3::from(b),
+            DVec3::from(c),
+            DVec3::from(d),
+        )
     };
     assert!(s([0., 0., 0.], [2., 2., 0.], [0., 2., 0.], [2., 0., 0.]));
     assert!(!s([0., 0., 0.], [2., 2., 0.], [0., 2., 1.], [2., 0., 1.]));
@@ -116,12 +159,24 @@ fn triangles_intersect_cases() {
     assert!(ti(T, pierce));
     assert!(!ti(T, shift(pierce, d3(0.0, 0.0, 1.5))));
     // Touching at a vertex, at an edge, edge across edge.
-    assert!(ti(T, [d3(2.0, 0.0, 0.0), d3(3.0, 0.0, 1.0), d3(3.0, 1.0, 1.0)]));
-    assert!(ti(T, [d3(0.0, 0.0, 0.0), d3(2.0, 0.0, 0.0), d3(1.0, 0.0, 5.0)]));
-    assert!(ti(T, [d3(1.0, -1.0, 0.0), d3(1.0, 1.0, 0.0), d3(1.0, 0.0, 3.0)]));
+    assert!(ti(
+        T,
+        [d3(2.0, 0.0, 0.0), d3(3.0, 0.0, 1.0), d3(3.0, 1.0, 1.0)]
+    ));
+    assert!(ti(
+        T,
+        [d3(0.0, 0.0, 0.0), d3(2.0, 0.0, 0.0), d3(1.0, 0.0, 5.0)]
+    ));
+    assert!(ti(
+        T,
+        [d3(1.0, -1.0, 0.0), d3(1.0, 1.0, 0.0), d3(1.0, 0.0, 3.0)]
+    ));
     // Coplanar overlap, containment, and disjoint.
     assert!(ti(T, shift(T, d3(0.5, 0.5, 0.0))));
-    assert!(ti(T, [d3(0.1, 0.1, 0.0), d3(0.2, 0.1, 0.0), d3(0.1, 0.2, 0.0)]));
+    assert!(ti(
+        T,
+        [d3(0.1, 0.1, 0.0), d3(0.2, 0.1, 0.0), d3(0.1, 0.2, 0.0)]
+    ));
     assert!(!ti(T, shift(T, d3(2.5, 0.0, 0.0))));
     assert!(ti(T, shift(T, d3(2.0, 0.0, 0.0)))); // share one vertex point
     // Degenerate triangles: segment piercing, segment in plane, point on face, point off.
@@ -144,7 +199,9 @@ fn triangles_intersect_cases() {
 fn adjacent_shared_edge() {
     let (u, w) = (d3(0.0, 0.0, 0.0), d3(1.0, 0.0, 0.0));
     let a = d3(0.5, 1.0, 0.0);
-    let e = |b: DVec3| g::adjacent_triangles_intersect::<K>([u, w, a], [w, u, b], Shared::Edge([0, 1], [1, 0]));
+    let e = |b: DVec3| {
+        g::adjacent_triangles_intersect::<K>([u, w, a], [w, u, b], Shared::Edge([0, 1], [1, 0]))
+    };
     assert!(!e(d3(0.5, -1.0, 0.0))); // flat neighbour
     assert!(!e(d3(0.5, 1.0, 1.0))); // bent
     assert!(!e(d3(0.5, -1.0, 1e-300))); // nearly flat
@@ -153,7 +210,11 @@ fn adjacent_shared_edge() {
     assert!(e(d3(7.0, 1e-300, 0.0))); // a thin fold
     // Degenerate faces.
     let beyond = d3(2.0, 0.0, 0.0);
-    assert!(!g::adjacent_triangles_intersect::<K>([u, w, beyond], [w, u, a], Shared::Edge([0, 1], [1, 0])));
+    assert!(!g::adjacent_triangles_intersect::<K>(
+        [u, w, beyond],
+        [w, u, a],
+        Shared::Edge([0, 1], [1, 0])
+    ));
     assert!(g::adjacent_triangles_intersect::<K>(
         [u, w, beyond],
         [w, u, d3(3.0, 0.0, 0.0)],
@@ -181,7 +242,11 @@ fn adjacent_shared_vertex() {
     assert!(sv([v, d3(1.0, 0.0, 0.0), d3(1.0, 0.0, 1.0)]));
     // Rotated vertex positions.
     let t2 = [d3(1.0, 1.0, -1.0), d3(1.0, 1.0, 1.0), v];
-    assert!(g::adjacent_triangles_intersect::<K>([t1[1], t1[2], v], t2, Shared::Vertex(2, 2)));
+    assert!(g::adjacent_triangles_intersect::<K>(
+        [t1[1], t1[2], v],
+        t2,
+        Shared::Vertex(2, 2)
+    ));
     // Degenerate faces at the shared vertex.
     let spoke = [v, d3(1.0, 0.5, 0.0), d3(2.0, 1.0, 0.0)];
     assert!(sv(spoke));
@@ -191,9 +256,17 @@ fn adjacent_shared_vertex() {
     assert!(sv(both));
     let seg1 = [v, d3(1.0, 1.0, 1.0), d3(2.0, 2.0, 2.0)];
     let seg2 = [v, d3(3.0, 3.0, 3.0), d3(-1.0, -1.0, -1.0)];
-    assert!(g::adjacent_triangles_intersect::<K>(seg1, seg2, Shared::Vertex(0, 0)));
+    assert!(g::adjacent_triangles_intersect::<K>(
+        seg1,
+        seg2,
+        Shared::Vertex(0, 0)
+    ));
     let seg3 = [v, d3(-3.0, -3.0, -3.0), d3(1.0, 0.0, 0.0)];
-    assert!(!g::adjacent_triangles_intersect::<K>(seg1, seg3, Shared::Vertex(0, 0)));
+    assert!(!g::adjacent_triangles_intersect::<K>(
+        seg1,
+        seg3,
+        Shared::Vertex(0, 0)
+    ));
 }
 
 #[test]
@@ -206,7 +279,10 @@ fn coplanar_overlap_with_area() {
     assert!(!o(T, T.map(|p| p + d3(2.0, 0.0, 0.0)))); // only a vertex in common
     assert!(!o(T, [T[1], T[2], d3(2.0, 2.0, 0.0)])); // only an edge in common
     assert!(!o(T, T.map(|p| p + d3(0.0, 0.0, 1e-300)))); // parallel planes
-    assert!(!o(T, [d3(0.0, 0.0, 0.0), d3(1.0, 1.0, 0.0), d3(2.0, 2.0, 0.0)])); // degenerate
+    assert!(!o(
+        T,
+        [d3(0.0, 0.0, 0.0), d3(1.0, 1.0, 0.0), d3(2.0, 2.0, 0.0)]
+    )); // degenerate
 }
 
 #[test]
@@ -225,17 +301,41 @@ fn distances_hand_values() {
     assert_eq!(pt(d3(0.5, 0.5, 0.0), -1.0), Positive);
     // Degenerate triangle: the segment [0, 2] on x.
     let seg = [d3(0.0, 0.0, 0.0), d3(2.0, 0.0, 0.0), d3(1.0, 0.0, 0.0)];
-    assert_eq!(g::cmp_point_triangle::<K>(d3(1.0, 3.0, 4.0), seg, 25.0), Zero);
+    assert_eq!(
+        g::cmp_point_triangle::<K>(d3(1.0, 3.0, 4.0), seg, 25.0),
+        Zero
+    );
     // Point–segment with a degenerate segment.
-    assert_eq!(g::cmp_point_segment::<K>(d3(3.0, 4.0, 0.0), DVec3::ZERO, DVec3::ZERO, 25.0), Zero);
+    assert_eq!(
+        g::cmp_point_segment::<K>(d3(3.0, 4.0, 0.0), DVec3::ZERO, DVec3::ZERO, 25.0),
+        Zero
+    );
     // Segment–segment: skew lines at distance 1, closest points interior.
-    let ss = g::cmp_segment_segment::<K>(d3(-1.0, 0.0, 0.0), d3(1.0, 0.0, 0.0), d3(0.0, -1.0, 1.0), d3(0.0, 1.0, 1.0), 1.0);
+    let ss = g::cmp_segment_segment::<K>(
+        d3(-1.0, 0.0, 0.0),
+        d3(1.0, 0.0, 0.0),
+        d3(0.0, -1.0, 1.0),
+        d3(0.0, 1.0, 1.0),
+        1.0,
+    );
     assert_eq!(ss, Zero);
     // Parallel segments, offset along their direction: endpoint distance sqrt(1 + 1).
-    let ss = g::cmp_segment_segment::<K>(d3(0.0, 0.0, 0.0), d3(1.0, 0.0, 0.0), d3(2.0, 1.0, 0.0), d3(3.0, 1.0, 0.0), 2.0);
+    let ss = g::cmp_segment_segment::<K>(
+        d3(0.0, 0.0, 0.0),
+        d3(1.0, 0.0, 0.0),
+        d3(2.0, 1.0, 0.0),
+        d3(3.0, 1.0, 0.0),
+        2.0,
+    );
     assert_eq!(ss, Zero);
     // Crossing segments: distance 0.
-    let ss = g::cmp_segment_segment::<K>(d3(-1.0, 0.0, 0.0), d3(1.0, 0.0, 0.0), d3(0.0, -1.0, 0.0), d3(0.0, 1.0, 0.0), 0.0);
+    let ss = g::cmp_segment_segment::<K>(
+        d3(-1.0, 0.0, 0.0),
+        d3(1.0, 0.0, 0.0),
+        d3(0.0, -1.0, 0.0),
+        d3(0.0, 1.0, 0.0),
+        0.0,
+    );
     assert_eq!(ss, Zero);
     // Segment–triangle: a segment above the face, parallel, at height 2.
     let st = g::cmp_segment_triangle::<K>(d3(0.2, 0.2, 2.0), d3(0.5, 0.3, 2.0), T, 4.0);
@@ -267,18 +367,34 @@ fn edge_edge_distance_is_used() {
     let t2 = [d3(0.0, -1.0, 1.0), d3(0.0, 1.0, 1.0), d3(5.0, 0.0, 6.0)];
     assert_eq!(g::cmp_triangle_triangle::<K>(t1, t2, 1.0), Sign::Zero);
     assert_eq!(g::cmp_triangle_triangle::<K>(t1, t2, 0.99), Sign::Positive);
-    assert_eq!(g::cmp_segment_triangle::<K>(t2[0], t2[1], t1, 1.0), Sign::Zero);
+    assert_eq!(
+        g::cmp_segment_triangle::<K>(t2[0], t2[1], t1, 1.0),
+        Sign::Zero
+    );
 }
 
 fn cube() -> (Vec<DVec3>, Vec<[u32; 3]>) {
     let mut pos = Vec::new();
     for i in 0..8 {
-        pos.push(d3((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64));
+        pos.push(d3(
+            (i & 1) as f64,
+            ((i >> 1) & 1) as f64,
+            ((i >> 2) & 1) as f64,
+        ));
     }
     let faces = vec![
-        [0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], // z = 0, z = 1
-        [0, 1, 4], [1, 5, 4], [2, 6, 3], [3, 6, 7], // y = 0, y = 1
-        [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5], // x = 0, x = 1
+        [0, 2, 1],
+        [1, 2, 3],
+        [4, 5, 6],
+        [5, 7, 6], // z = 0, z = 1
+        [0, 1, 4],
+        [1, 5, 4],
+        [2, 6, 3],
+        [3, 6, 7], // y = 0, y = 1
+        [0, 4, 2],
+        [2, 4, 6],
+        [1, 3, 5],
+        [3, 7, 5], // x = 0, x = 1
     ];
     (pos, faces)
 }
@@ -299,8 +415,14 @@ fn point_in_surface_cube() {
     assert_eq!(c(d3(-1.0, 1.0, 1.0)), Containment::Outside);
     assert_eq!(c(d3(-1.0, 0.5, 0.5)), Containment::Outside);
     assert_eq!(c(d3(0.5, 1.0, 0.5)), Containment::On);
-    assert_eq!(c(d3(0.5, envelope_predicates::next_up(1.0), 0.5)), Containment::Outside);
-    assert_eq!(c(d3(0.5, envelope_predicates::next_down(1.0), 0.5)), Containment::Inside);
+    assert_eq!(
+        c(d3(0.5, envelope_predicates::next_up(1.0), 0.5)),
+        Containment::Outside
+    );
+    assert_eq!(
+        c(d3(0.5, envelope_predicates::next_down(1.0), 0.5)),
+        Containment::Inside
+    );
     // Grid of points including every face/edge/vertex alignment.
     for i in -1..=5 {
         for j in -1..=5 {

@@ -35,12 +35,21 @@ fn near_point(a: DVec3, b: DVec3, c: DVec3) -> impl Strategy<Value = DVec3> {
 fn tri_pair() -> impl Strategy<Value = ([DVec3; 3], [DVec3; 3])> {
     (point(), point(), point()).prop_flat_map(|(a, b, c)| {
         let t1 = [a, b, c];
-        (near_point(a, b, c), near_point(a, b, c), near_point(b, c, a)).prop_map(move |(p, q, r)| (t1, [p, q, r]))
+        (
+            near_point(a, b, c),
+            near_point(a, b, c),
+            near_point(b, c, a),
+        )
+            .prop_map(move |(p, q, r)| (t1, [p, q, r]))
     })
 }
 
 fn eps2() -> impl Strategy<Value = f64> {
-    prop_oneof![Just(0.0), (0u32..40).prop_map(|i| i as f64 / 16.0), 0.0f64..4.0]
+    prop_oneof![
+        Just(0.0),
+        (0u32..40).prop_map(|i| i as f64 / 16.0),
+        0.0f64..4.0
+    ]
 }
 
 proptest! {
@@ -139,7 +148,11 @@ fn reference_sq_dist(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
     let seg = |a: DVec3, b: DVec3| {
         let ab = b - a;
         let l = ab.length_squared();
-        let t = if l > 0.0 { ((p - a).dot(ab) / l).clamp(0.0, 1.0) } else { 0.0 };
+        let t = if l > 0.0 {
+            ((p - a).dot(ab) / l).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
         (a + ab * t - p).length_squared()
     };
     let mut best = seg(a, b).min(seg(b, c)).min(seg(c, a));
@@ -148,7 +161,9 @@ fn reference_sq_dist(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
     if nn > 1e-12 {
         let d = (p - a).dot(n);
         let q = p - n * (d / nn);
-        let inside = [(a, b), (b, c), (c, a)].iter().all(|&(x, y)| (y - x).cross(q - x).dot(n) >= 0.0);
+        let inside = [(a, b), (b, c), (c, a)]
+            .iter()
+            .all(|&(x, y)| (y - x).cross(q - x).dot(n) >= 0.0);
         if inside {
             best = best.min(d * d / nn);
         }

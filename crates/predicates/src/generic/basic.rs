@@ -135,7 +135,12 @@ pub fn point_in_triangle<K: Kernel>(p: DVec3, t: [DVec3; 3]) -> TriangleLocation
 }
 
 /// Location of `p` relative to a triangle known to be coplanar with it (skips the orient3d test).
-pub(crate) fn locate_coplanar<K: Kernel>(p: DVec3, t: [DVec3; 3], axis: usize, s: Orientation) -> TriangleLocation {
+pub(crate) fn locate_coplanar<K: Kernel>(
+    p: DVec3,
+    t: [DVec3; 3],
+    axis: usize,
+    s: Orientation,
+) -> TriangleLocation {
     locate_2d::<K>(proj(p, axis), t.map(|v| proj(v, axis)), s)
 }
 
@@ -164,7 +169,12 @@ pub fn segments_intersect<K: Kernel>(p: DVec3, q: DVec3, a: DVec3, b: DVec3) -> 
     }
     for (x, y, z) in [(p, q, a), (p, q, b), (a, b, p), (a, b, q)] {
         if let Some((axis, _)) = normal_axis::<K>(x, y, z) {
-            return segments_intersect_2d::<K>(proj(p, axis), proj(q, axis), proj(a, axis), proj(b, axis));
+            return segments_intersect_2d::<K>(
+                proj(p, axis),
+                proj(q, axis),
+                proj(a, axis),
+                proj(b, axis),
+            );
         }
     }
     // All four on one line (or coincident): compare intervals along a varying coordinate.

@@ -65,7 +65,13 @@ pub fn cmp_point_triangle<K: Kernel>(p: DVec3, t: [DVec3; 3], eps2: f64) -> Sign
 }
 
 /// Sign of `dist(segment p0p1, segment q0q1)² − eps2` (exact; degenerate segments allowed).
-pub fn cmp_segment_segment<K: Kernel>(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3, eps2: f64) -> Sign {
+pub fn cmp_segment_segment<K: Kernel>(
+    p0: DVec3,
+    p1: DVec3,
+    q0: DVec3,
+    q1: DVec3,
+    eps2: f64,
+) -> Sign {
     if segments_intersect::<K>(p0, p1, q0, q1) {
         return K::cmp_sq_dist(p0, p0, eps2);
     }

@@ -62,7 +62,11 @@ impl SegmentTriangle {
 pub fn segment_triangle<K: Kernel>(p: DVec3, q: DVec3, t: [DVec3; 3]) -> SegmentTriangle {
     let Some((axis, s)) = normal_axis::<K>(t[0], t[1], t[2]) else {
         let meets = (0..3).any(|i| segments_intersect::<K>(p, q, t[i], t[(i + 1) % 3]));
-        return if meets { SegmentTriangle::DegenerateTriangle } else { SegmentTriangle::Disjoint };
+        return if meets {
+            SegmentTriangle::DegenerateTriangle
+        } else {
+            SegmentTriangle::Disjoint
+        };
     };
     let sp = K::orient3d(t[0], t[1], t[2], p);
     let sq = K::orient3d(t[0], t[1], t[2], q);
@@ -88,7 +92,11 @@ fn segment_triangle_with<K: Kernel>(
             let meets = locate_2d::<K>(p2, t2, s) != TriangleLocation::Outside
                 || locate_2d::<K>(q2, t2, s) != TriangleLocation::Outside
                 || (0..3).any(|i| segments_intersect_2d::<K>(p2, q2, t2[i], t2[(i + 1) % 3]));
-            if meets { SegmentTriangle::Coplanar } else { SegmentTriangle::Disjoint }
+            if meets {
+                SegmentTriangle::Coplanar
+            } else {
+                SegmentTriangle::Disjoint
+            }
         }
         (Z, _) | (_, Z) => {
             let (endpoint, x) = if sp == Z { (0, p) } else { (1, q) };
@@ -206,15 +214,26 @@ pub enum Shared {
 /// let t3 = [w, u, DVec3::new(0.3, -2.0, 0.0)];
 /// assert!(!adjacent_triangles_intersect(t1, t3, Shared::Edge([0, 1], [1, 0])));
 /// ```
-pub fn adjacent_triangles_intersect<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3], shared: Shared) -> bool {
+pub fn adjacent_triangles_intersect<K: Kernel>(
+    t1: [DVec3; 3],
+    t2: [DVec3; 3],
+    shared: Shared,
+) -> bool {
     match shared {
         Shared::Vertex(i, j) => {
             debug_assert_eq!(t1[i], t2[j], "shared vertex positions differ");
             let v = t1[i];
-            meets_beyond_vertex::<K>(v, [t1[(i + 1) % 3], t1[(i + 2) % 3]], [t2[(j + 1) % 3], t2[(j + 2) % 3]])
+            meets_beyond_vertex::<K>(
+                v,
+                [t1[(i + 1) % 3], t1[(i + 2) % 3]],
+                [t2[(j + 1) % 3], t2[(j + 2) % 3]],
+            )
         }
         Shared::Edge([i0, i1], [j0, j1]) => {
-            debug_assert!(t1[i0] == t2[j0] && t1[i1] == t2[j1], "shared edge positions differ");
+            debug_assert!(
+                t1[i0] == t2[j0] && t1[i1] == t2[j1],
+                "shared edge positions differ"
+            );
             let (u, w) = (t1[i0], t1[i1]);
             let a = t1[3 - i0 - i1];
             let b = t2[3 - j0 - j1];
@@ -240,7 +259,8 @@ fn meets_beyond_vertex<K: Kernel>(v: DVec3, [a1, b1]: [DVec3; 2], [a2, b2]: [DVe
     let d2 = collinear::<K>(v, a2, b2);
     match (d1, d2) {
         (false, false) => {
-            segment_triangle::<K>(a1, b1, t2).intersects() || segment_triangle::<K>(a2, b2, t1).intersects()
+            segment_triangle::<K>(a1, b1, t2).intersects()
+                || segment_triangle::<K>(a2, b2, t1).intersects()
         }
         (true, _) => spoke_meets::<K>(v, a1, t2, d2) || spoke_meets::<K>(v, b1, t2, d2),
         (false, true) => spoke_meets::<K>(v, a2, t1, false) || spoke_meets::<K>(v, b2, t1, false),
@@ -314,8 +334,13 @@ fn meets_beyond_edge<K: Kernel>(u: DVec3, w: DVec3, a: DVec3, b: DVec3) -> bool 
 /// assert!(!triangles_overlap_with_area(t, [DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)]));
 /// ```
 pub fn triangles_overlap_with_area<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool {
-    let Some((axis, s1)) = normal_axis::<K>(t1[0], t1[1], t1[2]) else { return false };
-    if t2.iter().any(|&v| !K::orient3d(t1[0], t1[1], t1[2], v).is_degenerate()) {
+    let Some((axis, s1)) = normal_axis::<K>(t1[0], t1[1], t1[2]) else {
+        return false;
+    };
+    if t2
+        .iter()
+        .any(|&v| !K::orient3d(t1[0], t1[1], t1[2], v).is_degenerate())
+    {
         return false;
     }
     let p1 = t1.map(|v| proj(v, axis));

@@ -10,11 +10,12 @@ mod intersect;
 mod surface;
 
 pub use basic::{
-    TriangleLocation, collinear, point_in_triangle, point_on_segment, point_strictly_inside_segment,
-    segments_intersect,
+    TriangleLocation, collinear, point_in_triangle, point_on_segment,
+    point_strictly_inside_segment, segments_intersect,
 };
 pub use distance::{
-    cmp_point_segment, cmp_point_triangle, cmp_segment_segment, cmp_segment_triangle, cmp_triangle_triangle,
+    cmp_point_segment, cmp_point_triangle, cmp_segment_segment, cmp_segment_triangle,
+    cmp_triangle_triangle,
 };
 pub use intersect::{
     SegmentTriangle, Shared, adjacent_triangles_intersect, segment_triangle, triangles_intersect,

@@ -40,9 +40,16 @@ pub enum Containment {
 /// assert_eq!(point_in_surface(DVec3::new(-1.0, 0.0, 0.0), &pos, &faces), Containment::Outside);
 /// assert_eq!(point_in_surface(DVec3::new(0.5, 0.5, 0.0), &pos, &faces), Containment::On);
 /// ```
-pub fn point_in_surface<K: Kernel>(p: DVec3, positions: &[DVec3], faces: &[[u32; 3]]) -> Containment {
+pub fn point_in_surface<K: Kernel>(
+    p: DVec3,
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+) -> Containment {
     let tri = |f: &[u32; 3]| f.map(|i| positions[i as usize]);
-    if faces.iter().any(|f| point_in_triangle::<K>(p, tri(f)) != TriangleLocation::Outside) {
+    if faces
+        .iter()
+        .any(|f| point_in_triangle::<K>(p, tri(f)) != TriangleLocation::Outside)
+    {
         return Containment::On;
     }
     let p2 = proj(p, 0);
@@ -50,8 +57,14 @@ pub fn point_in_surface<K: Kernel>(p: DVec3, positions: &[DVec3], faces: &[[u32;
     for f in faces {
         let t = tri(f);
         // Cheap rejection on the projected bounding box (exact comparisons).
-        let (lo_y, hi_y) = (t[0].y.min(t[1].y).min(t[2].y), t[0].y.max(t[1].y).max(t[2].y));
-        let (lo_z, hi_z) = (t[0].z.min(t[1].z).min(t[2].z), t[0].z.max(t[1].z).max(t[2].z));
+        let (lo_y, hi_y) = (
+            t[0].y.min(t[1].y).min(t[2].y),
+            t[0].y.max(t[1].y).max(t[2].y),
+        );
+        let (lo_z, hi_z) = (
+            t[0].z.min(t[1].z).min(t[2].z),
+            t[0].z.max(t[1].z).max(t[2].z),
+        );
         if p.y < lo_y || p.y > hi_y || p.z < lo_z || p.z > hi_z || t.iter().all(|v| v.x < p.x) {
             continue;
         }
@@ -72,7 +85,11 @@ pub fn point_in_surface<K: Kernel>(p: DVec3, positions: &[DVec3], faces: &[[u32;
             parity = !parity;
         }
     }
-    if parity { Containment::Inside } else { Containment::Outside }
+    if parity {
+        Containment::Inside
+    } else {
+        Containment::Outside
+    }
 }
 
 /// `orient2d(a, b, c + (ε, ε²))` for infinitesimal ε > 0; `Degenerate` only when `a == b`.
@@ -83,9 +100,17 @@ fn perturbed_orient2d<K: Kernel>(a: DVec2, b: DVec2, c: DVec2) -> Orientation {
     }
     // d/dc.x = -(b.y - a.y), d/dc.y = b.x - a.x.
     if a.y != b.y {
-        if a.y > b.y { Orientation::Positive } else { Orientation::Negative }
+        if a.y > b.y {
+            Orientation::Positive
+        } else {
+            Orientation::Negative
+        }
     } else if a.x != b.x {
-        if b.x > a.x { Orientation::Positive } else { Orientation::Negative }
+        if b.x > a.x {
+            Orientation::Positive
+        } else {
+            Orientation::Negative
+        }
     } else {
         Orientation::Degenerate
     }
