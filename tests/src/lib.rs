@@ -2,3 +2,4 @@
 #![forbid(unsafe_code)]
 
 pub mod oracle;
+pub mod r#gen; // `gen` is reserved in edition 2024
