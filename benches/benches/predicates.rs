@@ -27,7 +27,9 @@ impl Rng {
 const N: usize = 1024;
 
 fn random_quads(r: &mut Rng) -> Vec<[DVec3; 4]> {
-    (0..N).map(|_| [r.point(), r.point(), r.point(), r.point()]).collect()
+    (0..N)
+        .map(|_| [r.point(), r.point(), r.point(), r.point()])
+        .collect()
 }
 
 /// d on the plane abc up to rounding: the adaptive stages are needed.
@@ -61,14 +63,23 @@ fn orient3d(c: &mut Criterion) {
     let mut r = Rng(0x9e37_79b9_7f4a_7c15);
     let (rand, degen) = (random_quads(&mut r), degenerate_quads(&mut r));
     let mut g = c.benchmark_group("orient3d");
-    g.measurement_time(Duration::from_secs(2)).warm_up_time(Duration::from_millis(500));
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500));
     g.throughput(Throughput::Elements(N as u64));
     for (name, set) in [("random", &rand), ("near_degenerate", &degen)] {
         g.bench_function(format!("filtered/{name}"), |b| {
-            b.iter(|| set.iter().map(|q| Filtered::orient3d(q[0], q[1], q[2], q[3]) as u8 as u32).sum::<u32>())
+            b.iter(|| {
+                set.iter()
+                    .map(|q| Filtered::orient3d(q[0], q[1], q[2], q[3]) as u8 as u32)
+                    .sum::<u32>()
+            })
         });
         g.bench_function(format!("exact/{name}"), |b| {
-            b.iter(|| set.iter().map(|q| Exact::orient3d(q[0], q[1], q[2], q[3]) as u8 as u32).sum::<u32>())
+            b.iter(|| {
+                set.iter()
+                    .map(|q| Exact::orient3d(q[0], q[1], q[2], q[3]) as u8 as u32)
+                    .sum::<u32>()
+            })
         });
     }
     g.finish();
@@ -76,16 +87,28 @@ fn orient3d(c: &mut Criterion) {
 
 fn tri_tri(c: &mut Criterion) {
     let mut r = Rng(0x1234_5678_9abc_def1);
-    let (rand, degen) = (random_tri_pairs(&mut r, false), random_tri_pairs(&mut r, true));
+    let (rand, degen) = (
+        random_tri_pairs(&mut r, false),
+        random_tri_pairs(&mut r, true),
+    );
     let mut g = c.benchmark_group("triangles_intersect");
-    g.measurement_time(Duration::from_secs(2)).warm_up_time(Duration::from_millis(500));
+    g.measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500));
     g.throughput(Throughput::Elements(N as u64));
     for (name, set) in [("random", &rand), ("near_coplanar", &degen)] {
         g.bench_function(format!("filtered/{name}"), |b| {
-            b.iter(|| set.iter().filter(|(t1, t2)| triangles_intersect::<Filtered>(black_box(*t1), *t2)).count())
+            b.iter(|| {
+                set.iter()
+                    .filter(|(t1, t2)| triangles_intersect::<Filtered>(black_box(*t1), *t2))
+                    .count()
+            })
         });
         g.bench_function(format!("exact/{name}"), |b| {
-            b.iter(|| set.iter().filter(|(t1, t2)| triangles_intersect::<Exact>(black_box(*t1), *t2)).count())
+            b.iter(|| {
+                set.iter()
+                    .filter(|(t1, t2)| triangles_intersect::<Exact>(black_box(*t1), *t2))
+                    .count()
+            })
         });
     }
     g.finish();
@@ -116,7 +139,9 @@ fn torus(n: u32, m: u32) -> (Vec<DVec3>, Vec<[u32; 3]>) {
 fn self_intersect(c: &mut Criterion) {
     let (pos, faces) = torus(1000, 500);
     let mut g = c.benchmark_group("self_intersections");
-    g.sample_size(10).measurement_time(Duration::from_secs(3)).warm_up_time(Duration::from_millis(500));
+    g.sample_size(10)
+        .measurement_time(Duration::from_secs(3))
+        .warm_up_time(Duration::from_millis(500));
     g.throughput(Throughput::Elements(faces.len() as u64));
     g.bench_function("torus_1M_faces", |b| {
         b.iter(|| {
