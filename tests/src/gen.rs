@@ -485,3 +485,133 @@ mod tests {
         assert_eq!(ulps(1.0, -2), 1.0 - f64::EPSILON);
     }
 }
+
+// ---------------------------------------------------------------------------- self-intersections
+
+/// What [`compare_self_intersections`] saw when our answer and CGAL's agree.
+#[derive(Clone, Debug)]
+pub struct SelfIntersectionAgreement {
+    /// Which CGAL path answered (valid `Surface_mesh`, or the oracle's soup rule).
+    pub kind: crate::oracle::MeshKind,
+    /// Intersecting pairs of non-degenerate faces (equal on both sides).
+    pub pairs: Vec<(u32, u32)>,
+    /// Degenerate faces: our zero-area class, CGAL's `(i, i)` pairs (equal on both sides).
+    pub degenerate: Vec<u32>,
+    /// Pairs we report that involve a degenerate face (CGAL does not test those; not compared).
+    pub ours_with_degenerate: usize,
+}
+
+/// Compares `envelope_check::check`'s intersecting pairs (the full list) for `soup` with
+/// CGAL's `self_intersections` of the file at `path` (the same mesh, same face order).
+///
+/// Also checks that `check`'s list equals [`envelope_predicates::self_intersections`] on the
+/// raw faces. CGAL reports a degenerate (collinear or repeated-index) face `i` as the pair
+/// `(i, i)` and tests it against nothing; we test degenerate faces like any closed point set.
+/// So the `(i, i)` pairs are compared with our zero-area class, and the other pairs with ours
+/// minus those involving a zero-area face. `Err` describes any difference, with reproductions.
+pub fn compare_self_intersections(
+    oracle: &crate::oracle::Oracle,
+    path: &std::path::Path,
+    soup: &envelope_mesh::TriangleSoup,
+) -> Result<SelfIntersectionAgreement, String> {
+    use envelope_check::{CheckOptions, DegeneracyClass, Element, check};
+    use std::collections::BTreeSet;
+    let opts = CheckOptions {
+        max_examples: usize::MAX,
+        ..CheckOptions::default()
+    };
+    let report = check(soup, &opts);
+    let ours: Vec<(u32, u32)> = report
+        .finding(DegeneracyClass::IntersectingTriangles)
+        .examples
+        .iter()
+        .filter_map(|e| match e {
+            Element::FacePair { faces } => Some((faces[0].0, faces[1].0)),
+            _ => None,
+        })
+        .collect();
+    let zero_area: BTreeSet<u32> = report
+        .finding(DegeneracyClass::ZeroAreaTriangles)
+        .examples
+        .iter()
+        .filter_map(|e| match e {
+            Element::Face { face, .. } => Some(face.0),
+            _ => None,
+        })
+        .collect();
+    let raw: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
+    let lib = envelope_predicates::self_intersections(&soup.positions, &raw);
+    let mut problems = Vec::new();
+    if lib != ours {
+        problems.push(format!(
+            "check() lists {} intersecting pairs, self_intersections() {}",
+            ours.len(),
+            lib.len()
+        ));
+    }
+    let cgal = oracle
+        .try_self_intersections(path, false)
+        .map_err(|e| format!("oracle failed on {}: {e}", path.display()))?;
+    if cgal.vertices != soup.positions.len() as u64 || cgal.faces != soup.faces.len() as u64 {
+        problems.push(format!(
+            "CGAL read V={} F={}, we read V={} F={}",
+            cgal.vertices,
+            cgal.faces,
+            soup.positions.len(),
+            soup.faces.len()
+        ));
+    }
+    let cgal_degenerate: BTreeSet<u32> =
+        cgal.pairs.iter().filter(|p| p.0 == p.1).map(|p| p.0).collect();
+    let cgal_pairs: BTreeSet<(u32, u32)> =
+        cgal.pairs.iter().copied().filter(|p| p.0 != p.1).collect();
+    let ours_set: BTreeSet<(u32, u32)> = ours
+        .iter()
+        .copied()
+        .filter(|(i, j)| !zero_area.contains(i) && !zero_area.contains(j))
+        .collect();
+    let ours_with_degenerate = ours.len() - ours_set.len();
+    if cgal_degenerate != zero_area {
+        let only_ours: Vec<_> = zero_area.difference(&cgal_degenerate).take(10).collect();
+        let only_cgal: Vec<_> = cgal_degenerate.difference(&zero_area).take(10).collect();
+        problems.push(format!(
+            "degenerate faces: ours {} vs CGAL {}; only ours {only_ours:?}, only CGAL {only_cgal:?}",
+            zero_area.len(),
+            cgal_degenerate.len()
+        ));
+    }
+    if cgal_pairs != ours_set {
+        let only_ours: Vec<_> = ours_set.difference(&cgal_pairs).copied().collect();
+        let only_cgal: Vec<_> = cgal_pairs.difference(&ours_set).copied().collect();
+        let mut msg = format!(
+            "intersecting pairs: ours {} vs CGAL {}; only ours {} {:?}, only CGAL {} {:?}",
+            ours_set.len(),
+            cgal_pairs.len(),
+            only_ours.len(),
+            &only_ours[..only_ours.len().min(10)],
+            only_cgal.len(),
+            &only_cgal[..only_cgal.len().min(10)]
+        );
+        for &(i, j) in only_ours.iter().chain(&only_cgal).take(3) {
+            let f = |k: u32| soup.faces[k as usize].map(|v| v.0);
+            msg.push_str(&format!(
+                "\n  faces {i} {:?} / {j} {:?} (envelope_predicates::faces_intersect on these indices):\n    let t1 = {};\n    let t2 = {};",
+                f(i),
+                f(j),
+                rust_triangle(soup.triangle(envelope_mesh::FaceId(i))),
+                rust_triangle(soup.triangle(envelope_mesh::FaceId(j)))
+            ));
+        }
+        problems.push(msg);
+    }
+    if problems.is_empty() {
+        Ok(SelfIntersectionAgreement {
+            kind: cgal.kind,
+            pairs: ours_set.into_iter().collect(),
+            degenerate: zero_area.into_iter().collect(),
+            ours_with_degenerate,
+        })
+    } else {
+        Err(problems.join("\n"))
+    }
+}
