@@ -158,7 +158,11 @@ impl Family {
                             1 => b,
                             _ => on_line(a, b, rng.range(-1.5, 2.5)),
                         };
-                        if self == Family::LineUlps { nudge(p, rng, 3) } else { p }
+                        if self == Family::LineUlps {
+                            nudge(p, rng, 3)
+                        } else {
+                            p
+                        }
                     })
                     .collect()
             }
@@ -172,7 +176,11 @@ impl Family {
                             2 => c,
                             _ => on_plane(a, b, c, rng.range(-1.0, 2.0), rng.range(-1.0, 2.0)),
                         };
-                        if self == Family::PlaneUlps { nudge(p, rng, 3) } else { p }
+                        if self == Family::PlaneUlps {
+                            nudge(p, rng, 3)
+                        } else {
+                            p
+                        }
                     })
                     .collect()
             }
@@ -208,9 +216,7 @@ impl Family {
                 })
                 .collect(),
             Family::ExponentSpread => (0..n)
-                .map(|_| {
-                    DVec3::new(spread_coord(rng), spread_coord(rng), spread_coord(rng))
-                })
+                .map(|_| DVec3::new(spread_coord(rng), spread_coord(rng), spread_coord(rng)))
                 .collect(),
             Family::Offset => {
                 let base = DVec3::splat(2f64.powi(20));
@@ -279,7 +285,13 @@ impl Family {
             4 => {
                 // Coplanar (up to rounding) with the first triangle, overlapping it or not.
                 for v in &mut t2 {
-                    *v = on_plane(t1[0], t1[1], t1[2], rng.range(-0.5, 1.2), rng.range(-0.5, 1.2));
+                    *v = on_plane(
+                        t1[0],
+                        t1[1],
+                        t1[2],
+                        rng.range(-0.5, 1.2),
+                        rng.range(-0.5, 1.2),
+                    );
                 }
             }
             5 => {
@@ -364,7 +376,11 @@ fn axis_aligned_dyadic_case(rng: &mut Rng) -> (DVec3, [DVec3; 3]) {
     let up = d(rng);
     let p = match rng.below(3) {
         0 => DVec3::new(x0 + w / 4.0, y0 + h / 4.0, z0 + up),
-        1 => DVec3::new(x0 - rng.int(0, 8) as f64 / 8.0, y0 - rng.int(0, 8) as f64 / 8.0, z0 + up),
+        1 => DVec3::new(
+            x0 - rng.int(0, 8) as f64 / 8.0,
+            y0 - rng.int(0, 8) as f64 / 8.0,
+            z0 + up,
+        ),
         _ => DVec3::new(x0 + w / 2.0, y0 - rng.int(0, 8) as f64 / 8.0, z0 + up),
     };
     let mut pts = [t[0], t[1], t[2]];
@@ -561,8 +577,12 @@ pub fn compare_self_intersections(
             soup.faces.len()
         ));
     }
-    let cgal_degenerate: BTreeSet<u32> =
-        cgal.pairs.iter().filter(|p| p.0 == p.1).map(|p| p.0).collect();
+    let cgal_degenerate: BTreeSet<u32> = cgal
+        .pairs
+        .iter()
+        .filter(|p| p.0 == p.1)
+        .map(|p| p.0)
+        .collect();
     let cgal_pairs: BTreeSet<(u32, u32)> =
         cgal.pairs.iter().copied().filter(|p| p.0 != p.1).collect();
     let ours_set: BTreeSet<(u32, u32)> = ours

@@ -15,8 +15,8 @@
 use std::path::PathBuf;
 
 use envelope_mesh::analyze;
-use envelope_tests::oracle::{Oracle, OracleTopology, TopoCounts, corpus_meshes, oracle_or_skip};
 use envelope_tests::r#gen::compare_self_intersections;
+use envelope_tests::oracle::{Oracle, OracleTopology, TopoCounts, corpus_meshes, oracle_or_skip};
 
 /// Largest file the default debug run reads.
 const DEBUG_MAX_BYTES: u64 = 700_000;
@@ -108,21 +108,21 @@ fn run(full: bool) -> Option<Outcome> {
         let fan_extra = report.triangles_from_polygons - report.polygons_triangulated;
 
         // (a) topology.
-        let om_complete = ot
-            .openmesh
-            .as_ref()
-            .ok()
-            .filter(|c| ot.file_polygons.is_some_and(|fp| c.f >= fp) && c.f == ours.f && c.v == ours.v);
+        let om_complete = ot.openmesh.as_ref().ok().filter(|c| {
+            ot.file_polygons.is_some_and(|fp| c.f >= fp) && c.f == ours.f && c.v == ours.v
+        });
         match (&ot.cgal, report.polygons_triangulated) {
             (Ok(cg), 0) => {
                 out.topo_compared += 1;
                 if *cg != ours {
-                    out.failures.push(format!("{n}: topology ours {ours:?}\n    CGAL {cg:?}"));
+                    out.failures
+                        .push(format!("{n}: topology ours {ours:?}\n    CGAL {cg:?}"));
                 }
                 if let Some(om) = om_complete
                     && !same_as_openmesh(&ours, om, manifold)
                 {
-                    out.failures.push(format!("{n}: topology ours {ours:?}\n    OpenMesh {om:?}"));
+                    out.failures
+                        .push(format!("{n}: topology ours {ours:?}\n    OpenMesh {om:?}"));
                 }
             }
             (cg, polys) => {
@@ -150,28 +150,38 @@ fn run(full: bool) -> Option<Outcome> {
                         out.topo_compared += 1;
                         out.notes.push(format!(
                             "{n}: {why}; topology compared with OpenMesh{}",
-                            if manifold { "" } else { " (non-manifold: V, F, E, isolated, chi only)" }
+                            if manifold {
+                                ""
+                            } else {
+                                " (non-manifold: V, F, E, isolated, chi only)"
+                            }
                         ));
                         if !same_as_openmesh(&ours, om, manifold) {
                             out.failures
                                 .push(format!("{n}: topology ours {ours:?}\n    OpenMesh {om:?}"));
                         }
                     }
-                    None => out.notes.push(format!(
-                        "{n}: {why}; OpenMesh {}: topology not compared",
-                        match &ot.openmesh {
-                            Ok(c) => format!("read V={} F={} (ours V={} F={})", c.v, c.f, ours.v, ours.f),
-                            Err(e) => format!("failed ({e})"),
-                        }
-                    )),
+                    None => {
+                        out.notes.push(format!(
+                            "{n}: {why}; OpenMesh {}: topology not compared",
+                            match &ot.openmesh {
+                                Ok(c) => format!(
+                                    "read V={} F={} (ours V={} F={})",
+                                    c.v, c.f, ours.v, ours.f
+                                ),
+                                Err(e) => format!("failed ({e})"),
+                            }
+                        ))
+                    }
                 }
             }
         }
 
         // (b) self-intersections (the oracle rejects files with non-triangle faces).
         if report.polygons_triangulated > 0 {
-            out.skipped
-                .push(format!("{n}: self-intersections not compared: polygon faces (CGAL's oracle refuses them)"));
+            out.skipped.push(format!(
+                "{n}: self-intersections not compared: polygon faces (CGAL's oracle refuses them)"
+            ));
             continue;
         }
         match compare_self_intersections(&o, path, &soup) {
@@ -205,7 +215,10 @@ fn report_and_assert(out: Outcome) {
     for s in &out.notes {
         eprintln!("  note {s}");
     }
-    assert!(out.topo_compared > 0 && out.selfint_compared > 0, "nothing compared");
+    assert!(
+        out.topo_compared > 0 && out.selfint_compared > 0,
+        "nothing compared"
+    );
     assert!(
         out.failures.is_empty(),
         "{} corpus disagreements with CGAL/OpenMesh:\n{}",

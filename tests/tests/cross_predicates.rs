@@ -9,8 +9,8 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 use envelope_predicates::{Checked, Exact, Filtered, Orientation, Sign, generic};
-use envelope_tests::oracle::{Oracle, oracle_or_skip};
 use envelope_tests::r#gen::{Family, Rng, rust_point, rust_point2, rust_triangle};
+use envelope_tests::oracle::{Oracle, oracle_or_skip};
 use glam::{DVec2, DVec3};
 
 /// Cases per family and predicate (10 families).
@@ -107,7 +107,8 @@ fn orient3d_matches_cgal() {
             zeros += usize::from(want == 0);
             let [a, b, c, d] = *q;
             let ours = orient_i8(envelope_predicates::orient3d(a, b, c, d));
-            let checked = guarded(|| orient_i8(<Ck as envelope_predicates::Kernel>::orient3d(a, b, c, d)));
+            let checked =
+                guarded(|| orient_i8(<Ck as envelope_predicates::Kernel>::orient3d(a, b, c, d)));
             if ours != want || checked.as_ref().map_or(true, |&s| s != want) {
                 t.fail(
                     f,
@@ -141,7 +142,8 @@ fn orient2d_matches_cgal() {
             zeros += usize::from(want == 0);
             let [a, b, c] = *q;
             let ours = orient_i8(envelope_predicates::orient2d(a, b, c));
-            let checked = guarded(|| orient_i8(<Ck as envelope_predicates::Kernel>::orient2d(a, b, c)));
+            let checked =
+                guarded(|| orient_i8(<Ck as envelope_predicates::Kernel>::orient2d(a, b, c)));
             if ours != want || checked.as_ref().map_or(true, |&s| s != want) {
                 t.fail(
                     f,
@@ -198,8 +200,9 @@ fn segment_triangle_matches_cgal() {
     let mut hits = 0;
     for f in Family::ALL {
         let mut rng = Rng::new(seed(f, 4));
-        let cases: Vec<([DVec3; 2], [DVec3; 3])> =
-            (0..PER_FAMILY).map(|_| f.segment_triangle(&mut rng)).collect();
+        let cases: Vec<([DVec3; 2], [DVec3; 3])> = (0..PER_FAMILY)
+            .map(|_| f.segment_triangle(&mut rng))
+            .collect();
         let cgal = o.seg_tri_batch(&cases);
         for (&([p, q], tri), &want) in cases.iter().zip(&cgal) {
             t.cases += 1;
@@ -232,8 +235,9 @@ fn point_triangle_distance_matches_cgal() {
     let mut zeros = 0;
     for f in Family::ALL {
         let mut rng = Rng::new(seed(f, 5));
-        let cases: Vec<(DVec3, [DVec3; 3], f64)> =
-            (0..PER_FAMILY).map(|_| f.point_triangle_eps(&mut rng)).collect();
+        let cases: Vec<(DVec3, [DVec3; 3], f64)> = (0..PER_FAMILY)
+            .map(|_| f.point_triangle_eps(&mut rng))
+            .collect();
         let cgal = o.point_tri_sqdist_cmp_batch(&cases);
         for (&(p, tri, eps2), &want) in cases.iter().zip(&cgal) {
             t.cases += 1;
@@ -256,6 +260,9 @@ fn point_triangle_distance_matches_cgal() {
     eprintln!("cmp_point_triangle: {zeros} cases with eps2 exactly the squared distance");
     // The axis-aligned dyadic constructions make eps2 the exact squared distance in about a
     // fifth of their cases; if none is exact, the generator lost its point.
-    assert!(zeros > 100, "only {zeros} exact-equality cases were generated");
+    assert!(
+        zeros > 100,
+        "only {zeros} exact-equality cases were generated"
+    );
     t.finish();
 }

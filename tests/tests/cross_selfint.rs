@@ -10,8 +10,8 @@ use std::path::{Path, PathBuf};
 
 use envelope_io::{Format, read_path, write_path};
 use envelope_mesh::{TriangleSoup, VertexId, generate};
-use envelope_tests::oracle::{Oracle, oracle_or_skip};
 use envelope_tests::r#gen::{SelfIntersectionAgreement, compare_self_intersections};
+use envelope_tests::oracle::{Oracle, oracle_or_skip};
 use glam::DVec3;
 
 /// Writes `soup` as OFF, reads it back (so both sides see the file's doubles) and compares.
@@ -19,7 +19,10 @@ fn compare(o: &Oracle, dir: &Path, name: &str, soup: &TriangleSoup) -> SelfInter
     let path: PathBuf = dir.join(format!("{name}.off"));
     write_path(&path, soup, Format::Off).unwrap_or_else(|e| panic!("{name}: write: {e}"));
     let (back, _) = read_path(&path).unwrap_or_else(|e| panic!("{name}: read back: {e}"));
-    assert_eq!(back.positions, soup.positions, "{name}: OFF round trip changed positions");
+    assert_eq!(
+        back.positions, soup.positions,
+        "{name}: OFF round trip changed positions"
+    );
     match compare_self_intersections(o, &path, &back) {
         Ok(a) => {
             eprintln!(
@@ -45,7 +48,10 @@ fn merge(a: &TriangleSoup, b: &TriangleSoup) -> TriangleSoup {
 }
 
 fn translated(s: &TriangleSoup, d: DVec3) -> TriangleSoup {
-    TriangleSoup::new(s.positions.iter().map(|&p| p + d).collect(), s.faces.clone())
+    TriangleSoup::new(
+        s.positions.iter().map(|&p| p + d).collect(),
+        s.faces.clone(),
+    )
 }
 
 /// A strip of `2n` quads along x in the plane z = 0, folded back onto itself at x = n: the
@@ -118,18 +124,46 @@ fn touching_with_different_vertex_indices() {
         let base = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
         let cases: [(&str, Vec<[f64; 3]>, bool); 6] = [
             // Corner to corner, unwelded: one common point.
-            ("point_corner", vec![[0.0, 0.0, 0.0], [-1.0, 0.0, 1.0], [0.0, -1.0, 1.0]], true),
+            (
+                "point_corner",
+                vec![[0.0, 0.0, 0.0], [-1.0, 0.0, 1.0], [0.0, -1.0, 1.0]],
+                true,
+            ),
             // A corner of the second exactly in the interior of the first.
-            ("point_interior", vec![[0.25, 0.25, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]], true),
+            (
+                "point_interior",
+                vec![[0.25, 0.25, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]],
+                true,
+            ),
             // A corner on the open edge of the first.
-            ("point_on_edge", vec![[0.5, 0.5, 0.0], [1.0, 1.0, 1.0], [1.0, 1.0, -1.0]], true),
+            (
+                "point_on_edge",
+                vec![[0.5, 0.5, 0.0], [1.0, 1.0, 1.0], [1.0, 1.0, -1.0]],
+                true,
+            ),
             // Along a whole edge, unwelded (a crack that is not one).
-            ("along_edge", vec![[1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]], true),
+            (
+                "along_edge",
+                vec![[1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+                true,
+            ),
             // Coplanar, on the other side of the edge, unwelded: touch along the edge.
-            ("coplanar_edge", vec![[1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.5, -1.0, 0.0]], true),
+            (
+                "coplanar_edge",
+                vec![[1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.5, -1.0, 0.0]],
+                true,
+            ),
             // Like `point_interior`, but the corner is 2^-120 above the plane (the smallest
             // magnitude the writer accepts).
-            ("tiny_gap", vec![[0.25, 0.25, 2f64.powi(-120)], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]], false),
+            (
+                "tiny_gap",
+                vec![
+                    [0.25, 0.25, 2f64.powi(-120)],
+                    [0.0, 0.0, 1.0],
+                    [1.0, 1.0, 1.0],
+                ],
+                false,
+            ),
         ];
         for (name, other, touching) in cases {
             let mut pos = base.to_vec();
@@ -140,11 +174,23 @@ fn touching_with_different_vertex_indices() {
         }
         // The same touching configurations welded (shared indices) are not intersections,
         // except a fold: coplanar on the same side of a shared edge.
-        let welded: [(&str, Vec<[f64; 3]>, [u32; 3], bool); 4] = [
-            ("welded_corner", vec![[-1.0, 0.0, 1.0], [0.0, -1.0, 1.0]], [0, 3, 4], false),
+        // (name, extra vertices 3.., second face, intersects)
+        type Welded = (&'static str, Vec<[f64; 3]>, [u32; 3], bool);
+        let welded: [Welded; 4] = [
+            (
+                "welded_corner",
+                vec![[-1.0, 0.0, 1.0], [0.0, -1.0, 1.0]],
+                [0, 3, 4],
+                false,
+            ),
             ("welded_edge", vec![[0.0, 0.0, 1.0]], [1, 0, 3], false),
             ("welded_fold", vec![[0.25, 0.25, 0.0]], [1, 0, 3], true),
-            ("welded_corner_pierce", vec![[0.2, 0.2, -1.0], [0.2, 0.2, 1.0]], [0, 3, 4], true),
+            (
+                "welded_corner_pierce",
+                vec![[0.2, 0.2, -1.0], [0.2, 0.2, 1.0]],
+                [0, 3, 4],
+                true,
+            ),
         ];
         for (name, extra, f2, hit) in welded {
             let mut pos = base.to_vec();
