@@ -1,0 +1,2 @@
+//! The local simplifier of Simplification Envelopes (sections 5.1, 5.2).
+#![forbid(unsafe_code)]
