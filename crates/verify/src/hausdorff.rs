@@ -1,0 +1,530 @@
+//! One-sided certified Hausdorff distance: every point of `from` within `eps` of `to`?
+//!
+//! Branch and bound over the triangles of `from` in the spirit of bounded-error Hausdorff
+//! algorithms (Tang, Lee, Kim, "Interactive Hausdorff distance computation for general
+//! polygonal models", SIGGRAPH 2009; CGAL's `bounded_error_Hausdorff_distance`), with every
+//! decision taken by an exact predicate:
+//!
+//! * **Proof.** `p -> dist(p, t)` is convex for one triangle `t`, so its maximum over a
+//!   triangle `S` is reached at a corner of `S`. If some `t` of `to` has all three corners of
+//!   `S` within `eps - delta` (exact `cmp_point_triangle`), every point of `S` is.
+//! * **Exact cover.** Sub-triangles are the 4-way midpoint subdivision of `T`, done on exact
+//!   points `(i a + j b + k c) / 2^L`. We evaluate the predicates on the corners rounded to f64
+//!   and carry, per corner, a proved bound `delta` on the distance between the f64 corner and
+//!   the exact one (0 whenever the midpoints were exact in f64). A point `p*` of an exact
+//!   sub-triangle has an f64 partner `p'` (same barycentric weights on the f64 corners) with
+//!   `|p* - p'| <= max delta` and `p'` in the f64 sub-triangle, so `dist(p*, to) <=
+//!   dist(p', t) + delta <= eps`. The exact sub-triangles partition `T`, hence the proof covers
+//!   `T` exactly.
+//! * **Witness.** A violation is reported only for a point exactly on `T`: a corner whose f64
+//!   value is exact (`delta == 0`, checked with the f64 predicates) or, otherwise, the exact
+//!   rational corner, checked with rational arithmetic. It must exceed `eps` against every
+//!   triangle of `to` whose outward-rounded box is within `eps (+ delta)` of it.
+//! * **Tolerance.** `eps` is the user's double; `dist <= eps` is decided against the exact
+//!   rational `eps^2`: proofs compare with the largest double `<= (eps - delta)^2`, witnesses
+//!   with the smallest double `>= eps^2` and, in the gap between the two, with rationals.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use envelope_mesh::FaceId;
+use envelope_predicates::bvh::{Aabb, Bvh, NodeKind};
+use envelope_predicates::{Sign, cmp_point_triangle, next_up};
+use glam::DVec3;
+use rayon::prelude::*;
+use rug::Rational;
+
+use crate::numeric::{
+    RPoint, add_up, approx_sq_dist, barycentric_point, rational, rpoint, sq_dist_exact, sqrt_down,
+    sqrt_up, square_down, square_up,
+};
+use crate::{OneSided, Verdict, Witness};
+
+/// Subdivision depth limit (barycentric numerators stay in `u64`).
+const MAX_LEVEL: u32 = 60;
+
+/// The mesh distances are measured to: its triangles, their boxes and a BVH.
+pub(crate) struct Target {
+    tris: Vec<[DVec3; 3]>,
+    boxes: Vec<Aabb>,
+    bvh: Bvh,
+}
+
+impl Target {
+    pub(crate) fn new(positions: &[DVec3], faces: &[[u32; 3]]) -> Target {
+        let tris: Vec<[DVec3; 3]> = faces
+            .iter()
+            .map(|f| f.map(|i| positions[i as usize]))
+            .collect();
+        let boxes: Vec<Aabb> = tris.iter().map(|&t| Aabb::from_triangle(t)).collect();
+        let bvh = Bvh::new(&boxes);
+        Target { tris, boxes, bvh }
+    }
+
+    /// Approximate nearest triangle to `p` (f64 branch and bound); `None` when empty.
+    fn nearest_approx(&self, p: DVec3) -> Option<(u32, f64)> {
+        let mut best: Option<(u32, f64)> = None;
+        let mut stack = vec![self.bvh.root()?];
+        while let Some(n) = stack.pop() {
+            let lb = self.bvh.bounds(n).sq_distance_lower_bound(p);
+            if best.is_some_and(|(_, d)| lb > d) {
+                continue;
+            }
+            match self.bvh.kind(n) {
+                NodeKind::Leaf(items) => {
+                    for &i in items {
+                        let d = approx_sq_dist(p, &self.tris[i as usize]);
+                        if best.is_none_or(|(_, b)| d < b) {
+                            best = Some((i, d));
+                        }
+                    }
+                }
+                NodeKind::Interior(a, b) => {
+                    let (da, db) = (
+                        self.bvh.bounds(a).sq_distance_lower_bound(p),
+                        self.bvh.bounds(b).sq_distance_lower_bound(p),
+                    );
+                    if da < db {
+                        stack.push(b);
+                        stack.push(a);
+                    } else {
+                        stack.push(a);
+                        stack.push(b);
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    /// A proved lower bound of `dist(p, to)` (`f64::INFINITY` when `to` is empty).
+    fn certified_lower(&self, p: DVec3) -> f64 {
+        let Some((_, d2)) = self.nearest_approx(p) else {
+            return f64::INFINITY;
+        };
+        let mut l2 = d2 * (1.0 - 2f64.powi(-20));
+        for _ in 0..4 {
+            if !(l2 > 0.0) {
+                return 0.0;
+            }
+            let r = next_up(sqrt_up(l2) * (1.0 + 2f64.powi(-40)));
+            let query = Aabb::from_points(&[p]).inflated(r);
+            let mut ok = true;
+            self.bvh.for_each_overlapping(&query, |t| {
+                if ok && cmp_point_triangle(p, self.tris[t as usize], l2) == Sign::Negative {
+                    ok = false;
+                }
+            });
+            // Triangles outside the query box are farther than r >= sqrt(l2).
+            if ok {
+                return sqrt_down(l2);
+            }
+            l2 *= 0.5;
+        }
+        0.0
+    }
+}
+
+/// `eps` and its squares, exact and rounded both ways.
+pub(crate) struct Tolerance {
+    eps: f64,
+    /// Largest double `<= eps^2`.
+    e2lo: f64,
+    /// Smallest double `>= eps^2`.
+    e2hi: f64,
+    /// `eps^2`, exactly.
+    e2: Rational,
+    resolution: f64,
+}
+
+impl Tolerance {
+    pub(crate) fn new(eps: f64, resolution: f64) -> Tolerance {
+        let e = rational(eps);
+        Tolerance {
+            eps,
+            e2lo: square_down(eps),
+            e2hi: square_up(eps),
+            e2: Rational::from(&e * &e),
+            resolution,
+        }
+    }
+
+    /// Largest double `<= (eps - delta)^2`, or `None` when `eps - delta` may be <= 0.
+    fn proof_threshold(&self, delta: f64) -> Option<f64> {
+        let theta = if delta == 0.0 {
+            self.eps
+        } else {
+            envelope_predicates::next_down(self.eps - delta)
+        };
+        (theta > 0.0).then(|| square_down(theta))
+    }
+
+    /// The value an estimated squared distance `m` is certified against: a little above `m`
+    /// (so the filtered predicates decide it), and not below `eps^2 * 2^-40` (so that points
+    /// lying exactly on a triangle are not compared with a near-zero bound, which only the
+    /// rational fallback could decide).
+    fn certification_value(&self, m: f64) -> f64 {
+        (m * (1.0 + 2f64.powi(-20)))
+            .max(self.e2lo * 2f64.powi(-40))
+            .max(f64::MIN_POSITIVE)
+    }
+
+    /// `dist(p, t) > eps`, exactly, for an f64 point.
+    fn exceeds(&self, p: DVec3, t: [DVec3; 3]) -> bool {
+        if cmp_point_triangle(p, t, self.e2hi) == Sign::Positive {
+            return true;
+        }
+        if self.e2lo == self.e2hi || cmp_point_triangle(p, t, self.e2lo) != Sign::Positive {
+            return false;
+        }
+        sq_dist_exact(&rpoint(p), &t) > self.e2
+    }
+}
+
+/// A sub-triangle corner: the f64 point, a bound on its distance to the exact corner, and the
+/// exact corner's barycentric numerators (denominator `2^level`).
+#[derive(Clone, Copy, Debug)]
+struct Corner {
+    p: DVec3,
+    delta: f64,
+    bary: [u64; 3],
+}
+
+struct Sub {
+    c: [Corner; 3],
+    level: u32,
+    cands: Vec<u32>,
+}
+
+/// The rounded midpoint of two corners, with its error bound.
+fn midpoint(u: &Corner, v: &Corner) -> Corner {
+    let mut rho = 0.0f64;
+    let mut m = [0.0; 3];
+    for k in 0..3 {
+        let (x, y) = (u.p[k], v.p[k]);
+        let s = x + y;
+        // TwoSum: x + y = s + e exactly.
+        let bb = s - x;
+        let e = (x - (s - bb)) + (y - bb);
+        let h = s * 0.5;
+        // |(x+y)/2 - h| <= |e|/2 + |s/2 - h|; both terms are bounded by |e| + |s - 2h|.
+        let halving = (s - (h + h)).abs();
+        rho = add_up(rho, add_up(e.abs(), halving));
+        m[k] = h;
+    }
+    Corner {
+        p: DVec3::from_array(m),
+        delta: add_up(rho, add_up(u.delta * 0.5, v.delta * 0.5)),
+        bary: [
+            u.bary[0] + v.bary[0],
+            u.bary[1] + v.bary[1],
+            u.bary[2] + v.bary[2],
+        ],
+    }
+}
+
+/// Everything learnt about one triangle of `from`.
+#[derive(Default)]
+struct FaceResult {
+    upper: f64,
+    /// Best lower-bound candidate: (approximate squared distance, exact f64 point on `from`).
+    lower_candidate: Option<(f64, DVec3)>,
+    witness: Option<Witness>,
+    undecided: bool,
+    subdivisions: u64,
+}
+
+struct Search<'a> {
+    target: &'a Target,
+    tol: &'a Tolerance,
+}
+
+/// Per sub-triangle estimates: the triangle minimising the largest corner distance.
+struct Estimate {
+    best: Option<(u32, f64)>,
+    corner_min: [f64; 3],
+}
+
+impl Search<'_> {
+    fn estimate(&self, s: &Sub) -> Estimate {
+        let mut best: Option<(u32, f64)> = None;
+        let mut corner_min = [f64::INFINITY; 3];
+        for &t in &s.cands {
+            let tri = &self.target.tris[t as usize];
+            let mut worst = 0.0f64;
+            for j in 0..3 {
+                let d = approx_sq_dist(s.c[j].p, tri);
+                let d = if d.is_nan() { f64::INFINITY } else { d };
+                corner_min[j] = corner_min[j].min(d);
+                worst = worst.max(d);
+            }
+            if best.is_none_or(|(_, b)| worst < b) {
+                best = Some((t, worst));
+            }
+        }
+        Estimate { best, corner_min }
+    }
+
+    fn corners_within(&self, s: &Sub, t: u32, e2: f64) -> bool {
+        let tri = self.target.tris[t as usize];
+        s.c.iter()
+            .all(|c| cmp_point_triangle(c.p, tri, e2) != Sign::Positive)
+    }
+
+    /// A proved upper bound of `max dist(p, t)` over the f64 sub-triangle, from the
+    /// approximate value `m` (`None` if the estimate was too far off to certify).
+    fn certify_with(&self, s: &Sub, t: u32, m: f64) -> Option<f64> {
+        let c = self.tol.certification_value(m);
+        self.corners_within(s, t, c).then(|| sqrt_up(c))
+    }
+
+    /// A proved upper bound of `dist(p, to)` over the exact sub-triangle (no subdivision).
+    fn upper_bound(&self, s: &Sub, est: &Estimate, delta: f64) -> f64 {
+        if let Some((t, m)) = est.best
+            && let Some(u) = self.certify_with(s, t, m)
+        {
+            return add_up(u, delta);
+        }
+        let Some((t, _)) = self.target.nearest_approx(s.c[0].p) else {
+            return f64::INFINITY;
+        };
+        let tri = &self.target.tris[t as usize];
+        let mut m =
+            s.c.iter()
+                .map(|c| approx_sq_dist(c.p, tri))
+                .fold(0.0, f64::max);
+        for _ in 0..64 {
+            if let Some(u) = self.certify_with(s, t, m) {
+                return add_up(u, delta);
+            }
+            m = m * 2.0 + f64::MIN_POSITIVE;
+        }
+        f64::INFINITY
+    }
+
+    /// Proves the sub-triangle within `eps`, returning a proved upper bound.
+    fn prove(&self, s: &Sub, est: &Estimate, delta: f64) -> Option<f64> {
+        let e2 = self.tol.proof_threshold(delta)?;
+        let (t, m) = est.best?;
+        let c = self.tol.certification_value(m);
+        if c <= e2 && self.corners_within(s, t, c) {
+            return Some(add_up(sqrt_up(c), delta));
+        }
+        if m > e2 * (1.0 + 2f64.powi(-20)) {
+            return None;
+        }
+        // Close call: try the few triangles whose estimate is near the threshold exactly.
+        let mut close: Vec<(f64, u32)> = s
+            .cands
+            .iter()
+            .filter_map(|&t| {
+                let tri = &self.target.tris[t as usize];
+                let w =
+                    s.c.iter()
+                        .map(|c| approx_sq_dist(c.p, tri))
+                        .fold(0.0, f64::max);
+                (w <= e2 * (1.0 + 2f64.powi(-20))).then_some((w, t))
+            })
+            .collect();
+        close.sort_by(|a, b| a.0.total_cmp(&b.0));
+        close
+            .iter()
+            .take(4)
+            .any(|&(_, t)| self.corners_within(s, t, e2))
+            .then_some(self.tol.eps)
+    }
+
+    /// Checks whether a corner is an exact witness of `dist > eps`.
+    fn witness(&self, face: FaceId, tri: &[DVec3; 3], c: &Corner, level: u32) -> Option<Witness> {
+        let target = self.target;
+        if c.delta == 0.0 {
+            let query = Aabb::from_points(&[c.p]).inflated(self.tol.eps);
+            let mut ok = true;
+            target.bvh.for_each_overlapping(&query, |t| {
+                ok = ok && self.tol.exceeds(c.p, target.tris[t as usize]);
+            });
+            return ok.then(|| Witness {
+                face,
+                barycentric: c.bary,
+                level,
+                point: c.p,
+                exact_f64: true,
+                distance: target.certified_lower(c.p).max(self.tol.eps),
+            });
+        }
+        let exact: RPoint = barycentric_point(tri, c.bary, level);
+        // Boxes farther than eps + delta from the f64 corner are farther than eps from it.
+        let reach = add_up(self.tol.eps, c.delta);
+        let query = Aabb::from_points(&[c.p]).inflated(reach);
+        let mut ok = true;
+        target.bvh.for_each_overlapping(&query, |t| {
+            ok = ok && sq_dist_exact(&exact, &target.tris[t as usize]) > self.tol.e2;
+        });
+        ok.then(|| {
+            // dist(exact) >= dist(f64 corner) - delta, and > eps as just proved.
+            let from_f64 = envelope_predicates::next_down(target.certified_lower(c.p) - c.delta);
+            Witness {
+                face,
+                barycentric: c.bary,
+                level,
+                point: DVec3::from_array(exact.map(|x| x.to_f64())),
+                exact_f64: false,
+                distance: from_f64.max(self.tol.eps),
+            }
+        })
+    }
+
+    fn face(&self, face: FaceId, tri: [DVec3; 3]) -> FaceResult {
+        let mut out = FaceResult::default();
+        let query = Aabb::from_triangle(tri).inflated(self.tol.eps);
+        let mut cands = Vec::new();
+        self.target
+            .bvh
+            .for_each_overlapping(&query, |t| cands.push(t));
+        let corner = |k: usize| {
+            let mut bary = [0; 3];
+            bary[k] = 1;
+            Corner {
+                p: tri[k],
+                delta: 0.0,
+                bary,
+            }
+        };
+        let mut stack = vec![Sub {
+            c: [corner(0), corner(1), corner(2)],
+            level: 0,
+            cands,
+        }];
+        while let Some(s) = stack.pop() {
+            out.subdivisions += 1;
+            let est = self.estimate(&s);
+            let delta = s.c.iter().map(|c| c.delta).fold(0.0, f64::max);
+            for j in 0..3 {
+                if s.c[j].delta == 0.0
+                    && out
+                        .lower_candidate
+                        .is_none_or(|(d, _)| est.corner_min[j] > d)
+                {
+                    out.lower_candidate = Some((est.corner_min[j], s.c[j].p));
+                }
+            }
+            if out.witness.is_some() {
+                out.upper = out.upper.max(self.upper_bound(&s, &est, delta));
+                continue;
+            }
+            if let Some(u) = self.prove(&s, &est, delta) {
+                out.upper = out.upper.max(u);
+                continue;
+            }
+            for j in 0..3 {
+                if est.corner_min[j] > self.tol.e2lo * (1.0 - 2f64.powi(-20))
+                    && let Some(w) = self.witness(face, &tri, &s.c[j], s.level)
+                {
+                    out.witness = Some(w);
+                    break;
+                }
+            }
+            let diam = (0..3)
+                .map(|j| (s.c[j].p - s.c[(j + 1) % 3].p).length())
+                .fold(0.0, f64::max);
+            if out.witness.is_some()
+                || s.level >= MAX_LEVEL
+                || diam * (1.0 + 1e-9) + 2.0 * delta <= self.tol.resolution
+            {
+                out.undecided |= out.witness.is_none();
+                out.upper = out.upper.max(self.upper_bound(&s, &est, delta));
+                continue;
+            }
+            self.subdivide(s, &mut stack);
+        }
+        out
+    }
+
+    fn subdivide(&self, s: Sub, stack: &mut Vec<Sub>) {
+        let [a, b, c] = s.c;
+        // Midpoints sum the numerators over 2^(L+1); the old corners double theirs.
+        let (ab, bc, ca) = (midpoint(&a, &b), midpoint(&b, &c), midpoint(&c, &a));
+        let double = |x: Corner| Corner {
+            bary: x.bary.map(|v| v * 2),
+            ..x
+        };
+        let (a2, b2, c2) = (double(a), double(b), double(c));
+        for corners in [[a2, ab, ca], [ab, b2, bc], [ca, bc, c2], [bc, ca, ab]] {
+            let query = Aabb::from_triangle(corners.map(|c| c.p)).inflated(self.tol.eps);
+            let cands = s
+                .cands
+                .iter()
+                .copied()
+                .filter(|&t| self.target.boxes[t as usize].overlaps(&query))
+                .collect();
+            stack.push(Sub {
+                c: corners,
+                level: s.level + 1,
+                cands,
+            });
+        }
+    }
+}
+
+/// Decides whether every point of the triangles `faces` of `positions` lies within `eps` of
+/// `target`, with a certified interval for the one-sided Hausdorff distance.
+pub(crate) fn one_sided(
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    target: &Target,
+    tol: &Tolerance,
+) -> OneSided {
+    let search = Search { target, tol };
+    let subdivisions = AtomicU64::new(0);
+    let results: Vec<(usize, FaceResult)> = faces
+        .par_iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let tri = f.map(|k| positions[k as usize]);
+            let r = search.face(FaceId::from_index(i), tri);
+            subdivisions.fetch_add(r.subdivisions, Ordering::Relaxed);
+            (i, r)
+        })
+        .collect();
+    let mut upper = 0.0f64;
+    let mut undecided = 0usize;
+    let mut witness: Option<Witness> = None;
+    let mut lows: Vec<(f64, DVec3)> = Vec::new();
+    for (_, r) in results {
+        upper = upper.max(r.upper);
+        undecided += usize::from(r.undecided);
+        if let Some(w) = r.witness
+            && witness.as_ref().is_none_or(|b| w.distance > b.distance)
+        {
+            witness = Some(w);
+        }
+        lows.extend(r.lower_candidate);
+    }
+    // Certify the few most distant exact points for the lower bound.
+    lows.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut lower = lows
+        .iter()
+        .take(8)
+        .map(|&(_, p)| target.certified_lower(p))
+        .fold(0.0, f64::max);
+    if let Some(w) = &witness {
+        lower = lower.max(w.distance);
+    }
+    if faces.is_empty() {
+        upper = 0.0;
+    }
+    let verdict = if witness.is_some() {
+        Verdict::Violated
+    } else if undecided > 0 {
+        Verdict::Undecided
+    } else {
+        Verdict::Holds
+    };
+    OneSided {
+        verdict,
+        lower,
+        upper,
+        witness,
+        undecided_regions: undecided,
+        subdivisions: subdivisions.into_inner(),
+    }
+}
