@@ -329,8 +329,25 @@ impl Search<'_> {
         close
             .iter()
             .take(4)
-            .any(|&(_, t)| self.corners_within(s, t, e2))
+            .any(|&(_, t)| self.corners_within_exactly(s, t, delta, e2))
             .then_some(self.tol.eps)
+    }
+
+    /// Every corner within `eps - delta` of `t`, decided exactly (`e2` is the largest double
+    /// below `(eps - delta)^2`; corners between it and the exact square go to rationals).
+    fn corners_within_exactly(&self, s: &Sub, t: u32, delta: f64, e2: f64) -> bool {
+        let tri = self.target.tris[t as usize];
+        let mut bound: Option<Rational> = None;
+        s.c.iter().all(|c| {
+            if cmp_point_triangle(c.p, tri, e2) != Sign::Positive {
+                return true;
+            }
+            let b = bound.get_or_insert_with(|| {
+                let r = rational(self.tol.eps) - rational(delta);
+                Rational::from(&r * &r)
+            });
+            sq_dist_exact(&rpoint(c.p), &tri) <= *b
+        })
     }
 
     /// Checks whether a corner is an exact witness of `dist > eps`.
