@@ -1,0 +1,97 @@
+//! The exact non-intersection proof (Cohen et al. 4: "the envelopes do not self-intersect").
+//!
+//! The input, the outer and the inner envelope are put in one soup with *no shared vertex
+//! indices between the three* (so an envelope touching the input counts as intersecting), and
+//! [`envelope_predicates::self_intersections`] (BVH candidates, exact adjacency-aware tests on
+//! the f64 vertices) lists every meeting pair. Each pair is reported with the surfaces it
+//! joins, so the one run answers "each alone" (outer-outer, inner-inner, input-input) and
+//! "with each other" (outer-input, inner-input, outer-inner) at once. Tubes are proved
+//! separately (see [`crate::tubes`]).
+use envelope_mesh::FaceId;
+use envelope_predicates::self_intersections;
+use glam::DVec3;
+
+/// Which surface a face belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Surface {
+    /// The input mesh.
+    Input,
+    /// The outer (positive) envelope.
+    Outer,
+    /// The inner (negative) envelope.
+    Inner,
+    /// Border tube number `.0`.
+    Tube(u32),
+}
+
+/// Two faces that meet (exactly decided).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Contact {
+    /// First face.
+    pub a: (Surface, FaceId),
+    /// Second face.
+    pub b: (Surface, FaceId),
+}
+
+/// The outcome of the exact checks.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Proof {
+    /// Meeting face pairs among input, outer and inner (empty when proved).
+    pub contacts: Vec<Contact>,
+    /// Meeting pairs involving a tube (tube faces are exempt against the input and envelope
+    /// faces around their own border vertices; see [`crate::tubes`]).
+    pub tube_contacts: Vec<Contact>,
+    /// Rounds of "halve the epsilon of offending vertices and re-prove" that were needed.
+    pub repair_rounds: u32,
+    /// Distinct vertices whose epsilon was halved at least once by the repair.
+    pub repaired_vertices: usize,
+}
+
+impl Proof {
+    /// True when no contact was found: the envelopes are proved free of self-intersections,
+    /// of intersections with the input and with each other (and the tubes likewise).
+    #[must_use]
+    pub fn holds(&self) -> bool {
+        self.contacts.is_empty() && self.tube_contacts.is_empty()
+    }
+
+    /// True when the envelope part (without tubes) holds.
+    #[must_use]
+    pub fn envelopes_hold(&self) -> bool {
+        self.contacts.is_empty()
+    }
+}
+
+/// Exact contacts among input, outer and inner (same connectivity `faces`).
+pub(crate) fn prove_envelopes(
+    input: &[DVec3],
+    outer: &[DVec3],
+    inner: &[DVec3],
+    faces: &[[u32; 3]],
+) -> Vec<Contact> {
+    let n = input.len() as u32;
+    let nf = faces.len() as u32;
+    let mut positions = Vec::with_capacity(3 * input.len());
+    positions.extend_from_slice(input);
+    positions.extend_from_slice(outer);
+    positions.extend_from_slice(inner);
+    let mut all = Vec::with_capacity(3 * faces.len());
+    for k in 0..3 {
+        all.extend(faces.iter().map(|f| f.map(|i| i + k * n)));
+    }
+    let which = |f: u32| {
+        let s = match f / nf {
+            0 => Surface::Input,
+            1 => Surface::Outer,
+            _ => Surface::Inner,
+        };
+        (s, FaceId(f % nf))
+    };
+    self_intersections(&positions, &all)
+        .into_iter()
+        .map(|(a, b)| Contact {
+            a: which(a),
+            b: which(b),
+        })
+        .collect()
+}

@@ -1,0 +1,322 @@
+//! Border tubes (Cohen et al. 6.2).
+//!
+//! For every border loop (and open border chain) a tube of `k` vertices per border vertex:
+//!
+//! * The *normal plane* at border vertex `b_i` has the normal `T_i`, the normalised sum of
+//!   the unit directions of the incoming and outgoing border edges (one of them at the ends of
+//!   an open chain).
+//! * Frames by projection (minimal twist): an arbitrary unit `u_0 ⊥ T_0`; `u_i` is `u_{i-1}`
+//!   projected into the normal plane of `b_i` and normalised; `w_i = T_i × u_i`. For a closed
+//!   loop the paper averages the last frame with the first; here the whole accumulated twist
+//!   `φ` (the angle from `u_{m-1}` transported to `b_0` to `u_0`) is spread evenly, `u_i`
+//!   rotated by `φ i / m` about `T_i`, so no single segment carries it. Open chains need no
+//!   correction and their tubes are left open at the ends.
+//! * Ring `i` is `b_i + r_i (cos θ_j u_i + sin θ_j w_i)`, `θ_j = 2πj/k`; consecutive rings
+//!   are joined by two triangles per quad.
+//! * Radii start narrow (5 % of the shortest border edge at the vertex, halved until the exact
+//!   tube proof holds) and grow with the numerical engine ([`crate::engine`]), each ring one
+//!   mover, target the requested `eps` of its border vertex.
+//!
+//! "Until it would intersect the surface": a tube necessarily crosses the surface and the
+//! envelopes at its own border, so a tube face between rings `i` and `i+1` is exempt against
+//! the input faces incident to `b_i` or `b_{i+1}` and the envelope faces over them; it must
+//! miss every other input and envelope face, the other tubes, and its own non-adjacent faces.
+//! The paper leaves this rule open; it bounds the radius by roughly the one-ring size.
+use envelope_mesh::{FaceId, TriangleSoup, VertexId};
+use envelope_predicates::bvh::{Aabb, Bvh};
+use glam::DVec3;
+
+use crate::engine::{self, Mover, Scene, StepPolicy};
+use crate::proof::{Contact, Surface};
+
+/// One border tube.
+#[derive(Clone, Debug)]
+pub struct Tube {
+    /// The border vertices it surrounds, in order.
+    pub border: Vec<VertexId>,
+    /// A closed loop (else an open chain; the tube is open at both ends).
+    pub closed: bool,
+    /// The tube surface (`k` vertices per border vertex, ring-major).
+    pub mesh: TriangleSoup,
+    /// Achieved radius per border vertex.
+    pub radius: Vec<f64>,
+}
+
+/// Minimal-twist frames `(T, u, w)` along a polyline (see the module docs).
+pub(crate) fn frames(pts: &[DVec3], closed: bool) -> Vec<[DVec3; 3]> {
+    let m = pts.len();
+    let tangent = |i: usize| {
+        let prev = (closed || i > 0).then(|| (pts[i] - pts[(i + m - 1) % m]).normalize_or_zero());
+        let next = (closed || i + 1 < m).then(|| (pts[(i + 1) % m] - pts[i]).normalize_or_zero());
+        let s = prev.unwrap_or(DVec3::ZERO) + next.unwrap_or(DVec3::ZERO);
+        s.try_normalize()
+            .or_else(|| next.and_then(DVec3::try_normalize))
+            .unwrap_or(DVec3::Z)
+    };
+    let ts: Vec<DVec3> = (0..m).map(tangent).collect();
+    let project = |u: DVec3, t: DVec3| {
+        (u - t * u.dot(t))
+            .try_normalize()
+            .unwrap_or_else(|| t.any_orthonormal_vector())
+    };
+    let mut us = Vec::with_capacity(m);
+    us.push(ts[0].any_orthonormal_vector());
+    for i in 1..m {
+        us.push(project(us[i - 1], ts[i]));
+    }
+    if closed && m > 1 {
+        let end = project(us[m - 1], ts[0]);
+        let phi = end.cross(us[0]).dot(ts[0]).atan2(end.dot(us[0]));
+        for i in 1..m {
+            let q = glam::DQuat::from_axis_angle(ts[i], phi * i as f64 / m as f64);
+            us[i] = project(q * us[i], ts[i]);
+        }
+    }
+    (0..m).map(|i| [ts[i], us[i], ts[i].cross(us[i])]).collect()
+}
+
+/// Everything the tube stage needs from the envelope stage.
+pub(crate) struct TubeInput<'a> {
+    pub soup: &'a TriangleSoup,
+    pub faces: &'a [[u32; 3]],
+    pub outer: &'a [DVec3],
+    pub inner: &'a [DVec3],
+    pub requested: &'a [f64],
+    pub diagonal: f64,
+}
+
+struct Layout {
+    positions: Vec<DVec3>,
+    faces: Vec<[u32; 3]>,
+    /// Per tube face (index − 3F): its two border vertices and tube number.
+    seg: Vec<([u32; 2], u32)>,
+    /// Per tube: first global vertex.
+    first_vertex: Vec<u32>,
+    /// Per tube: first global face.
+    first_face: Vec<u32>,
+}
+
+fn exempt(input_faces: &[[u32; 3]], nf3: u32, seg: &[([u32; 2], u32)], f: u32, g: u32) -> bool {
+    let (t, o) = if f >= nf3 { (f, g) } else { (g, f) };
+    if o >= nf3 || t < nf3 {
+        return false;
+    }
+    let [a, b] = seg[(t - nf3) as usize].0;
+    let face = input_faces[(o % (nf3 / 3)) as usize];
+    face.contains(&a) || face.contains(&b)
+}
+
+fn tube_contacts(layout: &Layout, input: &TubeInput<'_>) -> Vec<Contact> {
+    let nf3 = 3 * input.faces.len() as u32;
+    let bvh = Bvh::from_triangles(&layout.positions, &layout.faces);
+    let pairs = bvh.self_pairs_where(|i, j| {
+        (i >= nf3 || j >= nf3)
+            && !exempt(input.faces, nf3, &layout.seg, i, j)
+            && envelope_predicates::faces_intersect(
+                &layout.positions,
+                layout.faces[i as usize],
+                layout.faces[j as usize],
+            )
+    });
+    let nf = input.faces.len() as u32;
+    let which = |f: u32| {
+        if f < nf3 {
+            let s = [Surface::Input, Surface::Outer, Surface::Inner][(f / nf) as usize];
+            (s, FaceId(f % nf))
+        } else {
+            let tube = layout.seg[(f - nf3) as usize].1;
+            (
+                Surface::Tube(tube),
+                FaceId(f - layout.first_face[tube as usize]),
+            )
+        }
+    };
+    pairs
+        .into_iter()
+        .map(|(a, b)| Contact {
+            a: which(a),
+            b: which(b),
+        })
+        .collect()
+}
+
+/// Builds, grows and proves the tubes of `loops` (closed) and `chains` (open).
+pub(crate) fn build_tubes(
+    input: &TubeInput<'_>,
+    loops: &[(Vec<VertexId>, bool)],
+    k: u32,
+    policy: StepPolicy,
+    global_fraction: f64,
+) -> (Vec<Tube>, Vec<Contact>) {
+    let k = k.max(3) as usize;
+    let soup = input.soup;
+    let n = soup.num_vertices() as u32;
+    let nf3 = 3 * input.faces.len() as u32;
+    let mut positions = Vec::with_capacity(3 * n as usize);
+    positions.extend_from_slice(&soup.positions);
+    positions.extend_from_slice(input.outer);
+    positions.extend_from_slice(input.inner);
+    let mut faces: Vec<[u32; 3]> = Vec::with_capacity(nf3 as usize);
+    for s in 0..3 {
+        faces.extend(input.faces.iter().map(|f| f.map(|i| i + s * n)));
+    }
+    let mut layout = Layout {
+        positions,
+        faces,
+        seg: Vec::new(),
+        first_vertex: Vec::new(),
+        first_face: Vec::new(),
+    };
+    let mut movers: Vec<Mover> = Vec::new();
+    for (tube, (border, closed)) in loops.iter().enumerate() {
+        let m = border.len();
+        let pts: Vec<DVec3> = border.iter().map(|&v| soup.position(v)).collect();
+        let fr = frames(&pts, *closed);
+        let v0 = layout.positions.len() as u32;
+        layout.first_vertex.push(v0);
+        layout.first_face.push(layout.faces.len() as u32);
+        let first_mover = movers.len();
+        for i in 0..m {
+            let e_prev = (*closed || i > 0).then(|| pts[i].distance(pts[(i + m - 1) % m]));
+            let e_next = (*closed || i + 1 < m).then(|| pts[i].distance(pts[(i + 1) % m]));
+            let shortest = e_prev
+                .unwrap_or(f64::INFINITY)
+                .min(e_next.unwrap_or(f64::INFINITY));
+            let target = input.requested[border[i].0 as usize];
+            let [_, u, w] = fr[i];
+            let dirs: Vec<DVec3> = (0..k)
+                .map(|j| {
+                    let th = std::f64::consts::TAU * j as f64 / k as f64;
+                    u * th.cos() + w * th.sin()
+                })
+                .collect();
+            let r0 = (0.05 * shortest).min(target / 4.0);
+            let verts: Vec<u32> = (0..k as u32).map(|j| v0 + (i * k) as u32 + j).collect();
+            for &d in &dirs {
+                layout.positions.push(pts[i] + d * r0);
+            }
+            movers.push(Mover {
+                verts,
+                base: vec![pts[i]; k],
+                dirs,
+                star: Vec::new(),
+                group: 2,
+                target,
+                t: r0,
+                step: (0.5 * shortest)
+                    .min(global_fraction * input.diagonal)
+                    .min(target / policy.k as f64),
+                steps: 0,
+                halvings: 0,
+                done: false,
+            });
+        }
+        let segs = if *closed { m } else { m - 1 };
+        for i in 0..segs {
+            let i1 = (i + 1) % m;
+            for j in 0..k {
+                let j1 = (j + 1) % k;
+                let (a, b) = (v0 + (i * k + j) as u32, v0 + (i * k + j1) as u32);
+                let (c, d) = (v0 + (i1 * k + j1) as u32, v0 + (i1 * k + j) as u32);
+                for f in [[a, b, c], [a, c, d]] {
+                    let id = layout.faces.len() as u32;
+                    layout.faces.push(f);
+                    layout.seg.push(([border[i].0, border[i1].0], tube as u32));
+                    movers[first_mover + i].star.push(id);
+                    movers[first_mover + i1].star.push(id);
+                }
+            }
+        }
+    }
+    // Narrow start: halve every radius until the exact tube proof holds.
+    for _ in 0..12 {
+        if tube_contacts(&layout, input).is_empty() {
+            break;
+        }
+        for m in &mut movers {
+            m.t *= 0.5;
+            for (kk, &v) in m.verts.iter().enumerate() {
+                layout.positions[v as usize] = m.base[kk] + m.dirs[kk] * m.t;
+            }
+        }
+    }
+    // Grow.
+    let mut sweep: Vec<Aabb> = layout
+        .positions
+        .iter()
+        .map(|&p| Aabb::from_points(&[p]))
+        .collect();
+    for m in &movers {
+        for (kk, &v) in m.verts.iter().enumerate() {
+            sweep[v as usize] = engine::sweep_box(m.base[kk], m.dirs[kk], m.target.max(m.t));
+        }
+    }
+    let boxes = engine::swept_face_boxes(&layout.faces, &sweep);
+    let ex = |f: u32, g: u32| exempt(input.faces, nf3, &layout.seg, f, g);
+    let alias: Vec<u32> = (0..layout.positions.len() as u32).collect();
+    let mut scene = Scene {
+        positions: layout.positions.clone(),
+        alias,
+        faces: layout.faces.clone(),
+        bvh: Bvh::new(&boxes),
+        exempt: &ex,
+    };
+    engine::grow(&mut scene, &mut movers, policy);
+    layout.positions = scene.positions;
+    let contacts = tube_contacts(&layout, input);
+    // Output meshes.
+    let mut tubes = Vec::with_capacity(loops.len());
+    let mut mover_at = 0;
+    for (tube, (border, closed)) in loops.iter().enumerate() {
+        let m = border.len();
+        let v0 = layout.first_vertex[tube] as usize;
+        let f0 = layout.first_face[tube] as usize;
+        let f1 = layout
+            .first_face
+            .get(tube + 1)
+            .map_or(layout.faces.len(), |&x| x as usize);
+        let positions = layout.positions[v0..v0 + m * k].to_vec();
+        let tfaces = layout.faces[f0..f1]
+            .iter()
+            .map(|f| f.map(|i| VertexId(i - v0 as u32)))
+            .collect();
+        let radius = movers[mover_at..mover_at + m]
+            .iter()
+            .map(|mv| mv.t)
+            .collect();
+        mover_at += m;
+        tubes.push(Tube {
+            border: border.clone(),
+            closed: *closed,
+            mesh: TriangleSoup::new(positions, tfaces),
+            radius,
+        });
+    }
+    (tubes, contacts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frames_are_orthonormal_and_close_on_a_circle() {
+        let pts: Vec<DVec3> = (0..24)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / 24.0;
+                DVec3::new(a.cos(), a.sin(), 0.1 * (3.0 * a).sin())
+            })
+            .collect();
+        let fr = frames(&pts, true);
+        for (i, [t, u, w]) in fr.iter().enumerate() {
+            assert!(
+                t.dot(*u).abs() < 1e-9
+                    && (u.length() - 1.0).abs() < 1e-9
+                    && (w.length() - 1.0).abs() < 1e-9
+            );
+            // Minimal twist: consecutive u nearly parallel.
+            let next = fr[(i + 1) % fr.len()][1];
+            assert!(u.dot(next) > 0.9, "twist at {i}");
+        }
+    }
+}
