@@ -1,0 +1,186 @@
+//! Property tests of the envelope guarantee on generated meshes (Cohen et al. 4, 6.2).
+use envelope_mesh::{TriangleSoup, generate};
+use envelope_offset::{
+    EnvelopeError, EnvelopeOptions, Envelopes, EpsilonField, Method, build_envelopes,
+};
+use envelope_predicates::{Sign, cmp_point_triangle, self_intersections, square_rounded_up};
+use glam::DVec3;
+use proptest::prelude::*;
+
+fn build(soup: &TriangleSoup, eps: f64, method: Method) -> Envelopes {
+    let mut o = EnvelopeOptions::new(EpsilonField::Constant(eps));
+    o.method = method;
+    build_envelopes(soup, &o).expect("acceptable input")
+}
+
+/// The guarantee, re-checked independently: the union soup has no intersecting pair, and
+/// every envelope vertex is within its requested epsilon of the input (exact).
+fn check(soup: &TriangleSoup, env: &Envelopes) {
+    assert!(
+        env.proof.holds(),
+        "proof failed: {:?}",
+        &env.proof.contacts[..env.proof.contacts.len().min(5)]
+    );
+    let n = soup.num_vertices() as u32;
+    let mut pos = soup.positions.clone();
+    pos.extend_from_slice(&env.outer.positions);
+    pos.extend_from_slice(&env.inner.positions);
+    let faces: Vec<[u32; 3]> = (0..3)
+        .flat_map(|k| soup.faces.iter().map(move |f| f.map(|v| v.0 + k * n)))
+        .collect();
+    assert!(self_intersections(&pos, &faces).is_empty());
+    let mut fan = vec![Vec::new(); soup.num_vertices()];
+    for (i, f) in soup.faces.iter().enumerate() {
+        for v in f {
+            fan[v.0 as usize].push(i);
+        }
+    }
+    for v in 0..soup.num_vertices() {
+        assert!(env.eps_plus[v] <= env.requested[v] && env.eps_minus[v] <= env.requested[v]);
+        assert!(
+            env.eps_plus[v] > 0.0 && env.eps_minus[v] > 0.0,
+            "vertex {v} did not move"
+        );
+        let e2 = square_rounded_up(env.requested[v] * (1.0 + 1e-9));
+        for p in [env.outer.positions[v], env.inner.positions[v]] {
+            // Within eps of the vertex's own incident triangles (hence of the input).
+            let near = fan[v].iter().any(|&f| {
+                cmp_point_triangle(p, soup.triangle(envelope_mesh::FaceId(f as u32)), e2)
+                    != Sign::Positive
+            });
+            assert!(near, "vertex {v} offset beyond epsilon");
+        }
+    }
+    for t in &env.tubes {
+        assert!(t.radius.iter().all(|&r| r > 0.0));
+    }
+}
+
+#[test]
+fn sphere_both_methods_reach_full_epsilon() {
+    for sub in [1, 2, 3] {
+        let s = generate::icosphere(sub, 1.0);
+        for m in [Method::Numerical, Method::Analytical] {
+            let env = build(&s, 0.02, m);
+            check(&s, &env);
+            let f = env.achieved_fractions();
+            assert!(f[0] > 0.999, "sub {sub} {m:?}: min fraction {}", f[0]);
+        }
+    }
+}
+
+#[test]
+fn thin_plate_inner_envelopes_stop_in_the_middle() {
+    let s = generate::box_mesh(DVec3::new(1.0, 1.0, 0.02), 4);
+    for m in [Method::Numerical, Method::Analytical] {
+        let env = build(&s, 0.05, m);
+        check(&s, &env);
+        // Face-interior vertices cannot pass half the thickness (0.01) along their normals.
+        let mut e = env.eps_minus.clone();
+        e.sort_by(f64::total_cmp);
+        assert!(e[e.len() / 2] <= 0.0101, "{m:?}: median {}", e[e.len() / 2]);
+    }
+}
+
+#[test]
+fn torus_with_small_tube_and_sharp_box() {
+    let t = generate::torus(1.0, 0.05, 24, 8);
+    let b = generate::box_mesh(DVec3::ONE, 2);
+    for m in [Method::Numerical, Method::Analytical] {
+        let env = build(&t, 0.1, m);
+        check(&t, &env);
+        let env = build(&b, 0.05, m);
+        check(&b, &env);
+    }
+}
+
+#[test]
+fn bordered_meshes_get_tubes() {
+    let c = generate::open_cylinder(1.0, 1.0, 16, 4);
+    let d = generate::disk_with_holes(2);
+    for s in [c, d] {
+        for m in [Method::Numerical, Method::Analytical] {
+            let env = build(&s, 0.05, m);
+            check(&s, &env);
+            assert!(!env.tubes.is_empty());
+            assert!(env.proof.tube_contacts.is_empty());
+        }
+    }
+}
+
+#[test]
+fn per_vertex_and_function_fields() {
+    let s = generate::icosphere(2, 1.0);
+    let vals: Vec<f64> = (0..s.num_vertices())
+        .map(|i| 0.01 + 0.001 * (i % 7) as f64)
+        .collect();
+    let env = build_envelopes(
+        &s,
+        &EnvelopeOptions::new(EpsilonField::PerVertex(vals.clone())),
+    )
+    .unwrap();
+    check(&s, &env);
+    assert_eq!(env.requested, vals);
+    let f = EpsilonField::distance_to_viewpoint(DVec3::new(5.0, 0.0, 0.0), 0.001, 0.01);
+    let env = build_envelopes(&s, &EnvelopeOptions::new(f)).unwrap();
+    check(&s, &env);
+    assert!(matches!(
+        build_envelopes(
+            &s,
+            &EnvelopeOptions::new(EpsilonField::PerVertex(vec![0.1; 3]))
+        ),
+        Err(EnvelopeError::EpsilonCount { .. })
+    ));
+    assert!(matches!(
+        build_envelopes(&s, &EnvelopeOptions::new(EpsilonField::Constant(-1.0))),
+        Err(EnvelopeError::BadEpsilon { .. })
+    ));
+}
+
+#[test]
+fn unacceptable_input_is_a_typed_error() {
+    assert_eq!(
+        build_envelopes(
+            &generate::bow_tie(),
+            &EnvelopeOptions::new(EpsilonField::Constant(0.1))
+        )
+        .unwrap_err(),
+        EnvelopeError::NotManifold
+    );
+    let mut s = generate::icosphere(1, 1.0);
+    s.faces[0].swap(0, 1);
+    assert_eq!(
+        build_envelopes(&s, &EnvelopeOptions::new(EpsilonField::Constant(0.1))).unwrap_err(),
+        EnvelopeError::NotOriented
+    );
+}
+
+#[test]
+fn output_is_deterministic() {
+    let s = generate::torus(1.0, 0.3, 32, 12);
+    let a = build(&s, 0.2, Method::Numerical);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let b = pool.install(|| build(&s, 0.2, Method::Numerical));
+    assert_eq!(a.eps_plus, b.eps_plus);
+    assert_eq!(a.eps_minus, b.eps_minus);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+    #[test]
+    fn perturbed_spheres_are_proved(seed in 0u64..1000, eps in 0.005f64..0.3, analytical: bool) {
+        let mut s = generate::icosphere(2, 1.0);
+        let mut x = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+        for p in &mut s.positions {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            let r = 0.8 + 0.4 * ((x >> 11) as f64 / (1u64 << 53) as f64);
+            *p *= r;
+        }
+        let m = if analytical { Method::Analytical } else { Method::Numerical };
+        let env = build(&s, eps, m);
+        check(&s, &env);
+    }
+}
