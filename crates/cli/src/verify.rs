@@ -1,18 +1,182 @@
 //! `envelope verify`: a certifying oracle for any simplifier's output (issue 6).
+//!
+//! Exit codes: 0 every checked property holds, 1 one is violated (the report names it, with
+//! witnesses), 2 unreadable input or bad arguments, 3 undecided within the resolution.
 
+use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-/// Arguments (to be completed with the subcommand).
+use envelope_io::read_path;
+use envelope_verify::{Certificate, OneSided, Options, TopologySummary, Verdict, certify};
+
+/// Arguments of `envelope verify`.
 #[derive(clap::Args)]
 pub(crate) struct Args {
-    /// Input mesh.
-    input: PathBuf,
+    /// The original mesh.
+    orig: PathBuf,
+    /// The simplified mesh to certify against ORIG.
+    approx: PathBuf,
+    /// Tolerance: every point of each mesh must be within it of the other.
+    #[arg(long)]
+    epsilon: f64,
+    /// Read --epsilon (and --resolution) as fractions of ORIG's bounding-box diagonal.
+    #[arg(long)]
+    relative: bool,
+    /// Answer `undecided` where the bounds are closer than this [default: 1e-6 * epsilon].
+    #[arg(long)]
+    resolution: Option<f64>,
+    /// Skip the self-intersection test of APPROX.
+    #[arg(long)]
+    no_self_intersections: bool,
+    /// Skip the topology comparison.
+    #[arg(long)]
+    no_topology: bool,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
 }
 
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
-    Err(format!(
-        "verify is not implemented yet (input {})",
-        args.input.display()
-    ))
+    let (orig, _) = read_path(&args.orig).map_err(|e| e.to_string())?;
+    let (approx, _) = read_path(&args.approx).map_err(|e| e.to_string())?;
+    let scale = if args.relative { orig.diagonal() } else { 1.0 };
+    let epsilon = args.epsilon * scale;
+    if !(epsilon > 0.0 && epsilon.is_finite()) {
+        return Err(format!(
+            "--epsilon must be positive and finite (got {epsilon})"
+        ));
+    }
+    let mut options = Options::new(epsilon);
+    if let Some(r) = args.resolution {
+        if !(r >= 0.0 && r.is_finite()) {
+            return Err(format!("--resolution must be >= 0 and finite (got {r})"));
+        }
+        options.resolution = r * scale;
+    }
+    options.self_intersections = !args.no_self_intersections;
+    options.topology = !args.no_topology;
+    let cert = certify(&orig, &approx, &options);
+    if args.json {
+        let mut v = cert.to_json();
+        v["orig"] = args.orig.display().to_string().into();
+        v["approx"] = args.approx.display().to_string().into();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{}", render_text(args, &cert));
+    }
+    Ok(ExitCode::from(match cert.verdict {
+        Verdict::Holds => 0,
+        Verdict::Violated => 1,
+        Verdict::Undecided => 3,
+    }))
+}
+
+fn render_side(out: &mut String, name: &str, s: &OneSided, diag: f64) {
+    let rel = |x: f64| if diag > 0.0 { x / diag } else { f64::NAN };
+    let _ = writeln!(
+        out,
+        "{name:<16} {:<9} hausdorff in [{:.6e}, {:.6e}] ({:.3e} .. {:.3e} of diagonal)",
+        s.verdict.as_str(),
+        s.lower,
+        s.upper,
+        rel(s.lower),
+        rel(s.upper)
+    );
+    if let Some(w) = &s.witness {
+        let p = w.point;
+        let _ = writeln!(
+            out,
+            "  witness: face {} point ({}, {}, {}){} distance >= {:.6e}",
+            w.face,
+            p.x,
+            p.y,
+            p.z,
+            if w.exact_f64 {
+                String::new()
+            } else {
+                format!(
+                    " (rounded; exactly {:?}/2^{} of the corners)",
+                    w.barycentric, w.level
+                )
+            },
+            w.distance
+        );
+    }
+    if s.undecided_regions > 0 {
+        let _ = writeln!(
+            out,
+            "  {} region(s) undecided at the resolution",
+            s.undecided_regions
+        );
+    }
+}
+
+fn render_topology(t: &TopologySummary) -> String {
+    let genus = t.genus.map_or("undefined".to_string(), |g| g.to_string());
+    format!(
+        "genus {genus}, {} component(s), {} border loop(s)",
+        t.components, t.border_loops
+    )
+}
+
+fn render_text(args: &Args, c: &Certificate) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "verify {} against {}",
+        args.approx.display(),
+        args.orig.display()
+    );
+    let _ = writeln!(
+        out,
+        "epsilon {:e} ({:.3e} of diagonal {:e}), resolution {:e}",
+        c.epsilon,
+        c.epsilon / c.diagonal,
+        c.diagonal,
+        c.resolution
+    );
+    render_side(&mut out, "approx -> orig", &c.approx_to_orig, c.diagonal);
+    render_side(&mut out, "orig -> approx", &c.orig_to_approx, c.diagonal);
+    if let Some(pairs) = &c.self_intersections {
+        let first: Vec<String> = pairs
+            .iter()
+            .take(5)
+            .map(|(a, b)| format!("({a}, {b})"))
+            .collect();
+        let _ = writeln!(
+            out,
+            "self-intersections of approx: {}{}",
+            pairs.len(),
+            if first.is_empty() {
+                String::new()
+            } else {
+                format!(" e.g. {}", first.join(" "))
+            }
+        );
+    }
+    if let Some(t) = &c.topology {
+        let _ = writeln!(
+            out,
+            "topology {}: orig {}; approx {}",
+            if t.matches() { "matches" } else { "differs" },
+            render_topology(&t.orig),
+            render_topology(&t.approx)
+        );
+    }
+    let v = c.violations();
+    let _ = writeln!(
+        out,
+        "verdict: {}{}",
+        c.verdict.as_str(),
+        if v.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", v.join(", "))
+        }
+    );
+    out
 }

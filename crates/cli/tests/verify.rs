@@ -1,0 +1,185 @@
+//! End-to-end tests of `envelope verify`: exit codes 0/1/2/3, JSON fields, witnesses.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use envelope_io::{Format, write_path};
+use envelope_mesh::{TriangleSoup, generate};
+
+fn envelope(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_envelope"))
+        .args(args)
+        .output()
+        .expect("run envelope")
+}
+
+fn write(dir: &Path, name: &str, soup: &TriangleSoup) -> PathBuf {
+    let p = dir.join(name);
+    write_path(&p, soup, Format::Off).unwrap();
+    p
+}
+
+fn verify_json(orig: &Path, approx: &Path, extra: &[&str]) -> (i32, serde_json::Value) {
+    let mut args = vec![
+        "verify",
+        orig.to_str().unwrap(),
+        approx.to_str().unwrap(),
+        "--json",
+    ];
+    args.extend_from_slice(extra);
+    let out = envelope(&args);
+    let v = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "bad JSON ({e}): {}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    (out.status.code().unwrap(), v)
+}
+
+/// The sphere and a copy with vertex 0 pushed outward by 0.01.
+fn pair(dir: &Path) -> (PathBuf, PathBuf) {
+    let orig = generate::icosphere(2, 1.0);
+    let mut approx = orig.clone();
+    approx.positions[0] *= 1.01;
+    (
+        write(dir, "orig.off", &orig),
+        write(dir, "approx.off", &approx),
+    )
+}
+
+#[test]
+fn holds_exits_0_with_intervals() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, a) = pair(dir.path());
+    let (code, v) = verify_json(&o, &a, &["--epsilon", "0.0101"]);
+    assert_eq!(code, 0, "{v:#}");
+    assert_eq!(v["verdict"], "holds");
+    assert_eq!(v["violations"].as_array().unwrap().len(), 0);
+    let side = &v["approx_to_orig"];
+    assert_eq!(side["verdict"], "holds");
+    let (lo, hi) = (
+        side["lower"].as_f64().unwrap(),
+        side["upper"].as_f64().unwrap(),
+    );
+    assert!(
+        lo <= 0.01 + 1e-12 && 0.01 - 1e-12 <= hi && hi <= 0.0101,
+        "{side:#}"
+    );
+    assert!(side["upper_relative"].as_f64().unwrap() > 0.0);
+    assert_eq!(v["self_intersections"]["count"], 0);
+    assert_eq!(v["topology"]["matches"], true);
+    assert_eq!(v["topology"]["orig"]["genus"], 0);
+}
+
+#[test]
+fn violated_exits_1_with_witness() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, a) = pair(dir.path());
+    let (code, v) = verify_json(&o, &a, &["--epsilon", "0.0099"]);
+    assert_eq!(code, 1, "{v:#}");
+    assert_eq!(v["violations"][0], "approx_to_orig");
+    let w = &v["approx_to_orig"]["witness"];
+    assert_eq!(w["exact_f64"], true);
+    assert!(w["distance_at_least"].as_f64().unwrap() > 0.0099);
+    // Text form names the witness too.
+    let out = envelope(&[
+        "verify",
+        o.to_str().unwrap(),
+        a.to_str().unwrap(),
+        "--epsilon",
+        "0.0099",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("witness: face") && text.contains("verdict: violated"),
+        "{text}"
+    );
+}
+
+#[test]
+fn topology_and_self_intersection_violations() {
+    let dir = tempfile::tempdir().unwrap();
+    let orig = generate::icosphere(2, 1.0);
+    // Fold one vertex through the sphere: far outside epsilon too, but also intersecting.
+    let mut folded = orig.clone();
+    folded.positions[0] *= -1.5;
+    let (o, a) = (
+        write(dir.path(), "o.off", &orig),
+        write(dir.path(), "a.off", &folded),
+    );
+    let (code, v) = verify_json(&o, &a, &["--epsilon", "10"]);
+    assert_eq!(code, 1);
+    assert_eq!(v["approx_to_orig"]["verdict"], "holds");
+    assert!(v["self_intersections"]["count"].as_u64().unwrap() > 0);
+    // A torus against a sphere: topology differs (and distance is not asked to fail).
+    let t = write(dir.path(), "t.off", &generate::torus(0.7, 0.2, 24, 12));
+    let (code, v) = verify_json(&o, &t, &["--epsilon", "100", "--no-self-intersections"]);
+    assert_eq!(code, 1);
+    assert_eq!(v["violations"], serde_json::json!(["topology"]));
+    assert_eq!(v["topology"]["approx"]["genus"], 1);
+}
+
+#[test]
+fn undecided_exits_3() {
+    // orig: two points (as point-triangles) below a square; approx: the square [-1, 1]^2.
+    // approx -> orig peaks on the bisector x = 0.1 at the square's border, sqrt(3.21): not a
+    // dyadic subdivision point, so at epsilon = the nearest double the bounds meet within
+    // the resolution without deciding.
+    let dir = tempfile::tempdir().unwrap();
+    let orig = TriangleSoup::from_raw(&[[-1., 0., -1.], [1.2, 0., -1.]], &[[0, 0, 0], [1, 1, 1]]);
+    let approx = TriangleSoup::from_raw(
+        &[[-1., -1., 0.], [1., -1., 0.], [1., 1., 0.], [-1., 1., 0.]],
+        &[[0, 1, 2], [0, 2, 3]],
+    );
+    let (o, a) = (
+        write(dir.path(), "o.off", &orig),
+        write(dir.path(), "a.off", &approx),
+    );
+    let skip = ["--no-topology", "--no-self-intersections"];
+    let peak = 3.21f64.sqrt();
+    let run = |eps: f64| {
+        verify_json(
+            &o,
+            &a,
+            &[&["--epsilon", &eps.to_string()], &skip[..]].concat(),
+        )
+    };
+    let (code, v) = run(peak);
+    assert_eq!(code, 3, "{v:#}");
+    assert_eq!(v["approx_to_orig"]["verdict"], "undecided");
+    assert_eq!(v["orig_to_approx"]["verdict"], "holds");
+    let (lo, hi) = (
+        v["approx_to_orig"]["lower"].as_f64().unwrap(),
+        v["approx_to_orig"]["upper"].as_f64().unwrap(),
+    );
+    assert!(lo <= peak && peak <= hi && hi - lo < 1e-5, "{v:#}");
+    assert_eq!(run(peak - 1e-3).0, 1);
+    assert_eq!(run(peak + 1e-3).0, 0);
+}
+
+#[test]
+fn unreadable_input_exits_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, _) = pair(dir.path());
+    let bad = dir.path().join("bad.off");
+    std::fs::write(&bad, "OFF\n3 1 0\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n").unwrap();
+    let out = envelope(&[
+        "verify",
+        o.to_str().unwrap(),
+        bad.to_str().unwrap(),
+        "--epsilon",
+        "1",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("bad.off"));
+    let out = envelope(&[
+        "verify",
+        o.to_str().unwrap(),
+        o.to_str().unwrap(),
+        "--epsilon",
+        "-1",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+}
