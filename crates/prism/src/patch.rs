@@ -25,9 +25,12 @@
 //! `orient3d(p00, p10, p01, q)` (same orientation). `F` is evaluated with a rigorous f64 error
 //! bound and, when that cannot decide, exactly in GMP rationals: the sign is exact.
 //!
-//! The zero set of `F` is the whole quadric, not only the patch: `side` is a half-space test that
-//! is meaningful near the patch, which is where a well-formed prism uses it (see
-//! [`Prism::check`](crate::Prism::check)).
+//! The zero set of `F` is the whole quadric, whose other parts can pass within a patch width of
+//! the patch when it is nearly planar. So `F` is used only inside the hull tetrahedron `H` of the
+//! four corners, where the quadric meets nothing but the patch (the bilinear weights of `B(u, s)`
+//! are barycentric coordinates in `H`). Outside `H`, `side` is the side of the *outer split*
+//! (the two corner triangles on the outer side of the patch): `min` of their two orientations,
+//! a convex wedge that continues the patch across its four boundary edges.
 
 use envelope_predicates::{Filtered, Kernel, Orientation, Sign, generic};
 use glam::DVec3;
@@ -36,7 +39,7 @@ use std::rc::Rc;
 
 use crate::num::{ErrF64, Num, QSqrt, V, orient3d, rational_sign};
 
-/// A bilinear patch `B(u, s)` given by its four corners (see the [module docs](self)).
+/// A bilinear patch `B(u, s)` given by its four corners (the side function is derived in the crate README).
 ///
 /// ```
 /// use envelope_prism::Patch;
@@ -94,8 +97,9 @@ impl Patch {
         self.twist().is_degenerate()
     }
 
-    /// Exact side of `q`: `Zero` on the quadric carrying the patch (the plane if planar),
-    /// `Positive` on the side the normal `(p10 − p00)×(p01 − p00)` points to.
+    /// Exact side of `q`: `Zero` on the patch's surface (the quadric inside the corners' hull
+    /// tetrahedron, the outer split's planes outside it; the plane if planar), `Positive` on the
+    /// side the normal `(p10 − p00)×(p01 − p00)` points to.
     #[must_use]
     pub fn side(&self, q: DVec3) -> Sign {
         details::side_of_patch::<Filtered>(self, q)
@@ -175,7 +179,17 @@ pub mod details {
         if t == Sign::Zero {
             return planar_side::<K>(patch, q);
         }
-        quadric_sign_filtered(patch, q) * t
+        if point_in_tetrahedron::<K>(q, patch.corners) {
+            // In the hull the quadric meets only the patch: the bilinear weights of B(u, s)
+            // are its barycentric coordinates, all >= 0 iff (u, s) ∈ [0, 1]².
+            return quadric_sign_filtered(patch, q) * t;
+        }
+        // Outside the hull: the two planes of the outer split (the inner split for the
+        // opposite orientation), continuing the patch across its four boundary edges.
+        let outer = patch.split(t == Sign::Negative);
+        let s0 = K::orient3d(outer[0][0], outer[0][1], outer[0][2], q).sign();
+        let s1 = K::orient3d(outer[1][0], outer[1][1], outer[1][2], q).sign();
+        s0.min(s1)
     }
 
     /// The side of `q` for a planar patch: `orient3d(p00, p10, p01, q)`, or through the corner

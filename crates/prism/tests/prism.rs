@@ -362,3 +362,98 @@ proptest! {
         prop_assert_eq!(p.intersects_segment(a, b), p.intersects_segment(b, a));
     }
 }
+
+/// f64 reference for segment/patch: the crossings of the line with the quadric, located in
+/// the patch's parameters. `Some(answer)` only when every crossing is at least `m` away from
+/// the boundary of the parameter box (so rounding cannot matter).
+fn segment_patch_f64(p: &Patch, a: DVec3, b: DVec3) -> Option<bool> {
+    let [p00, p10, p01, p11] = p.corners();
+    let o = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| (b - a).cross(c - a).dot(d - a);
+    let f = |q: DVec3| {
+        o(q, p01, p11, p00) * o(q, p00, p10, p11) - o(q, p01, p11, p10) * o(q, p00, p10, p01)
+    };
+    let (g0, gh, g1) = (f(a), f((a + b) * 0.5), f(b));
+    // g(t) = c2 t² + c1 t + c0 through (0, g0), (1/2, gh), (1, g1).
+    let (c0, c2) = (g0, 2.0 * g0 - 4.0 * gh + 2.0 * g1);
+    let c1 = g1 - g0 - c2;
+    let scale = g0.abs().max(gh.abs()).max(g1.abs());
+    if c2.abs() < 1e-6 * scale {
+        return None;
+    }
+    let disc = c1 * c1 - 4.0 * c2 * c0;
+    if disc < -1e-6 * c1 * c1 {
+        return Some(false);
+    }
+    if disc < 1e-6 * c1 * c1 {
+        return None;
+    }
+    let m = 1e-4;
+    let mut hit = false;
+    for t in [
+        (-c1 + disc.sqrt()) / (2.0 * c2),
+        (-c1 - disc.sqrt()) / (2.0 * c2),
+    ] {
+        if (t + m).abs() < 2.0 * m || (t - 1.0).abs() < m {
+            return None;
+        }
+        if !(0.0..=1.0).contains(&t) {
+            continue;
+        }
+        let x = a + (b - a) * t;
+        // u from the plane through x and the top line, s by projection on the ruling.
+        let (a0, a1) = (o(x, p01, p11, p00), o(x, p01, p11, p10));
+        if (a0 - a1).abs() < 1e-3 * a0.abs().max(a1.abs()).max(1.0) {
+            return None;
+        }
+        let u = a0 / (a0 - a1);
+        let (au, cu) = (p00 * (1.0 - u) + p10 * u, p01 * (1.0 - u) + p11 * u);
+        let e = cu - au;
+        let s = (x - au).dot(e) / e.dot(e);
+        if (p.point(u, s) - x).length() > 1e-6 {
+            return None;
+        }
+        for w in [u, s] {
+            if w.abs() < m || (w - 1.0).abs() < m {
+                return None;
+            }
+        }
+        hit |= (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&s);
+    }
+    Some(hit)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn segment_patch_matches_f64_reference(c in proptest::array::uniform4(dvec(2)), a in dvec(3), b in dvec(3)) {
+        let p = Patch::new(c[0], c[1], c[2], c[3]);
+        prop_assume!(!p.is_planar());
+        if let Some(expected) = segment_patch_f64(&p, a, b) {
+            prop_assert_eq!(p.intersects_segment(a, b), expected, "{:?} {} {}", p, a, b);
+        }
+    }
+}
+
+/// Regression: a nearly planar side whose quadric passes 1.9 units outside the patch; the bare
+/// quadric sign called this far-away point inside.
+#[test]
+fn far_point_beside_a_nearly_planar_side_is_outside() {
+    let p = Prism::from_corners(
+        [
+            v(-0.0625, -0.25, -2.125),
+            v(4.0, 0.0, -2.0),
+            v(0.125, 3.9375, -1.6875),
+        ],
+        [
+            v(0.125, -0.25, 1.875),
+            v(4.0, 0.0, 2.0),
+            v(0.3125, 4.25, 2.0),
+        ],
+    );
+    p.sanity_check();
+    let q = v(-1.875, 0.0, 0.0);
+    assert_eq!(details::quadric_sign_exact(&p.side(2), q), Sign::Negative); // times twist < 0
+    assert_eq!(p.side(2).side(q), Sign::Negative);
+    assert_eq!(details::classify::<K>(&p, q), Location::Outside);
+}
