@@ -453,7 +453,9 @@ fn far_point_beside_a_nearly_planar_side_is_outside() {
     );
     p.sanity_check();
     let q = v(-1.875, 0.0, 0.0);
-    assert_eq!(details::quadric_sign_exact(&p.side(2), q), Sign::Negative); // times twist < 0
+    // The bare quadric sign times the (positive) twist says "inner side".
+    assert_eq!(details::quadric_sign_exact(&p.side(2), q), Sign::Positive);
+    assert_eq!(p.side(2).twist().sign(), Sign::Positive);
     assert_eq!(p.side(2).side(q), Sign::Negative);
     assert_eq!(details::classify::<K>(&p, q), Location::Outside);
 }
