@@ -1,2 +1,30 @@
-//! The local simplifier of Simplification Envelopes (sections 5.1, 5.2).
+//! The local simplifier of Simplification Envelopes (Cohen et al. 1996, sections 5.1, 5.2,
+//! and the border handling of 6.2).
+//!
+//! * [`Barriers`]: the envelopes and border tubes as plain triangles (built elsewhere).
+//! * [`EnvelopeFilter`]: the validity test of 5.1, one [`Filter`] shared with the global
+//!   simplifier; [`FaceGrid`] indexes the current approximation for it.
+//! * [`simplify_local`]: the local algorithm of 5.2 (see [`local`](crate::local) for every
+//!   choice the paper leaves open); [`simplify_local_with`] takes any [`Policies`]:
+//!   [`QueueOrder`], [`HoleFiller`] ([`Greedy`], [`Exhaustive`]), [`StopRule`], [`Visitor`].
+//!
+//! Decisions are exact predicates (`envelope-predicates`); aspect ratios and queue
+//! priorities are f64 numbers that only order the work.
 #![forbid(unsafe_code)]
+
+mod barriers;
+mod fill;
+mod filter;
+mod grid;
+pub mod local;
+mod policy;
+
+pub use barriers::{BarrierError, BarrierKind, Barriers};
+pub use fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
+pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, NoFilter};
+pub use grid::FaceGrid;
+pub use local::{
+    HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Policies, RemovalQueue, Removal, SimplifyError,
+    Stats, queue_vertices, simplify_local, simplify_local_with,
+};
+pub use policy::{Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor, aspect_ratio};

@@ -1,0 +1,336 @@
+//! Hole filling (section 5.2, figure 7): a [`HoleFiller`] chooses triangles on the vertices
+//! of a [`Hole`], each tested by the validity [`Filter`] through a [`FillContext`].
+//!
+//! * [`Greedy`] (the paper's single pass): all triangles on the hole's vertices, best aspect
+//!   ratio first; the first valid one is placed and the up to three sub-holes it leaves are
+//!   filled recursively the same way; no backtracking, so a failure anywhere fails the hole.
+//! * [`Exhaustive`] (the paper's comparison): every triangulation of holes up to a bound,
+//!   keeping the valid one whose worst triangle has the best aspect ratio; larger holes fall
+//!   back to [`Greedy`].
+//!
+//! Orientation: hole vertices come in the order of the removed fan, so a triangle on hole
+//! positions `a < b < c` is oriented as the fan was; sub-holes keep that cyclic order.
+//!
+//! Topology guards (combinatorial, before the filter): an edge of a candidate that is not an
+//! edge of the hole's boundary must not already be an edge of the mesh (it would be
+//! non-manifold, or change the genus: the link condition), and a candidate must not repeat
+//! an existing face's three vertices. For an open hole (a border vertex was removed) the
+//! closing edge `last -> first` is new and becomes a border edge; the filter is told so in
+//! [`CandidateProfile::border_edges`] and tests it against the border tubes.
+
+use crate::filter::{Approximation, CandidateProfile, Filter};
+use crate::grid::FaceGrid;
+use crate::policy::aspect_ratio;
+use envelope_mesh::{HalfEdgeMesh, VertexId};
+use std::collections::HashMap;
+
+/// The boundary of a hole left by removing a vertex's fan.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Hole {
+    /// Boundary vertices in the order of the removed fan (see
+    /// [`HalfEdgeMesh::remove_vertex_fan`]).
+    pub vertices: Vec<VertexId>,
+    /// An open chain (a border vertex was removed): the edge from the last vertex to the
+    /// first does not exist yet and will lie on the border.
+    pub open: bool,
+}
+
+impl Hole {
+    /// Number of boundary vertices.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// True when there is no vertex.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.vertices.is_empty()
+    }
+
+    /// Whether hole positions `i` and `j` are joined by an existing hole-boundary edge.
+    fn boundary_edge(&self, i: usize, j: usize) -> bool {
+        let n = self.len();
+        let (lo, hi) = (i.min(j), i.max(j));
+        hi - lo == 1 || (!self.open && lo == 0 && hi == n - 1)
+    }
+
+    /// Whether hole positions `i` and `j` form the new border edge of an open hole.
+    fn closing_edge(&self, i: usize, j: usize) -> bool {
+        self.open && i.min(j) == 0 && i.max(j) == self.len() - 1
+    }
+}
+
+/// What a hole filler may do: test a candidate (topology guards, then the [`Filter`] against
+/// the current approximation including the triangles placed so far), place it, read back
+/// what it placed.
+pub struct FillContext<'a> {
+    mesh: &'a HalfEdgeMesh,
+    grid: &'a FaceGrid,
+    filter: &'a dyn Filter,
+    hole: &'a Hole,
+    placed: Vec<[VertexId; 3]>,
+    /// Number of filter calls (for statistics).
+    pub tests: u64,
+}
+
+impl<'a> FillContext<'a> {
+    /// A context for filling `hole` in `mesh` (whose live faces `grid` indexes).
+    #[must_use]
+    pub fn new(mesh: &'a HalfEdgeMesh, grid: &'a FaceGrid, filter: &'a dyn Filter, hole: &'a Hole) -> Self {
+        Self {
+            mesh,
+            grid,
+            filter,
+            hole,
+            placed: Vec::new(),
+            tests: 0,
+        }
+    }
+
+    /// The hole being filled.
+    #[must_use]
+    pub fn hole(&self) -> &'a Hole {
+        self.hole
+    }
+
+    /// The triangle on hole positions `t` (increasing), as vertex ids.
+    #[must_use]
+    pub fn triangle(&self, t: [usize; 3]) -> [VertexId; 3] {
+        t.map(|i| self.hole.vertices[i])
+    }
+
+    /// Aspect ratio of the triangle on hole positions `t` (a priority).
+    #[must_use]
+    pub fn aspect(&self, t: [usize; 3]) -> f64 {
+        aspect_ratio(self.triangle(t).map(|v| self.mesh.position(v)))
+    }
+
+    /// Topology guards only (see the module docs).
+    #[must_use]
+    pub fn topologically_allowed(&self, t: [usize; 3]) -> bool {
+        let m = self.mesh;
+        let ids = self.triangle(t);
+        for k in 0..3 {
+            let (i, j) = (t[k], t[(k + 1) % 3]);
+            if !self.hole.boundary_edge(i, j) && m.find_halfedge(ids[k], ids[(k + 1) % 3]).is_some() {
+                return false;
+            }
+        }
+        !face_exists(m, ids)
+    }
+
+    /// Topology guards, then the filter with the triangles placed so far.
+    pub fn accepts(&mut self, t: [usize; 3]) -> bool {
+        self.accepts_with(t, true)
+    }
+
+    /// [`Self::accepts`], with `placed` hidden from the filter when `with_placed` is false.
+    fn accepts_with(&mut self, t: [usize; 3], with_placed: bool) -> bool {
+        if !self.topologically_allowed(t) {
+            return false;
+        }
+        self.tests += 1;
+        let triangle = self.triangle(t);
+        let profile = CandidateProfile {
+            triangle,
+            corners: triangle.map(|v| self.mesh.position(v)),
+            border_edges: [0, 1, 2].map(|k| self.hole.closing_edge(t[k], t[(k + 1) % 3])),
+            approximation: Approximation {
+                mesh: self.mesh,
+                grid: self.grid,
+                placed: if with_placed { &self.placed } else { &[] },
+            },
+        };
+        self.filter.accepts(&profile)
+    }
+
+    /// Places the triangle on hole positions `t`.
+    pub fn place(&mut self, t: [usize; 3]) {
+        let tri = self.triangle(t);
+        self.placed.push(tri);
+    }
+
+    /// The triangles placed so far, in order.
+    #[must_use]
+    pub fn placed(&self) -> &[[VertexId; 3]] {
+        &self.placed
+    }
+
+    /// Forgets every placed triangle.
+    pub fn clear(&mut self) {
+        self.placed.clear();
+    }
+}
+
+/// Whether the three vertices already form a face (either orientation).
+fn face_exists(m: &HalfEdgeMesh, [a, b, c]: [VertexId; 3]) -> bool {
+    [(a, b), (b, a)].into_iter().any(|(u, w)| {
+        m.find_halfedge(u, w)
+            .and_then(|h| m.face(h))
+            .is_some_and(|f| m.face_vertices(f).contains(&c))
+    })
+}
+
+/// A hole-filling strategy.
+pub trait HoleFiller {
+    /// Fills `ctx.hole()` with `hole.len() - 2` triangles, each accepted by the context, or
+    /// returns false. On success the triangles are `ctx.placed()`.
+    fn fill(&self, ctx: &mut FillContext<'_>) -> bool;
+}
+
+/// The paper's single-pass greedy filling (see the module docs). Candidates are ordered by
+/// aspect ratio, larger first; ties by their hole positions, lexicographically.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Greedy;
+
+/// All triangles on hole positions, best aspect ratio first (ties: lexicographic).
+fn ranked_triangles(ctx: &FillContext<'_>) -> Vec<[usize; 3]> {
+    let n = ctx.hole().len();
+    let mut all = Vec::with_capacity(n * (n - 1) * (n - 2) / 6);
+    for a in 0..n {
+        for b in a + 1..n {
+            for c in b + 1..n {
+                all.push((ctx.aspect([a, b, c]), [a, b, c]));
+            }
+        }
+    }
+    // Stable: equal aspect ratios keep the lexicographic order.
+    all.sort_by(|x, y| y.0.total_cmp(&x.0));
+    all.into_iter().map(|x| x.1).collect()
+}
+
+impl Greedy {
+    /// Fills the sub-hole `poly` (hole positions in cyclic order) recursively.
+    fn fill_sub(ranked: &[[usize; 3]], poly: &[usize], member: &mut [bool], ctx: &mut FillContext<'_>) -> bool {
+        if poly.len() < 3 {
+            return true;
+        }
+        for &i in poly {
+            member[i] = true;
+        }
+        let choice = ranked
+            .iter()
+            .filter(|t| t.iter().all(|&i| member[i]))
+            .find(|&&t| ctx.accepts(t))
+            .copied();
+        for &i in poly {
+            member[i] = false;
+        }
+        let Some(t) = choice else {
+            return false;
+        };
+        ctx.place(t);
+        // Positions on the sub-hole, increasing (a rotation of `t` when the sub-hole wraps
+        // around the hole's start, so the orientation is the same).
+        let mut at = t.map(|i| poly.iter().position(|&p| p == i).expect("triangle on the sub-hole"));
+        at.sort_unstable();
+        let (a, b, c) = (at[0], at[1], at[2]);
+        let wrap: Vec<usize> = poly[c..].iter().chain(&poly[..=a]).copied().collect();
+        Self::fill_sub(ranked, &poly[a..=b], member, ctx)
+            && Self::fill_sub(ranked, &poly[b..=c], member, ctx)
+            && Self::fill_sub(ranked, &wrap, member, ctx)
+    }
+}
+
+impl HoleFiller for Greedy {
+    fn fill(&self, ctx: &mut FillContext<'_>) -> bool {
+        let n = ctx.hole().len();
+        if n < 3 {
+            return false;
+        }
+        let ranked = ranked_triangles(ctx);
+        let poly: Vec<usize> = (0..n).collect();
+        let mut member = vec![false; n];
+        Self::fill_sub(&ranked, &poly, &mut member, ctx)
+    }
+}
+
+/// Every triangulation of holes with at most `max_vertices` vertices (Catalan(n - 2) of
+/// them: 1430 for 10), keeping the valid one that maximises the smallest aspect ratio (ties:
+/// the first in enumeration order); [`Greedy`] above the bound.
+///
+/// A triangulation is valid when each triangle passes the topology guards and the filter
+/// with nothing placed, and no two of its triangles meet away from shared vertex ids (exact).
+/// This equals placing them one by one with [`crate::EnvelopeFilter`]; a custom filter that
+/// looks at `placed` sees it empty here.
+#[derive(Clone, Copy, Debug)]
+pub struct Exhaustive {
+    /// Largest hole tried exhaustively.
+    pub max_vertices: usize,
+}
+
+impl Default for Exhaustive {
+    fn default() -> Self {
+        Self { max_vertices: 10 }
+    }
+}
+
+/// All triangulations of the polygon on positions `i..=j` (with edge `i j`), each as a list
+/// of increasing triples.
+fn triangulations(i: usize, j: usize, memo: &mut HashMap<(usize, usize), Vec<Vec<[usize; 3]>>>) -> Vec<Vec<[usize; 3]>> {
+    if j - i < 2 {
+        return vec![Vec::new()];
+    }
+    if let Some(r) = memo.get(&(i, j)) {
+        return r.clone();
+    }
+    let mut out = Vec::new();
+    for k in i + 1..j {
+        let left = triangulations(i, k, memo);
+        let right = triangulations(k, j, memo);
+        for l in &left {
+            for r in &right {
+                let mut t = Vec::with_capacity(l.len() + r.len() + 1);
+                t.push([i, k, j]);
+                t.extend_from_slice(l);
+                t.extend_from_slice(r);
+                out.push(t);
+            }
+        }
+    }
+    memo.insert((i, j), out.clone());
+    out
+}
+
+impl HoleFiller for Exhaustive {
+    fn fill(&self, ctx: &mut FillContext<'_>) -> bool {
+        let n = ctx.hole().len();
+        if n > self.max_vertices {
+            return Greedy.fill(ctx);
+        }
+        if n < 3 {
+            return false;
+        }
+        let mut alone: HashMap<[usize; 3], bool> = HashMap::new();
+        let mut apart: HashMap<([usize; 3], [usize; 3]), bool> = HashMap::new();
+        let mut best: Option<(f64, Vec<[usize; 3]>)> = None;
+        for tri in triangulations(0, n - 1, &mut HashMap::new()) {
+            let worst = tri.iter().map(|&t| ctx.aspect(t)).fold(f64::INFINITY, f64::min);
+            if best.as_ref().is_some_and(|b| b.0 >= worst) {
+                continue;
+            }
+            let ok = tri.iter().all(|&t| *alone.entry(t).or_insert_with(|| ctx.accepts_with(t, false)))
+                && tri.iter().enumerate().all(|(x, &s)| {
+                    tri[..x].iter().all(|&t| {
+                        *apart.entry((t, s)).or_insert_with(|| {
+                            let (p, q) = (ctx.triangle(s), ctx.triangle(t));
+                            let pos = |g: [VertexId; 3]| g.map(|v| ctx.mesh.position(v));
+                            !crate::filter::meet(p, pos(p), q, pos(q))
+                        })
+                    })
+                });
+            if ok {
+                best = Some((worst, tri));
+            }
+        }
+        let Some((_, tri)) = best else {
+            return false;
+        };
+        ctx.clear();
+        for t in tri {
+            ctx.place(t);
+        }
+        true
+    }
+}

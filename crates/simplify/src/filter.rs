@@ -1,0 +1,166 @@
+//! The validity test of section 5.1 as a [`Filter`]: a yes/no answer about one candidate
+//! triangle, given the current approximation.
+//!
+//! [`EnvelopeFilter`] is *the* test of the paper, shared by the local simplifier here and the
+//! global one: a candidate triangle is valid when
+//!
+//! 1. its corners are not exactly collinear ([`collinear`]),
+//! 2. it does not touch any envelope triangle, and each of its edges that will lie on the
+//!    border does not touch any border-tube triangle ([`Barriers::blocks`]),
+//! 3. it does not meet any triangle of the current approximation (the live faces of the mesh
+//!    plus the triangles already placed in the same hole) anywhere other than at the vertices
+//!    and edges it shares with it *by vertex id* ([`adjacent_triangles_intersect`]); sharing
+//!    all three ids (a duplicate face) counts as meeting.
+//!
+//! Every decision is an exact predicate on the f64 input and envelope points.
+//!
+//! *Vertices with epsilon 0.* Candidates are built from input vertices, which lie strictly
+//! between the envelopes when every epsilon is positive, so touching an envelope means
+//! crossing it. A vertex with epsilon 0 lies *on* both envelopes: every candidate using it
+//! touches a barrier and is rejected. That is conservative (such a vertex and the fans
+//! around it are frozen) and never unsafe. Barrier contact is never excused by position.
+
+use crate::Barriers;
+use crate::grid::FaceGrid;
+use envelope_mesh::{HalfEdgeMesh, VertexId};
+use envelope_predicates::bvh::Aabb;
+use envelope_predicates::{Shared, adjacent_triangles_intersect, collinear, triangles_intersect};
+use glam::DVec3;
+
+/// The current approximation a candidate is tested against: the live faces of the mesh
+/// (indexed by a [`FaceGrid`]) plus triangles placed earlier in the same hole filling.
+#[derive(Clone, Copy, Debug)]
+pub struct Approximation<'a> {
+    /// The mesh (positions of every vertex id; its faces are those in `grid`).
+    pub mesh: &'a HalfEdgeMesh,
+    /// Index of the mesh's live faces.
+    pub grid: &'a FaceGrid,
+    /// Triangles chosen earlier in the current filling, not yet in the mesh.
+    pub placed: &'a [[VertexId; 3]],
+}
+
+/// How two triangles given by vertex ids share corners.
+enum Sharing {
+    None,
+    Some(Shared),
+    All,
+}
+
+fn sharing(f: [VertexId; 3], g: [VertexId; 3]) -> Sharing {
+    let mut pairs = [(0, 0); 3];
+    let mut n = 0;
+    for i in 0..3 {
+        if let Some(j) = g.iter().position(|&x| x == f[i]) {
+            pairs[n] = (i, j);
+            n += 1;
+        }
+    }
+    match n {
+        0 => Sharing::None,
+        1 => Sharing::Some(Shared::Vertex(pairs[0].0, pairs[0].1)),
+        2 => Sharing::Some(Shared::Edge([pairs[0].0, pairs[1].0], [pairs[0].1, pairs[1].1])),
+        _ => Sharing::All,
+    }
+}
+
+/// Exact: closed triangles `f` and `g` (vertex ids, positions `pf`, `pg`) meet away from
+/// the corners they share by id.
+pub(crate) fn meet(f: [VertexId; 3], pf: [DVec3; 3], g: [VertexId; 3], pg: [DVec3; 3]) -> bool {
+    match sharing(f, g) {
+        Sharing::None => triangles_intersect(pf, pg),
+        Sharing::Some(s) => adjacent_triangles_intersect(pf, pg, s),
+        Sharing::All => true,
+    }
+}
+
+impl Approximation<'_> {
+    /// True when the candidate `t` (corners `p`) meets a live face or a placed triangle away
+    /// from shared corners. Exact; conservative boxes.
+    #[must_use]
+    pub fn intersects(&self, t: [VertexId; 3], p: [DVec3; 3]) -> bool {
+        let pos = |g: [VertexId; 3]| g.map(|v| self.mesh.position(v));
+        if self.placed.iter().any(|&g| meet(t, p, g, pos(g))) {
+            return true;
+        }
+        self.grid
+            .any_overlapping(&Aabb::from_triangle(p), |_, g| meet(t, p, g, pos(g)))
+    }
+}
+
+/// Everything a [`Filter`] may look at about one candidate triangle.
+#[derive(Clone, Copy, Debug)]
+pub struct CandidateProfile<'a> {
+    /// The corners, oriented as the triangle would be placed.
+    pub triangle: [VertexId; 3],
+    /// Their positions.
+    pub corners: [DVec3; 3],
+    /// `border_edges[i]`: edge `triangle[i] -> triangle[i + 1]` would be a border edge.
+    pub border_edges: [bool; 3],
+    /// The current approximation.
+    pub approximation: Approximation<'a>,
+}
+
+/// A constraint on candidate triangles: yes or no, never a score.
+pub trait Filter {
+    /// Whether the candidate may be placed.
+    fn accepts(&self, profile: &CandidateProfile<'_>) -> bool;
+}
+
+/// Accepts everything; the default base of [`EnvelopeFilter`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoFilter;
+
+impl Filter for NoFilter {
+    fn accepts(&self, _: &CandidateProfile<'_>) -> bool {
+        true
+    }
+}
+
+impl<F: Fn(&CandidateProfile<'_>) -> bool> Filter for F {
+    fn accepts(&self, profile: &CandidateProfile<'_>) -> bool {
+        self(profile)
+    }
+}
+
+/// The validity test of section 5.1 (see the module docs), after a `base` filter (run
+/// first, so a cheap user constraint saves the geometric tests).
+#[derive(Clone, Copy, Debug)]
+pub struct EnvelopeFilter<'b, F = NoFilter> {
+    barriers: &'b Barriers,
+    base: F,
+}
+
+impl<'b> EnvelopeFilter<'b> {
+    /// The paper's test against `barriers`.
+    #[must_use]
+    pub fn new(barriers: &'b Barriers) -> Self {
+        Self {
+            barriers,
+            base: NoFilter,
+        }
+    }
+}
+
+impl<'b, F: Filter> EnvelopeFilter<'b, F> {
+    /// The paper's test, after `base`.
+    #[must_use]
+    pub fn with_base(barriers: &'b Barriers, base: F) -> Self {
+        Self { barriers, base }
+    }
+
+    /// The barriers this filter tests against.
+    #[must_use]
+    pub fn barriers(&self) -> &'b Barriers {
+        self.barriers
+    }
+}
+
+impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
+    fn accepts(&self, p: &CandidateProfile<'_>) -> bool {
+        let [a, b, c] = p.corners;
+        self.base.accepts(p)
+            && !collinear(a, b, c)
+            && !p.approximation.intersects(p.triangle, p.corners)
+            && !self.barriers.blocks(p.corners, p.border_edges)
+    }
+}

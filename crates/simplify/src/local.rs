@@ -1,0 +1,456 @@
+//! The local algorithm of section 5.2: vertex removal with hole filling, every candidate
+//! triangle checked by the validity test of section 5.1.
+//!
+//! ```text
+//! simplify_local
+//!   queue_vertices                 all vertices, in the queue order
+//!   loop: pop v                    until the queue is empty (or the stop rule says so)
+//!     try_remove_vertex(v)
+//!       remove_vertex_fan          the hole (closed cycle, or open chain at a border)
+//!       fill_hole                  greedy (5.2) or exhaustive, each candidate filtered (5.1)
+//!       commit                     and queue the hole's vertices again
+//!       or rollback                the fan comes back exactly; v leaves the queue
+//! ```
+//!
+//! Choices the paper leaves open, and what this crate does:
+//!
+//! | question | answer |
+//! |---|---|
+//! | queue order | first in, first out ([`Fifo`]): vertex ids increasing, then the neighbours of each removed vertex appended in their counter-clockwise order; a neighbour already queued keeps its place. [`FlatFirst`] is an option. Priorities are computed when a vertex is queued and not updated while it waits. |
+//! | a vertex that failed | leaves the queue; it comes back only when a neighbour is removed (the paper's "neighbors are placed back") |
+//! | aspect-ratio measure | `4 sqrt(3) A / (a² + b² + c²)` (1 equilateral, 0 degenerate); f64, a priority only |
+//! | tie breaks | equal aspect ratios: the triangle with the lexicographically smallest hole positions (the hole starts at the vertex `remove_vertex_fan` names first) |
+//! | candidate triangles | all triples of hole vertices, generated once per hole; a sub-hole considers those whose three vertices are on it |
+//! | degenerate candidates | exactly collinear corners: rejected |
+//! | valence-3 interior vertex | its hole is one triangle; placed if valid and not already a face (a tetrahedron cannot lose a vertex) |
+//! | border vertex | its open chain is filled as a polygon closed by the new border edge, which must not already be an edge and must not touch a border tube (6.2); with no tube in the barriers, border vertices are kept; a border vertex with one face (an ear) is kept |
+//! | topology | a new edge that already exists elsewhere is refused before the filter is asked (link condition); the mesh's `add_faces` is the last guard |
+//! | very large holes | vertices of valence above [`MAX_HOLE`] are kept (the candidate list is cubic in the valence) |
+//! | spatial index | a hashed uniform grid over the live faces, rebuilt coarser as faces grow ([`FaceGrid`]); barriers in a static BVH |
+//!
+//! The output is deterministic: everything runs in one thread in a fixed order.
+
+use crate::fill::{FillContext, Hole, HoleFiller};
+use crate::filter::Filter;
+use crate::grid::FaceGrid;
+use crate::policy::{Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor};
+use crate::{Barriers, EnvelopeFilter, Exhaustive, Greedy};
+use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+use thiserror::Error;
+
+/// Vertices of larger valence are not tried (their candidate lists grow cubically).
+pub const MAX_HOLE: usize = 40;
+
+/// Why [`simplify_local`] stopped with an error.
+#[derive(Clone, Debug, PartialEq, Eq, Error)]
+pub enum SimplifyError {
+    /// The input has a vertex whose faces form several fans.
+    #[error("vertex {0} is not manifold")]
+    NonManifoldVertex(VertexId),
+    /// A structure failed its sanity check (only with [`Options::check_each_step`]).
+    #[error("sanity check failed after trying vertex {after}: {message}")]
+    SanityCheck {
+        /// The vertex tried last.
+        after: VertexId,
+        /// What was wrong.
+        message: String,
+    },
+}
+
+/// Counts of one run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Live vertices before.
+    pub vertices_before: usize,
+    /// Live faces before.
+    pub faces_before: usize,
+    /// Live vertices after.
+    pub vertices_after: usize,
+    /// Live faces after.
+    pub faces_after: usize,
+    /// Removal attempts (queue pops).
+    pub attempts: usize,
+    /// Vertices removed.
+    pub removed: usize,
+    /// Attempts that failed because no valid filling was found.
+    pub no_valid_fill: usize,
+    /// Attempts refused before filling (border without tubes, ears, non-manifold, too large).
+    pub refused: usize,
+    /// Candidate triangles given to the filter.
+    pub candidate_tests: u64,
+}
+
+/// The hole-filling strategy of [`Options`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum HoleFilling {
+    /// The paper's single pass ([`Greedy`]).
+    #[default]
+    Greedy,
+    /// Every triangulation up to a hole size ([`Exhaustive`]).
+    Exhaustive {
+        /// Largest hole tried exhaustively; greedy above.
+        max_vertices: usize,
+    },
+}
+
+/// The queue order of [`Options`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Order {
+    /// The paper's first in, first out ([`Fifo`]).
+    #[default]
+    Fifo,
+    /// Flattest fan first ([`FlatFirst`]).
+    FlatFirst,
+}
+
+/// Options of [`simplify_local`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Options {
+    /// Queue order.
+    pub order: Order,
+    /// Hole filling.
+    pub hole_filling: HoleFilling,
+    /// Stop once at most this many faces remain.
+    pub target_faces: Option<usize>,
+    /// Run the mesh's, the grid's and the queue's sanity checks after every attempt (slow).
+    pub check_each_step: bool,
+}
+
+/// The policies of [`simplify_local_with`].
+pub struct Policies<'p> {
+    /// The validity test (usually an [`EnvelopeFilter`]).
+    pub filter: &'p dyn Filter,
+    /// Queue order.
+    pub order: &'p dyn QueueOrder,
+    /// Hole filling.
+    pub filler: &'p dyn HoleFiller,
+    /// Stop rule.
+    pub stop: &'p dyn StopRule,
+    /// Keep every border vertex (set when there is no border tube).
+    pub keep_border: bool,
+    /// Run sanity checks after every attempt.
+    pub check_each_step: bool,
+}
+
+/// Simplifies `mesh` in place by the local algorithm of section 5.2, with the validity test
+/// of section 5.1 against `barriers` ([`EnvelopeFilter`]). See the module docs.
+///
+/// ```
+/// use envelope_mesh::{generate, HalfEdgeMesh};
+/// use envelope_simplify::{simplify_local, Barriers, Options};
+/// let mut m = HalfEdgeMesh::from_soup(&generate::tetrahedron()).unwrap();
+/// let stats = simplify_local(&mut m, &Barriers::none(), &Options::default()).unwrap();
+/// assert_eq!((stats.removed, m.num_faces()), (0, 4)); // nothing can go
+/// ```
+pub fn simplify_local(mesh: &mut HalfEdgeMesh, barriers: &Barriers, options: &Options) -> Result<Stats, SimplifyError> {
+    let filter = EnvelopeFilter::new(barriers);
+    let order: &dyn QueueOrder = match options.order {
+        Order::Fifo => &Fifo,
+        Order::FlatFirst => &FlatFirst,
+    };
+    let exhaustive;
+    let filler: &dyn HoleFiller = match options.hole_filling {
+        HoleFilling::Greedy => &Greedy,
+        HoleFilling::Exhaustive { max_vertices } => {
+            exhaustive = Exhaustive { max_vertices };
+            &exhaustive
+        }
+    };
+    let target;
+    let stop: &dyn StopRule = match options.target_faces {
+        None => &Exhaust,
+        Some(n) => {
+            target = TargetFaces(n);
+            &target
+        }
+    };
+    let policies = Policies {
+        filter: &filter,
+        order,
+        filler,
+        stop,
+        keep_border: !barriers.has_tubes(),
+        check_each_step: options.check_each_step,
+    };
+    simplify_local_with(mesh, &policies, &mut ())
+}
+
+/// [`simplify_local`] with any policies and a visitor.
+pub fn simplify_local_with(mesh: &mut HalfEdgeMesh, policies: &Policies<'_>, visitor: &mut dyn Visitor) -> Result<Stats, SimplifyError> {
+    if let Some(v) = mesh.vertices().find(|&v| !mesh.is_manifold_vertex(v)) {
+        return Err(SimplifyError::NonManifoldVertex(v));
+    }
+    let mut stats = Stats {
+        vertices_before: mesh.num_vertices(),
+        faces_before: mesh.num_faces(),
+        ..Stats::default()
+    };
+    let mut queue = queue_vertices(mesh, policies.order);
+    let mut local = LocalSimplifier::new(mesh, policies.keep_border);
+    while let Some(v) = queue.pop() {
+        if policies.stop.should_stop(local.mesh().num_faces()) {
+            break;
+        }
+        stats.attempts += 1;
+        visitor.on_attempt(v);
+        match local.try_remove_vertex(v, policies.filter, policies.filler) {
+            Ok(removal) => {
+                stats.removed += 1;
+                visitor.on_removed(v, &removal.faces);
+                for &w in &removal.hole.vertices {
+                    queue.push(local.mesh(), policies.order, w);
+                }
+            }
+            Err(reason) => {
+                if reason == Rejection::NoValidFill {
+                    stats.no_valid_fill += 1;
+                } else {
+                    stats.refused += 1;
+                }
+                visitor.on_rejected(v, reason);
+            }
+        }
+        if policies.check_each_step {
+            let check = local
+                .sanity_check()
+                .and_then(|()| queue.sanity_check(local.mesh()));
+            check.map_err(|message| SimplifyError::SanityCheck { after: v, message })?;
+        }
+    }
+    stats.candidate_tests = local.candidate_tests;
+    stats.vertices_after = local.mesh().num_vertices();
+    stats.faces_after = local.mesh().num_faces();
+    Ok(stats)
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    priority: f64,
+    seq: u64,
+    v: VertexId,
+}
+
+impl PartialEq for Entry {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Entry {}
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Entry {
+    /// Reversed: the heap pops the smallest priority, then the earliest queued.
+    fn cmp(&self, o: &Self) -> Ordering {
+        o.priority.total_cmp(&self.priority).then(o.seq.cmp(&self.seq))
+    }
+}
+
+/// The removal queue: each vertex at most once, smallest priority first, then first queued.
+#[derive(Clone, Debug, Default)]
+pub struct RemovalQueue {
+    heap: BinaryHeap<Entry>,
+    queued: Vec<bool>,
+    seq: u64,
+}
+
+impl RemovalQueue {
+    /// Queues `v` unless it is queued already or is not a live vertex.
+    pub fn push(&mut self, mesh: &HalfEdgeMesh, order: &dyn QueueOrder, v: VertexId) {
+        if !mesh.contains_vertex(v) {
+            return;
+        }
+        if self.queued.len() <= v.index() {
+            self.queued.resize(v.index() + 1, false);
+        }
+        if self.queued[v.index()] {
+            return;
+        }
+        self.queued[v.index()] = true;
+        self.heap.push(Entry {
+            priority: order.priority(mesh, v),
+            seq: self.seq,
+            v,
+        });
+        self.seq += 1;
+    }
+
+    /// Takes the next vertex.
+    pub fn pop(&mut self) -> Option<VertexId> {
+        let e = self.heap.pop()?;
+        self.queued[e.v.index()] = false;
+        Some(e.v)
+    }
+
+    /// Number of queued vertices.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.heap.len()
+    }
+
+    /// True when nothing is queued.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.heap.is_empty()
+    }
+
+    /// Each queued vertex is live, flagged, and in the heap once.
+    pub fn sanity_check(&self, mesh: &HalfEdgeMesh) -> Result<(), String> {
+        let mut seen = vec![false; self.queued.len()];
+        for e in &self.heap {
+            let i = e.v.index();
+            if !self.queued[i] || seen[i] {
+                return Err(format!("queue entry {} unflagged or repeated", e.v));
+            }
+            if !mesh.contains_vertex(e.v) {
+                return Err(format!("queued vertex {} is dead", e.v));
+            }
+            seen[i] = true;
+        }
+        if seen != self.queued {
+            return Err("queue flags disagree with the heap".into());
+        }
+        Ok(())
+    }
+}
+
+/// Every live vertex, in id order, prioritised by `order` (section 5.2: "placing all
+/// vertices in a queue").
+#[must_use]
+pub fn queue_vertices(mesh: &HalfEdgeMesh, order: &dyn QueueOrder) -> RemovalQueue {
+    let mut q = RemovalQueue::default();
+    for v in mesh.vertices() {
+        q.push(mesh, order, v);
+    }
+    q
+}
+
+/// A successful vertex removal.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Removal {
+    /// The hole the vertex left.
+    pub hole: Hole,
+    /// The faces that fill it.
+    pub faces: Vec<FaceId>,
+}
+
+/// A mesh being simplified by vertex removal, with the spatial index of its live faces.
+#[derive(Debug)]
+pub struct LocalSimplifier<'m> {
+    mesh: &'m mut HalfEdgeMesh,
+    grid: FaceGrid,
+    keep_border: bool,
+    /// Candidate triangles given to the filter so far.
+    pub candidate_tests: u64,
+}
+
+impl<'m> LocalSimplifier<'m> {
+    /// Indexes the faces of `mesh`. With `keep_border`, border vertices are never removed.
+    pub fn new(mesh: &'m mut HalfEdgeMesh, keep_border: bool) -> Self {
+        let grid = FaceGrid::from_mesh(mesh);
+        Self {
+            mesh,
+            grid,
+            keep_border,
+            candidate_tests: 0,
+        }
+    }
+
+    /// The mesh.
+    #[must_use]
+    pub fn mesh(&self) -> &HalfEdgeMesh {
+        self.mesh
+    }
+
+    /// The index of the live faces.
+    #[must_use]
+    pub fn grid(&self) -> &FaceGrid {
+        &self.grid
+    }
+
+    /// The mesh's and the grid's sanity checks.
+    pub fn sanity_check(&self) -> Result<(), String> {
+        self.mesh.sanity_check()?;
+        self.grid.sanity_check(self.mesh)
+    }
+
+    /// Tries to remove `v` (section 5.2): removes its fan, fills the hole with `filler`
+    /// (every candidate through `filter`), and keeps the result, or restores the fan exactly.
+    pub fn try_remove_vertex(&mut self, v: VertexId, filter: &dyn Filter, filler: &dyn HoleFiller) -> Result<Removal, Rejection> {
+        if !self.mesh.contains_vertex(v) || self.mesh.is_isolated(v) {
+            return Err(Rejection::NotAVertex);
+        }
+        let border = self.mesh.is_border_vertex(v);
+        if border && self.keep_border {
+            return Err(Rejection::BorderWithoutTubes);
+        }
+        if !self.mesh.is_manifold_vertex(v) {
+            return Err(Rejection::NonManifold);
+        }
+        let fan: Vec<FaceId> = self.mesh.vertex_faces(v).collect();
+        if border && fan.len() < 2 {
+            return Err(Rejection::Ear);
+        }
+        if self.mesh.valence(v) > MAX_HOLE {
+            return Err(Rejection::HoleTooLarge);
+        }
+        let cp = self.mesh.begin();
+        let vertices = match self.mesh.remove_vertex_fan(v) {
+            Ok(h) => h,
+            Err(_) => {
+                self.mesh.rollback(cp);
+                return Err(Rejection::NonManifold);
+            }
+        };
+        let hole = Hole { vertices, open: border };
+        let mut sorted = hole.vertices.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        if sorted.len() != hole.len() {
+            self.mesh.rollback(cp);
+            return Err(Rejection::RepeatedNeighbour);
+        }
+        for &f in &fan {
+            self.grid.remove(f);
+        }
+        let (filled, placed) = self.fill_hole(&hole, filter, filler);
+        let result = if filled {
+            debug_assert_eq!(placed.len() + 2, hole.len());
+            self.mesh.add_faces(&placed).map_err(Rejection::MeshRefused)
+        } else {
+            Err(Rejection::NoValidFill)
+        };
+        match result {
+            Ok(faces) => {
+                self.mesh.remove_vertex(v).expect("the removed vertex is isolated");
+                self.mesh.commit(cp);
+                for &f in &faces {
+                    let t = self.mesh.face_vertices(f);
+                    self.grid.insert(f, t, t.map(|x| self.mesh.position(x)));
+                }
+                self.grid.rebalance();
+                Ok(Removal { hole, faces })
+            }
+            Err(reason) => {
+                self.mesh.rollback(cp);
+                for &f in &fan {
+                    let t = self.mesh.face_vertices(f);
+                    self.grid.insert(f, t, t.map(|x| self.mesh.position(x)));
+                }
+                Err(reason)
+            }
+        }
+    }
+
+    /// Fills `hole` (the fan already removed): whether it worked, and the triangles.
+    fn fill_hole(&mut self, hole: &Hole, filter: &dyn Filter, filler: &dyn HoleFiller) -> (bool, Vec<[VertexId; 3]>) {
+        let mut ctx = FillContext::new(self.mesh, &self.grid, filter, hole);
+        let ok = filler.fill(&mut ctx);
+        self.candidate_tests += ctx.tests;
+        (ok, ctx.placed().to_vec())
+    }
+}
