@@ -71,7 +71,10 @@ impl Barriers {
 
     /// Envelope surfaces (outer, inner; any number) and border tubes. Validates indices and
     /// coordinates (the exact-predicate range).
-    pub fn new(envelopes: Vec<TriangleSoup>, tubes: Vec<TriangleSoup>) -> Result<Self, BarrierError> {
+    pub fn new(
+        envelopes: Vec<TriangleSoup>,
+        tubes: Vec<TriangleSoup>,
+    ) -> Result<Self, BarrierError> {
         let mut triangles = Vec::new();
         let mut kinds = Vec::new();
         let has_tubes = tubes.iter().any(|t| t.num_faces() > 0);

@@ -77,7 +77,12 @@ pub struct FillContext<'a> {
 impl<'a> FillContext<'a> {
     /// A context for filling `hole` in `mesh` (whose live faces `grid` indexes).
     #[must_use]
-    pub fn new(mesh: &'a HalfEdgeMesh, grid: &'a FaceGrid, filter: &'a dyn Filter, hole: &'a Hole) -> Self {
+    pub fn new(
+        mesh: &'a HalfEdgeMesh,
+        grid: &'a FaceGrid,
+        filter: &'a dyn Filter,
+        hole: &'a Hole,
+    ) -> Self {
         Self {
             mesh,
             grid,
@@ -113,7 +118,8 @@ impl<'a> FillContext<'a> {
         let ids = self.triangle(t);
         for k in 0..3 {
             let (i, j) = (t[k], t[(k + 1) % 3]);
-            if !self.hole.boundary_edge(i, j) && m.find_halfedge(ids[k], ids[(k + 1) % 3]).is_some() {
+            if !self.hole.boundary_edge(i, j) && m.find_halfedge(ids[k], ids[(k + 1) % 3]).is_some()
+            {
                 return false;
             }
         }
@@ -181,8 +187,33 @@ pub trait HoleFiller {
 
 /// The paper's single-pass greedy filling (see the module docs). Candidates are ordered by
 /// aspect ratio, larger first; ties by their hole positions, lexicographically.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Greedy;
+///
+/// With `forced_lookahead` (the default, not in the paper) a valid candidate is skipped when
+/// a sub-hole it leaves certainly cannot be filled: it has exactly three vertices whose one
+/// possible triangle would then be rejected, or more vertices all on one line (exact). The classic case is a hole with three
+/// collinear boundary vertices (a straight border): the best-shaped triangle often cuts them
+/// off into a degenerate sub-hole. It is still a single pass: nothing placed is ever undone.
+/// [`Greedy::PAPER`] turns it off.
+#[derive(Clone, Copy, Debug)]
+pub struct Greedy {
+    /// Skip candidates that leave an unfillable three-vertex sub-hole.
+    pub forced_lookahead: bool,
+}
+
+impl Default for Greedy {
+    fn default() -> Self {
+        Self {
+            forced_lookahead: true,
+        }
+    }
+}
+
+impl Greedy {
+    /// Exactly the paper's single pass, without look-ahead.
+    pub const PAPER: Greedy = Greedy {
+        forced_lookahead: false,
+    };
+}
 
 /// All triangles on hole positions, best aspect ratio first (ties: lexicographic).
 fn ranked_triangles(ctx: &FillContext<'_>) -> Vec<[usize; 3]> {
@@ -200,9 +231,60 @@ fn ranked_triangles(ctx: &FillContext<'_>) -> Vec<[usize; 3]> {
     all.into_iter().map(|x| x.1).collect()
 }
 
+/// The sub-holes that triangle `t` (hole positions, on `poly`) leaves in `poly`.
+fn sub_holes(poly: &[usize], t: [usize; 3]) -> [Vec<usize>; 3] {
+    // Positions on the sub-hole, increasing (a rotation of `t` when the sub-hole wraps
+    // around the hole's start, so the orientation is the same).
+    let mut at = t.map(|i| {
+        poly.iter()
+            .position(|&p| p == i)
+            .expect("triangle on the sub-hole")
+    });
+    at.sort_unstable();
+    let (a, b, c) = (at[0], at[1], at[2]);
+    [
+        poly[a..=b].to_vec(),
+        poly[b..=c].to_vec(),
+        poly[c..].iter().chain(&poly[..=a]).copied().collect(),
+    ]
+}
+
 impl Greedy {
+    /// Whether placing `t` leaves a sub-hole that certainly cannot be filled: three vertices
+    /// whose triangle is rejected, or more, all on one line (exact).
+    fn dooms(poly: &[usize], t: [usize; 3], ctx: &mut FillContext<'_>) -> bool {
+        let subs = sub_holes(poly, t);
+        let pos = |i: usize| ctx.mesh.position(ctx.hole.vertices[i]);
+        let on_a_line = |s: &Vec<usize>| {
+            s.len() > 3
+                && s[2..]
+                    .iter()
+                    .all(|&k| envelope_predicates::collinear(pos(s[0]), pos(s[1]), pos(k)))
+        };
+        if subs.iter().any(on_a_line) {
+            return true;
+        }
+        if subs.iter().all(|s| s.len() != 3) {
+            return false;
+        }
+        ctx.place(t);
+        let doomed = subs.iter().filter(|s| s.len() == 3).any(|s| {
+            let mut f = [s[0], s[1], s[2]];
+            f.sort_unstable();
+            !ctx.accepts(f)
+        });
+        ctx.placed.pop();
+        doomed
+    }
+
     /// Fills the sub-hole `poly` (hole positions in cyclic order) recursively.
-    fn fill_sub(ranked: &[[usize; 3]], poly: &[usize], member: &mut [bool], ctx: &mut FillContext<'_>) -> bool {
+    fn fill_sub(
+        &self,
+        ranked: &[[usize; 3]],
+        poly: &[usize],
+        member: &mut [bool],
+        ctx: &mut FillContext<'_>,
+    ) -> bool {
         if poly.len() < 3 {
             return true;
         }
@@ -212,7 +294,10 @@ impl Greedy {
         let choice = ranked
             .iter()
             .filter(|t| t.iter().all(|&i| member[i]))
-            .find(|&&t| ctx.accepts(t))
+            .find(|&&t| {
+                ctx.accepts(t)
+                    && !(self.forced_lookahead && poly.len() > 3 && Self::dooms(poly, t, ctx))
+            })
             .copied();
         for &i in poly {
             member[i] = false;
@@ -221,15 +306,9 @@ impl Greedy {
             return false;
         };
         ctx.place(t);
-        // Positions on the sub-hole, increasing (a rotation of `t` when the sub-hole wraps
-        // around the hole's start, so the orientation is the same).
-        let mut at = t.map(|i| poly.iter().position(|&p| p == i).expect("triangle on the sub-hole"));
-        at.sort_unstable();
-        let (a, b, c) = (at[0], at[1], at[2]);
-        let wrap: Vec<usize> = poly[c..].iter().chain(&poly[..=a]).copied().collect();
-        Self::fill_sub(ranked, &poly[a..=b], member, ctx)
-            && Self::fill_sub(ranked, &poly[b..=c], member, ctx)
-            && Self::fill_sub(ranked, &wrap, member, ctx)
+        sub_holes(poly, t)
+            .iter()
+            .all(|s| self.fill_sub(ranked, s, member, ctx))
     }
 }
 
@@ -242,7 +321,7 @@ impl HoleFiller for Greedy {
         let ranked = ranked_triangles(ctx);
         let poly: Vec<usize> = (0..n).collect();
         let mut member = vec![false; n];
-        Self::fill_sub(&ranked, &poly, &mut member, ctx)
+        self.fill_sub(&ranked, &poly, &mut member, ctx)
     }
 }
 
@@ -268,7 +347,11 @@ impl Default for Exhaustive {
 
 /// All triangulations of the polygon on positions `i..=j` (with edge `i j`), each as a list
 /// of increasing triples.
-fn triangulations(i: usize, j: usize, memo: &mut HashMap<(usize, usize), Vec<Vec<[usize; 3]>>>) -> Vec<Vec<[usize; 3]>> {
+fn triangulations(
+    i: usize,
+    j: usize,
+    memo: &mut HashMap<(usize, usize), Vec<Vec<[usize; 3]>>>,
+) -> Vec<Vec<[usize; 3]>> {
     if j - i < 2 {
         return vec![Vec::new()];
     }
@@ -297,7 +380,7 @@ impl HoleFiller for Exhaustive {
     fn fill(&self, ctx: &mut FillContext<'_>) -> bool {
         let n = ctx.hole().len();
         if n > self.max_vertices {
-            return Greedy.fill(ctx);
+            return Greedy::default().fill(ctx);
         }
         if n < 3 {
             return false;
@@ -306,11 +389,16 @@ impl HoleFiller for Exhaustive {
         let mut apart: HashMap<([usize; 3], [usize; 3]), bool> = HashMap::new();
         let mut best: Option<(f64, Vec<[usize; 3]>)> = None;
         for tri in triangulations(0, n - 1, &mut HashMap::new()) {
-            let worst = tri.iter().map(|&t| ctx.aspect(t)).fold(f64::INFINITY, f64::min);
+            let worst = tri
+                .iter()
+                .map(|&t| ctx.aspect(t))
+                .fold(f64::INFINITY, f64::min);
             if best.as_ref().is_some_and(|b| b.0 >= worst) {
                 continue;
             }
-            let ok = tri.iter().all(|&t| *alone.entry(t).or_insert_with(|| ctx.accepts_with(t, false)))
+            let ok = tri
+                .iter()
+                .all(|&t| *alone.entry(t).or_insert_with(|| ctx.accepts_with(t, false)))
                 && tri.iter().enumerate().all(|(x, &s)| {
                     tri[..x].iter().all(|&t| {
                         *apart.entry((t, s)).or_insert_with(|| {

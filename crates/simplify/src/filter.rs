@@ -58,7 +58,10 @@ fn sharing(f: [VertexId; 3], g: [VertexId; 3]) -> Sharing {
     match n {
         0 => Sharing::None,
         1 => Sharing::Some(Shared::Vertex(pairs[0].0, pairs[0].1)),
-        2 => Sharing::Some(Shared::Edge([pairs[0].0, pairs[1].0], [pairs[0].1, pairs[1].1])),
+        2 => Sharing::Some(Shared::Edge(
+            [pairs[0].0, pairs[1].0],
+            [pairs[0].1, pairs[1].1],
+        )),
         _ => Sharing::All,
     }
 }

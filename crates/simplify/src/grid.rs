@@ -74,14 +74,19 @@ impl FaceGrid {
             })
             .collect();
         let mean = faces.iter().map(|x| max_extent(&x.2)).sum::<f64>() / faces.len().max(1) as f64;
-        let origin = faces
-            .iter()
-            .fold(Aabb::EMPTY, |acc, x| acc.union(&x.2))
-            .min;
-        let origin = if origin.is_finite() { origin } else { DVec3::ZERO };
+        let origin = faces.iter().fold(Aabb::EMPTY, |acc, x| acc.union(&x.2)).min;
+        let origin = if origin.is_finite() {
+            origin
+        } else {
+            DVec3::ZERO
+        };
         let mut g = Self {
             origin,
-            cell: if mean > 0.0 && mean.is_finite() { mean } else { 1.0 },
+            cell: if mean > 0.0 && mean.is_finite() {
+                mean
+            } else {
+                1.0
+            },
             cells: HashMap::default(),
             tris: Vec::new(),
             boxes: Vec::new(),
@@ -184,13 +189,20 @@ impl FaceGrid {
     /// The corners of stored face `f`, if stored.
     #[must_use]
     pub fn get(&self, f: FaceId) -> Option<[VertexId; 3]> {
-        self.tris.get(f.index()).copied().filter(|t| t[0].is_valid())
+        self.tris
+            .get(f.index())
+            .copied()
+            .filter(|t| t[0].is_valid())
     }
 
     /// Calls `visit(face, corners)` once for every stored face whose box overlaps `query`
     /// (possibly a few more whose boxes only share a cell); stops when `visit` returns true
     /// and returns true then.
-    pub fn any_overlapping(&self, query: &Aabb, mut visit: impl FnMut(FaceId, [VertexId; 3]) -> bool) -> bool {
+    pub fn any_overlapping(
+        &self,
+        query: &Aabb,
+        mut visit: impl FnMut(FaceId, [VertexId; 3]) -> bool,
+    ) -> bool {
         let (qlo, qhi) = self.range(query);
         for x in qlo[0]..=qhi[0] {
             for y in qlo[1]..=qhi[1] {
@@ -234,7 +246,9 @@ impl FaceGrid {
             .collect();
         self.cell = mean.max(2.0 * self.cell);
         self.cells.clear();
-        self.tris.iter_mut().for_each(|t| *t = [VertexId::INVALID; 3]);
+        self.tris
+            .iter_mut()
+            .for_each(|t| *t = [VertexId::INVALID; 3]);
         self.live = 0;
         self.extent_sum = 0.0;
         for (f, t, b) in stored {
@@ -250,7 +264,9 @@ impl FaceGrid {
         for f in mesh.faces() {
             n += 1;
             if self.get(f) != Some(mesh.face_vertices(f)) {
-                return Err(format!("face {f} missing from the grid or with other corners"));
+                return Err(format!(
+                    "face {f} missing from the grid or with other corners"
+                ));
             }
             let (lo, hi) = self.range(&self.boxes[f.index()]);
             for x in lo[0]..=hi[0] {

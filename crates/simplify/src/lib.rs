@@ -24,7 +24,9 @@ pub use fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
 pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, NoFilter};
 pub use grid::FaceGrid;
 pub use local::{
-    HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Policies, RemovalQueue, Removal, SimplifyError,
-    Stats, queue_vertices, simplify_local, simplify_local_with,
+    HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Policies, Removal, RemovalQueue,
+    SimplifyError, Stats, queue_vertices, simplify_local, simplify_local_with,
 };
-pub use policy::{Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor, aspect_ratio};
+pub use policy::{
+    Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor, aspect_ratio,
+};

@@ -19,6 +19,7 @@
 //! | queue order | first in, first out ([`Fifo`]): vertex ids increasing, then the neighbours of each removed vertex appended in their counter-clockwise order; a neighbour already queued keeps its place. [`FlatFirst`] is an option. Priorities are computed when a vertex is queued and not updated while it waits. |
 //! | a vertex that failed | leaves the queue; it comes back only when a neighbour is removed (the paper's "neighbors are placed back") |
 //! | aspect-ratio measure | `4 sqrt(3) A / (a² + b² + c²)` (1 equilateral, 0 degenerate); f64, a priority only |
+//! | look-ahead | greedy skips a valid triangle that leaves a sub-hole that certainly cannot be filled (three vertices whose triangle is rejected, or all vertices on one line) (still one pass; [`Greedy::PAPER`] without) |
 //! | tie breaks | equal aspect ratios: the triangle with the lexicographically smallest hole positions (the hole starts at the vertex `remove_vertex_fan` names first) |
 //! | candidate triangles | all triples of hole vertices, generated once per hole; a sub-hole considers those whose three vertices are on it |
 //! | degenerate candidates | exactly collinear corners: rejected |
@@ -33,7 +34,9 @@
 use crate::fill::{FillContext, Hole, HoleFiller};
 use crate::filter::Filter;
 use crate::grid::FaceGrid;
-use crate::policy::{Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor};
+use crate::policy::{
+    Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor,
+};
 use crate::{Barriers, EnvelopeFilter, Exhaustive, Greedy};
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use std::cmp::Ordering;
@@ -83,16 +86,26 @@ pub struct Stats {
 }
 
 /// The hole-filling strategy of [`Options`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum HoleFilling {
-    /// The paper's single pass ([`Greedy`]).
-    #[default]
-    Greedy,
+    /// The paper's single pass ([`Greedy`]), by default with the forced-triangle look-ahead.
+    Greedy {
+        /// See [`Greedy::forced_lookahead`].
+        forced_lookahead: bool,
+    },
     /// Every triangulation up to a hole size ([`Exhaustive`]).
     Exhaustive {
         /// Largest hole tried exhaustively; greedy above.
         max_vertices: usize,
     },
+}
+
+impl Default for HoleFilling {
+    fn default() -> Self {
+        Self::Greedy {
+            forced_lookahead: true,
+        }
+    }
 }
 
 /// The queue order of [`Options`].
@@ -144,15 +157,22 @@ pub struct Policies<'p> {
 /// let stats = simplify_local(&mut m, &Barriers::none(), &Options::default()).unwrap();
 /// assert_eq!((stats.removed, m.num_faces()), (0, 4)); // nothing can go
 /// ```
-pub fn simplify_local(mesh: &mut HalfEdgeMesh, barriers: &Barriers, options: &Options) -> Result<Stats, SimplifyError> {
+pub fn simplify_local(
+    mesh: &mut HalfEdgeMesh,
+    barriers: &Barriers,
+    options: &Options,
+) -> Result<Stats, SimplifyError> {
     let filter = EnvelopeFilter::new(barriers);
     let order: &dyn QueueOrder = match options.order {
         Order::Fifo => &Fifo,
         Order::FlatFirst => &FlatFirst,
     };
-    let exhaustive;
+    let (exhaustive, greedy);
     let filler: &dyn HoleFiller = match options.hole_filling {
-        HoleFilling::Greedy => &Greedy,
+        HoleFilling::Greedy { forced_lookahead } => {
+            greedy = Greedy { forced_lookahead };
+            &greedy
+        }
         HoleFilling::Exhaustive { max_vertices } => {
             exhaustive = Exhaustive { max_vertices };
             &exhaustive
@@ -178,7 +198,11 @@ pub fn simplify_local(mesh: &mut HalfEdgeMesh, barriers: &Barriers, options: &Op
 }
 
 /// [`simplify_local`] with any policies and a visitor.
-pub fn simplify_local_with(mesh: &mut HalfEdgeMesh, policies: &Policies<'_>, visitor: &mut dyn Visitor) -> Result<Stats, SimplifyError> {
+pub fn simplify_local_with(
+    mesh: &mut HalfEdgeMesh,
+    policies: &Policies<'_>,
+    visitor: &mut dyn Visitor,
+) -> Result<Stats, SimplifyError> {
     if let Some(v) = mesh.vertices().find(|&v| !mesh.is_manifold_vertex(v)) {
         return Err(SimplifyError::NonManifoldVertex(v));
     }
@@ -246,7 +270,9 @@ impl PartialOrd for Entry {
 impl Ord for Entry {
     /// Reversed: the heap pops the smallest priority, then the earliest queued.
     fn cmp(&self, o: &Self) -> Ordering {
-        o.priority.total_cmp(&self.priority).then(o.seq.cmp(&self.seq))
+        o.priority
+            .total_cmp(&self.priority)
+            .then(o.seq.cmp(&self.seq))
     }
 }
 
@@ -380,7 +406,12 @@ impl<'m> LocalSimplifier<'m> {
 
     /// Tries to remove `v` (section 5.2): removes its fan, fills the hole with `filler`
     /// (every candidate through `filter`), and keeps the result, or restores the fan exactly.
-    pub fn try_remove_vertex(&mut self, v: VertexId, filter: &dyn Filter, filler: &dyn HoleFiller) -> Result<Removal, Rejection> {
+    pub fn try_remove_vertex(
+        &mut self,
+        v: VertexId,
+        filter: &dyn Filter,
+        filler: &dyn HoleFiller,
+    ) -> Result<Removal, Rejection> {
         if !self.mesh.contains_vertex(v) || self.mesh.is_isolated(v) {
             return Err(Rejection::NotAVertex);
         }
@@ -406,7 +437,10 @@ impl<'m> LocalSimplifier<'m> {
                 return Err(Rejection::NonManifold);
             }
         };
-        let hole = Hole { vertices, open: border };
+        let hole = Hole {
+            vertices,
+            open: border,
+        };
         let mut sorted = hole.vertices.clone();
         sorted.sort_unstable();
         sorted.dedup();
@@ -426,7 +460,9 @@ impl<'m> LocalSimplifier<'m> {
         };
         match result {
             Ok(faces) => {
-                self.mesh.remove_vertex(v).expect("the removed vertex is isolated");
+                self.mesh
+                    .remove_vertex(v)
+                    .expect("the removed vertex is isolated");
                 self.mesh.commit(cp);
                 for &f in &faces {
                     let t = self.mesh.face_vertices(f);
@@ -447,7 +483,12 @@ impl<'m> LocalSimplifier<'m> {
     }
 
     /// Fills `hole` (the fan already removed): whether it worked, and the triangles.
-    fn fill_hole(&mut self, hole: &Hole, filter: &dyn Filter, filler: &dyn HoleFiller) -> (bool, Vec<[VertexId; 3]>) {
+    fn fill_hole(
+        &mut self,
+        hole: &Hole,
+        filter: &dyn Filter,
+        filler: &dyn HoleFiller,
+    ) -> (bool, Vec<[VertexId; 3]>) {
         let mut ctx = FillContext::new(self.mesh, &self.grid, filter, hole);
         let ok = filler.fill(&mut ctx);
         self.candidate_tests += ctx.tests;

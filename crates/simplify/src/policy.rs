@@ -38,7 +38,11 @@ impl QueueOrder for FlatFirst {
             sum += n;
             total += n.length();
         }
-        if total > 0.0 { 1.0 - sum.length() / total } else { 1.0 }
+        if total > 0.0 {
+            1.0 - sum.length() / total
+        } else {
+            1.0
+        }
     }
 }
 
@@ -110,5 +114,9 @@ pub fn aspect_ratio(t: [glam::DVec3; 3]) -> f64 {
     let [a, b, c] = t;
     let area2 = (b - a).cross(c - a).length();
     let s = (b - a).length_squared() + (c - b).length_squared() + (a - c).length_squared();
-    if s > 0.0 { 2.0 * 3f64.sqrt() * area2 / s } else { 0.0 }
+    if s > 0.0 {
+        2.0 * 3f64.sqrt() * area2 / s
+    } else {
+        0.0
+    }
 }
