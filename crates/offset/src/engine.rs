@@ -16,7 +16,7 @@
 //! last accepted step, the step is halved and retried; otherwise the mover stops.
 //!
 //! Parallelism with a deterministic result: the paper moves vertices "sequentially". Here the
-//! movers are greedily coloured so that no two movers of one colour share a star face, and
+//! movers are greedily coloured so that no two movers of one colour share a star vertex, and
 //! one colour of one group (outer, inner, tubes) is attempted at a time, in parallel, against
 //! the frozen scene. Accepted moves whose new star boxes overlap another accepted move's are
 //! re-checked one by one in mover order after the others are committed. The outcome depends
@@ -105,7 +105,57 @@ pub(crate) fn tris_intersect(t1: [DVec3; 3], f: [u32; 3], t2: [DVec3; 3], g: [u3
     }
 }
 
-/// Exact check of mover `m` at parameter `t` against the scene.
+/// A triangle with its f64 plane normal and the scale of its error bound.
+#[derive(Clone, Copy)]
+struct Planar {
+    t: [DVec3; 3],
+    n: DVec3,
+    m12: f64,
+}
+
+impl Planar {
+    #[inline]
+    fn new(t: [DVec3; 3]) -> Self {
+        let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+        Planar {
+            t,
+            n: e1.cross(e2),
+            m12: e1.abs().max_element() * e2.abs().max_element(),
+        }
+    }
+
+    /// The unshared points of `q` lie strictly on one side of this plane, beyond a bound on
+    /// the rounding error of the f64 orientation (a generous multiple of Shewchuk's
+    /// `o3derrboundA`).
+    #[inline]
+    fn separates(&self, q: [DVec3; 3], shared: [bool; 3]) -> bool {
+        let (mut pos, mut neg, mut any) = (true, true, false);
+        for k in 0..3 {
+            if shared[k] {
+                continue;
+            }
+            any = true;
+            let d = q[k] - self.t[0];
+            let v = self.n.dot(d);
+            let tol = 6e-14 * self.m12 * d.abs().max_element();
+            pos &= v > tol;
+            neg &= v < -tol;
+        }
+        any && (pos || neg)
+    }
+}
+
+/// True when the closed triangles certainly meet nowhere except at the vertices they share
+/// (`fs`/`gs` mark, per triangle, the vertices the other one has too): the unshared vertices
+/// of one lie strictly on one side of the other's plane, so the intersection is at most the
+/// shared vertices. A `false` decides nothing.
+#[inline]
+fn surely_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) -> bool {
+    p1.separates(p2.t, gs) || p2.separates(p1.t, fs)
+}
+
+/// Exact check of mover `m` at parameter `t` against the scene: one BVH query with the box
+/// of the whole star, then each candidate against each star face whose box it overlaps.
 fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
     let new = m.positions_at(t);
     let pos = |i: u32| match m.verts.iter().position(|&x| x == i) {
@@ -119,36 +169,50 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
             scene.alias[i as usize]
         }
     };
-    for &f in &m.star {
-        let fv = scene.faces[f as usize];
-        let tf = fv.map(pos);
-        let af = fv.map(alias);
-        let bf = Aabb::from_triangle(tf);
-        let mut hit = false;
-        scene.bvh.for_each_overlapping(&bf, |g| {
-            if hit || g == f {
-                return;
-            }
-            if g < f && m.star.contains(&g) {
-                return; // tested from g's side
-            }
-            if (scene.exempt)(f, g) {
-                return;
-            }
-            let gv = scene.faces[g as usize];
-            let tg = gv.map(pos);
-            if !bf.overlaps(&Aabb::from_triangle(tg)) {
-                return;
-            }
-            if tris_intersect(tf, af, tg, gv.map(alias)) {
-                hit = true;
-            }
-        });
+    let star: Vec<(u32, Planar, [u32; 3], Aabb)> = m
+        .star
+        .iter()
+        .map(|&f| {
+            let fv = scene.faces[f as usize];
+            let tf = fv.map(pos);
+            (f, Planar::new(tf), fv.map(alias), Aabb::from_triangle(tf))
+        })
+        .collect();
+    let all = star.iter().fold(Aabb::EMPTY, |b, s| b.union(&s.3));
+    let mut hit = false;
+    scene.bvh.for_each_overlapping(&all, |g| {
         if hit {
-            return false;
+            return;
         }
-    }
-    true
+        let gv = scene.faces[g as usize];
+        let tg = gv.map(pos);
+        let bg = Aabb::from_triangle(tg);
+        if !bg.overlaps(&all) {
+            return;
+        }
+        let g_in_star = m.star.contains(&g);
+        let ag = gv.map(alias);
+        let pg = Planar::new(tg);
+        for (f, pf, af, bf) in &star {
+            let (f, af) = (*f, *af);
+            if g == f || (g_in_star && g < f) || !bf.overlaps(&bg) || (scene.exempt)(f, g) {
+                continue;
+            }
+            if surely_apart(
+                pf,
+                af.map(|x| ag.contains(&x)),
+                &pg,
+                ag.map(|x| af.contains(&x)),
+            ) {
+                continue;
+            }
+            if tris_intersect(pf.t, af, tg, ag) {
+                hit = true;
+                return;
+            }
+        }
+    });
+    !hit
 }
 
 fn commit(scene: &mut Scene<'_>, m: &mut Mover, t: f64) {
@@ -174,20 +238,26 @@ fn reject(m: &mut Mover, policy: StepPolicy) {
     }
 }
 
-/// Batches of movers: by group, then greedy colour (no two movers of a batch share a face).
-fn batches(movers: &[Mover], num_faces: usize) -> Vec<Vec<u32>> {
-    let mut face_movers: Vec<Vec<u32>> = vec![Vec::new(); num_faces];
+/// Batches of movers: by group, then greedy colour such that no two movers of a batch have
+/// stars sharing a vertex (so concurrent moves rarely need the sequential re-check).
+fn batches(movers: &[Mover], faces: &[[u32; 3]], num_vertices: usize) -> Vec<Vec<u32>> {
+    let mut vert_movers: Vec<Vec<u32>> = vec![Vec::new(); num_vertices];
     for (i, m) in movers.iter().enumerate() {
         for &f in &m.star {
-            face_movers[f as usize].push(i as u32);
+            for v in faces[f as usize] {
+                let l = &mut vert_movers[v as usize];
+                if l.last() != Some(&(i as u32)) {
+                    l.push(i as u32);
+                }
+            }
         }
     }
     let mut color = vec![u32::MAX; movers.len()];
     let mut used: Vec<bool> = Vec::new();
     for i in 0..movers.len() {
         used.clear();
-        for &f in &movers[i].star {
-            for &o in &face_movers[f as usize] {
+        for v in movers[i].star.iter().flat_map(|&f| faces[f as usize]) {
+            for &o in &vert_movers[v as usize] {
                 let c = color[o as usize];
                 if c != u32::MAX {
                     if used.len() <= c as usize {
@@ -239,7 +309,7 @@ pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPoli
             m.done = true;
         }
     }
-    let batches = batches(movers, scene.faces.len());
+    let batches = batches(movers, &scene.faces, scene.positions.len());
     loop {
         let mut any = false;
         for batch in &batches {

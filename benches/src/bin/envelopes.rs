@@ -1,0 +1,97 @@
+//! Envelope benchmark (Cohen et al. 4.1, 4.2): both methods on the bunny and the armadillo of
+//! the corpus and on a generated ~1M-face torus, at 1/64 %, 1/16 %, 1/4 % and 1 % of the
+//! bounding-box diagonal. Reports time, peak RSS of the run (`VmHWM`, reset before each run
+//! through `/proc/self/clear_refs`), the fraction of the requested epsilon achieved (median
+//! and 5th percentile over both sides of every vertex) and the exact proof result. Tubes are
+//! off (closed models).
+//!
+//! `cargo run --release -p envelope-benches --bin envelopes [-- --quick] [--skip-large]
+//! [--corpus DIR]`. `--quick` (CI smoke): a generated sphere and torus only, two epsilons.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use envelope_mesh::{TriangleSoup, generate};
+use envelope_offset::{EnvelopeOptions, EpsilonField, Method, build_envelopes};
+
+fn vm_hwm_mib() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map_or(f64::NAN, |kib| kib / 1024.0)
+}
+
+fn quantile(sorted: &[f64], q: f64) -> f64 {
+    sorted[((sorted.len() - 1) as f64 * q).round() as usize]
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let quick = args.iter().any(|a| a == "--quick");
+    let skip_large = args.iter().any(|a| a == "--skip-large");
+    let corpus = args
+        .iter()
+        .position(|a| a == "--corpus")
+        .and_then(|i| args.get(i + 1))
+        .map_or_else(|| PathBuf::from(".corpus/data/meshes"), PathBuf::from);
+    let mut meshes: Vec<(String, TriangleSoup)> = Vec::new();
+    let percents: &[(&str, f64)] = if quick {
+        meshes.push(("icosphere(4)".into(), generate::icosphere(4, 1.0)));
+        meshes.push(("torus 64x24".into(), generate::torus(1.0, 0.3, 64, 24)));
+        &[("1/64%", 1.0 / 64.0), ("1%", 1.0)]
+    } else {
+        for name in ["bunny00.off", "armadillo.off"] {
+            match envelope_io::read_path(corpus.join(name)) {
+                Ok((s, _)) => meshes.push((name.into(), s)),
+                Err(e) => eprintln!("skipping {name}: {e} (run scripts/corpus.sh)"),
+            }
+        }
+        if !skip_large {
+            meshes.push(("torus 1000x500 (1M)".into(), generate::torus(1.0, 0.3, 1000, 500)));
+        }
+        &[("1/64%", 1.0 / 64.0), ("1/16%", 1.0 / 16.0), ("1/4%", 0.25), ("1%", 1.0)]
+    };
+    println!(
+        "| mesh | faces | eps | method | time (s) | peak RSS (MiB) | median | p5 | proved | repair rounds |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let mut all_proved = true;
+    for (name, soup) in &meshes {
+        let diag = soup.diagonal();
+        for &(label, pct) in percents {
+            for method in [Method::Numerical, Method::Analytical] {
+                let _ = std::fs::write("/proc/self/clear_refs", "5");
+                let mut o = EnvelopeOptions::new(EpsilonField::Constant(pct / 100.0 * diag));
+                o.method = method;
+                o.tube_segments = None;
+                let t = Instant::now();
+                let env = match build_envelopes(soup, &o) {
+                    Ok(e) => e,
+                    Err(e) => {
+                        println!("| {name} | {} | {label} | {method:?} | error: {e} |", soup.num_faces());
+                        all_proved = false;
+                        continue;
+                    }
+                };
+                let secs = t.elapsed().as_secs_f64();
+                let f = env.achieved_fractions();
+                all_proved &= env.proof.holds();
+                println!(
+                    "| {name} | {} | {label} | {method:?} | {secs:.2} | {:.0} | {:.1}% | {:.1}% | {} | {} |",
+                    soup.num_faces(),
+                    vm_hwm_mib(),
+                    100.0 * quantile(&f, 0.5),
+                    100.0 * quantile(&f, 0.05),
+                    if env.proof.holds() { "yes" } else { "NO" },
+                    env.proof.repair_rounds
+                );
+            }
+        }
+    }
+    if all_proved { ExitCode::SUCCESS } else { ExitCode::FAILURE }
+}
