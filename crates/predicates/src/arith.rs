@@ -1,6 +1,11 @@
 //! Generic polynomial evaluation: every non-orientation primitive is written once over [`Num`]
 //! and evaluated either with a rigorous running error bound ([`ErrF64`], the filter) or exactly
 //! ([`rug::Rational`], the fallback).
+//!
+//! Public for crates that write their own exact predicates on the same pattern (the prism
+//! crate's bilinear-patch tests): evaluate the polynomial on [`ErrF64`], take
+//! [`ErrF64::sign`], and when it is `None` evaluate it again on `Rational` and take
+//! [`rational_sign`].
 
 use glam::DVec3;
 use rug::Rational;
@@ -8,10 +13,14 @@ use rug::Rational;
 use crate::Sign;
 
 /// A ring in which the predicate polynomials are evaluated.
-pub(crate) trait Num: Sized {
+pub trait Num: Sized + Clone {
+    /// An input double, exactly.
     fn lit(x: f64) -> Self;
+    /// `self + o`.
     fn add(&self, o: &Self) -> Self;
+    /// `self - o`.
     fn sub(&self, o: &Self) -> Self;
+    /// `self * o`.
     fn mul(&self, o: &Self) -> Self;
 }
 
@@ -24,7 +33,7 @@ const TINY: f64 = 1.0e-318;
 
 /// An f64 approximation `v` of an exact real `x` with a rigorous bound `|v - x| <= e`.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct ErrF64 {
+pub struct ErrF64 {
     v: f64,
     e: f64,
 }
@@ -63,7 +72,7 @@ impl Num for ErrF64 {
 impl ErrF64 {
     /// The certified sign, or `None` when the filter cannot decide.
     #[inline]
-    pub(crate) fn sign(self) -> Option<Sign> {
+    pub fn sign(self) -> Option<Sign> {
         if !(self.v.is_finite() && self.e.is_finite()) {
             None
         } else if self.v > self.e {
@@ -89,7 +98,7 @@ impl ErrF64 {
 ///
 /// # Panics
 /// On NaN or an infinity: predicates are undefined there (inputs are validated at the boundary).
-pub(crate) fn rational(x: f64) -> Rational {
+pub fn rational(x: f64) -> Rational {
     Rational::from_f64(x).unwrap_or_else(|| {
         panic!("envelope-predicates: non-finite coordinate {x:?}; validate inputs (envelope_mesh::check_coordinate)")
     })
@@ -111,29 +120,37 @@ impl Num for Rational {
 }
 
 /// Exact sign of a rational.
-pub(crate) fn rational_sign(r: &Rational) -> Sign {
+pub fn rational_sign(r: &Rational) -> Sign {
     Sign::from_ordering(r.cmp0())
 }
 
 /// A 3-vector over `N`.
-pub(crate) struct V<N>(pub N, pub N, pub N);
+#[derive(Clone, Debug)]
+pub struct V<N>(pub N, pub N, pub N);
 
 impl<N: Num> V<N> {
-    pub(crate) fn pt(p: DVec3) -> Self {
+    /// An input point, exactly.
+    pub fn pt(p: DVec3) -> Self {
         V(N::lit(p.x), N::lit(p.y), N::lit(p.z))
     }
     /// `b - a` for input points (the subtraction is the first rounded operation).
-    pub(crate) fn diff(b: DVec3, a: DVec3) -> Self {
+    pub fn diff(b: DVec3, a: DVec3) -> Self {
         let (b, a) = (V::<N>::pt(b), V::<N>::pt(a));
         V(b.0.sub(&a.0), b.1.sub(&a.1), b.2.sub(&a.2))
     }
-    pub(crate) fn dot(&self, o: &Self) -> N {
+    /// `self - o`.
+    pub fn sub(&self, o: &Self) -> Self {
+        V(self.0.sub(&o.0), self.1.sub(&o.1), self.2.sub(&o.2))
+    }
+    /// Dot product.
+    pub fn dot(&self, o: &Self) -> N {
         self.0
             .mul(&o.0)
             .add(&self.1.mul(&o.1))
             .add(&self.2.mul(&o.2))
     }
-    pub(crate) fn cross(&self, o: &Self) -> Self {
+    /// Cross product.
+    pub fn cross(&self, o: &Self) -> Self {
         V(
             self.1.mul(&o.2).sub(&self.2.mul(&o.1)),
             self.2.mul(&o.0).sub(&self.0.mul(&o.2)),

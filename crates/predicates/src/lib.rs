@@ -20,7 +20,7 @@
 //! answers. NaN/infinite inputs panic.
 #![forbid(unsafe_code)]
 
-mod arith;
+pub mod arith;
 pub mod bvh;
 pub mod generic;
 mod kernel;
