@@ -3,7 +3,7 @@
 //! static BVH over all of them.
 
 use envelope_mesh::{CoordError, TriangleSoup, check_coordinate};
-use envelope_predicates::bvh::{Aabb, Bvh};
+use envelope_predicates::bvh::{Aabb, Bvh, NodeKind};
 use envelope_predicates::{SegmentTriangle, segment_triangle, triangles_intersect};
 use glam::DVec3;
 use thiserror::Error;
@@ -141,21 +141,87 @@ impl Barriers {
         let Some(bvh) = &self.bvh else {
             return false;
         };
+        let Some(root) = bvh.root() else {
+            return false;
+        };
         let query = Aabb::from_triangle(t);
-        let mut hit = false;
-        bvh.for_each_overlapping(&query, |i| {
-            if hit {
-                return;
+        let plane = SlabFilter::new(t);
+        let mut stack = vec![root];
+        while let Some(n) = stack.pop() {
+            let bounds = bvh.bounds(n);
+            if !bounds.overlaps(&query) || plane.separates(&bounds) {
+                continue;
             }
-            let b = self.triangles[i as usize];
-            hit = match self.kinds[i as usize] {
-                BarrierKind::Envelope => triangles_intersect(t, b),
-                BarrierKind::Tube => (0..3).any(|k| {
-                    border_edges[k]
-                        && segment_triangle(t[k], t[(k + 1) % 3], b) != SegmentTriangle::Disjoint
-                }),
-            };
-        });
-        hit
+            match bvh.kind(n) {
+                NodeKind::Interior(a, b) => {
+                    stack.push(b);
+                    stack.push(a);
+                }
+                NodeKind::Leaf(items) => {
+                    for &i in items {
+                        let b = self.triangles[i as usize];
+                        let hit = match self.kinds[i as usize] {
+                            BarrierKind::Envelope => {
+                                !plane.separates(&Aabb::from_triangle(b))
+                                    && triangles_intersect(t, b)
+                            }
+                            BarrierKind::Tube => (0..3).any(|k| {
+                                border_edges[k]
+                                    && segment_triangle(t[k], t[(k + 1) % 3], b)
+                                        != SegmentTriangle::Disjoint
+                            }),
+                        };
+                        if hit {
+                            return true;
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
+}
+
+/// A conservative f64 separation test along the normal of a triangle `t`: `separates(box)`
+/// is true only when the exact values of `n . x` over the box and over `t` do not overlap
+/// (so the box cannot meet `t`). `n` is the f64 cross product, any vector would do: the
+/// test is a separating-axis test on that axis, with every dot product's rounding error
+/// (at most `3u sum |n_i x_i|`, bounded by `1e-15 |n|_1 max|x|` plus an underflow term)
+/// added on both sides. It only prunes work; the decisions are the exact predicates'.
+struct SlabFilter {
+    n: DVec3,
+    n1: f64,
+    t_min: f64,
+    t_max: f64,
+    t_mag: f64,
+}
+
+impl SlabFilter {
+    fn new(t: [DVec3; 3]) -> Self {
+        let n = (t[1] - t[0]).cross(t[2] - t[0]);
+        let d = t.map(|p| n.dot(p));
+        let t_mag = t.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
+        Self {
+            n,
+            n1: n.abs().element_sum(),
+            t_min: d[0].min(d[1]).min(d[2]),
+            t_max: d[0].max(d[1]).max(d[2]),
+            t_mag,
+        }
+    }
+
+    fn separates(&self, b: &Aabb) -> bool {
+        if !self.n1.is_finite() || self.n1 == 0.0 {
+            return false;
+        }
+        let lo = DVec3::select(self.n.cmpge(DVec3::ZERO), b.min, b.max);
+        let hi = DVec3::select(self.n.cmpge(DVec3::ZERO), b.max, b.min);
+        let (b_min, b_max) = (self.n.dot(lo), self.n.dot(hi));
+        let mag = self
+            .t_mag
+            .max(b.min.abs().max_element())
+            .max(b.max.abs().max_element());
+        let slack = 2.0 * (1e-15 * self.n1 * mag + 1e-300);
+        b_min > self.t_max + slack || b_max < self.t_min - slack
     }
 }

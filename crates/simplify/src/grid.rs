@@ -8,10 +8,11 @@
 //! rounding. A query visits each stored triangle once, in the first cell of the overlap of
 //! the two cell ranges (no visited-set needed, so queries take `&self`).
 //!
-//! Triangles grow as the surface is simplified. [`FaceGrid::rebalance`] rebuilds the grid
-//! with a larger cell when the mean box extent of the live triangles exceeds two cells, so a
-//! triangle stays in a few dozen cells at most; rebuilds double the cell at least, so their
-//! total cost is amortised.
+//! The cell starts at twice the mean box extent of the faces. Triangles grow as the surface is
+//! simplified: [`FaceGrid::rebalance`] rebuilds the grid when the mean extent exceeds one
+//! cell, with a cell of twice the mean extent again, so a typical triangle lies in one to
+//! eight cells; rebuilds at least double the cell, so their total cost is amortised. Keys
+//! are the three cell coordinates (clamped to 21 bits, still monotone) packed in a `u64`.
 
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
@@ -19,7 +20,22 @@ use glam::DVec3;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
-type Cell = [i32; 3];
+/// Rebuild when the mean box extent of the live faces exceeds this many cells ...
+const REBUILD_AT: f64 = 1.0;
+/// ... with this many mean extents per cell.
+const NEW_CELL: f64 = 2.0;
+
+/// A cell key: three 21-bit coordinates packed in a `u64`.
+type Cell = u64;
+type CellRange = ([i32; 3], [i32; 3]);
+
+/// Cell coordinates are clamped to `-LIMIT..LIMIT` (clamping is monotone, so still sound).
+const LIMIT: i32 = 1 << 20;
+
+fn key(x: i32, y: i32, z: i32) -> Cell {
+    let f = |c: i32| u64::from((c + LIMIT) as u32) & 0x1f_ffff;
+    f(x) | (f(y) << 21) | (f(z) << 42)
+}
 
 /// A multiply-rotate hasher for cell keys (`std`'s SipHash is several times slower here).
 #[derive(Default)]
@@ -34,11 +50,9 @@ impl Hasher for CellHasher {
             self.write_u64(u64::from(b));
         }
     }
-    fn write_i32(&mut self, i: i32) {
-        self.write_u64(u64::from(i as u32));
-    }
     fn write_u64(&mut self, i: u64) {
-        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+        let h = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+        self.0 = h ^ (h >> 29);
     }
     fn write_usize(&mut self, i: usize) {
         self.write_u64(i as u64);
@@ -83,7 +97,7 @@ impl FaceGrid {
         let mut g = Self {
             origin,
             cell: if mean > 0.0 && mean.is_finite() {
-                mean
+                NEW_CELL * mean
             } else {
                 1.0
             },
@@ -118,11 +132,11 @@ impl FaceGrid {
     }
 
     fn coord(&self, x: f64, o: f64) -> i32 {
-        // Saturating float-to-int cast: monotone too.
-        ((x - o) / self.cell).floor() as i32
+        // Saturating float-to-int cast and clamp: both monotone.
+        (((x - o) / self.cell).floor() as i32).clamp(-LIMIT, LIMIT - 1)
     }
 
-    fn range(&self, b: &Aabb) -> (Cell, Cell) {
+    fn range(&self, b: &Aabb) -> CellRange {
         (
             [0, 1, 2].map(|k| self.coord(b.min[k], self.origin[k])),
             [0, 1, 2].map(|k| self.coord(b.max[k], self.origin[k])),
@@ -152,7 +166,7 @@ impl FaceGrid {
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
                 for z in lo[2]..=hi[2] {
-                    self.cells.entry([x, y, z]).or_default().push(f);
+                    self.cells.entry(key(x, y, z)).or_default().push(f);
                 }
             }
         }
@@ -169,7 +183,7 @@ impl FaceGrid {
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
                 for z in lo[2]..=hi[2] {
-                    let key = [x, y, z];
+                    let key = key(x, y, z);
                     if let Some(list) = self.cells.get_mut(&key) {
                         if let Some(k) = list.iter().position(|&g| g == f) {
                             list.swap_remove(k);
@@ -207,7 +221,7 @@ impl FaceGrid {
         for x in qlo[0]..=qhi[0] {
             for y in qlo[1]..=qhi[1] {
                 for z in qlo[2]..=qhi[2] {
-                    let Some(list) = self.cells.get(&[x, y, z]) else {
+                    let Some(list) = self.cells.get(&key(x, y, z)) else {
                         continue;
                     };
                     for &f in list {
@@ -230,21 +244,21 @@ impl FaceGrid {
         false
     }
 
-    /// Rebuilds with a larger cell when the mean box extent exceeds two cells. Returns true
+    /// Rebuilds with a larger cell when the mean box extent exceeds one cell. Returns true
     /// when it rebuilt.
     pub fn rebalance(&mut self) -> bool {
         if self.live == 0 {
             return false;
         }
         let mean = self.extent_sum / self.live as f64;
-        if mean <= 2.0 * self.cell {
+        if mean <= REBUILD_AT * self.cell {
             return false;
         }
         let stored: Vec<(FaceId, [VertexId; 3], Aabb)> = (0..self.tris.len())
             .filter(|&i| self.tris[i][0].is_valid())
             .map(|i| (FaceId::from_index(i), self.tris[i], self.boxes[i]))
             .collect();
-        self.cell = mean.max(2.0 * self.cell);
+        self.cell = (NEW_CELL * mean).max(2.0 * self.cell);
         self.cells.clear();
         self.tris
             .iter_mut()
@@ -272,7 +286,11 @@ impl FaceGrid {
             for x in lo[0]..=hi[0] {
                 for y in lo[1]..=hi[1] {
                     for z in lo[2]..=hi[2] {
-                        if !self.cells.get(&[x, y, z]).is_some_and(|l| l.contains(&f)) {
+                        if !self
+                            .cells
+                            .get(&key(x, y, z))
+                            .is_some_and(|l| l.contains(&f))
+                        {
                             return Err(format!("face {f} missing from cell {x},{y},{z}"));
                         }
                     }
@@ -283,5 +301,57 @@ impl FaceGrid {
             return Err(format!("grid stores {} faces, mesh has {n}", self.live));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use envelope_mesh::generate;
+
+    /// Queries agree with brute force over box overlap, before and after edits and rebuilds.
+    #[test]
+    fn queries_match_brute_force() {
+        let mut m = HalfEdgeMesh::from_soup(&generate::icosphere(3, 1.0)).unwrap();
+        let mut g = FaceGrid::from_mesh(&m);
+        g.sanity_check(&m).unwrap();
+        let check = |g: &FaceGrid, m: &HalfEdgeMesh| {
+            for f in m.faces().step_by(7) {
+                let t = m.face_vertices(f).map(|v| m.position(v));
+                let q = Aabb::from_triangle([t[0] * 1.3, t[1] * 0.8, t[2]]);
+                let mut got = Vec::new();
+                g.any_overlapping(&q, |h, _| {
+                    got.push(h);
+                    false
+                });
+                got.sort();
+                let n = got.len();
+                got.dedup();
+                assert_eq!(n, got.len(), "a face visited twice");
+                let want: Vec<FaceId> = m
+                    .faces()
+                    .filter(|&h| {
+                        let b = Aabb::from_triangle(m.face_vertices(h).map(|v| m.position(v)));
+                        b.overlaps(&q)
+                    })
+                    .collect();
+                assert_eq!(got, want);
+            }
+        };
+        check(&g, &m);
+        // Remove a few fans; grow the boxes by hand through a rebuild.
+        for v in [VertexId(0), VertexId(40), VertexId(200)] {
+            let fan: Vec<FaceId> = m.vertex_faces(v).collect();
+            for &f in &fan {
+                g.remove(f);
+            }
+            m.remove_vertex_fan(v).unwrap();
+        }
+        g.sanity_check(&m).unwrap();
+        check(&g, &m);
+        g.cell *= 0.25;
+        assert!(g.rebalance());
+        g.sanity_check(&m).unwrap();
+        check(&g, &m);
     }
 }
