@@ -4,7 +4,7 @@
 //! * [`Barriers`]: the envelopes and border tubes as plain triangles (built elsewhere).
 //! * [`EnvelopeFilter`]: the validity test of 5.1, one [`Filter`] shared with the global
 //!   simplifier; [`FaceGrid`] indexes the current approximation for it.
-//! * [`simplify_local`]: the local algorithm of 5.2 (see [`local`](crate::local) for every
+//! * [`simplify_local`]: the local algorithm of 5.2 (see [`local`] for every
 //!   choice the paper leaves open); [`simplify_local_with`] takes any [`Policies`]:
 //!   [`QueueOrder`], [`HoleFiller`] ([`Greedy`], [`Exhaustive`]), [`StopRule`], [`Visitor`].
 //!
