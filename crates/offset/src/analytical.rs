@@ -144,7 +144,7 @@ fn point_in_prism(p: DVec3, t: [DVec3; 3], d: [DVec3; 3]) -> bool {
 fn barycentric_inside(p: DVec3, c: [DVec3; 3]) -> bool {
     let n = (c[1] - c[0]).cross(c[2] - c[0]);
     let nn = n.length_squared();
-    if !(nn > 0.0) {
+    if nn.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return false;
     }
     let tol = -1e-9 * nn;
@@ -206,7 +206,7 @@ fn line_params(p: DVec3, e: DVec3, a: DVec3, w: DVec3) -> Option<(f64, f64)> {
     let (ee, ew, ww) = (e.dot(e), e.dot(w), w.dot(w));
     let (er, wr) = (e.dot(r), w.dot(r));
     let den = ee * ww - ew * ew;
-    if !(den > 1e-14 * ee * ww) {
+    if den.partial_cmp(&(1e-14 * ee * ww)) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
     let u = (ew * wr - ww * er) / den;
@@ -327,6 +327,6 @@ mod tests {
             DVec3::new(0.4, -3.0, 1.0),
         ];
         let delta = closest_in_prism(T, d, g);
-        assert!(delta.is_finite() && delta >= 1.0 && delta < 1.1, "{delta}");
+        assert!((1.0..1.1).contains(&delta), "{delta}");
     }
 }

@@ -305,7 +305,8 @@ fn star_box(scene: &Scene<'_>, m: &Mover, t: f64) -> Aabb {
 /// Grows every mover as far as the exact checks allow (see the module docs).
 pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPolicy) {
     for m in movers.iter_mut() {
-        if !(m.target > m.t) || !(m.step > 0.0) {
+        let positive = |x: f64| x.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater);
+        if !positive(m.target - m.t) || !positive(m.step) {
             m.done = true;
         }
     }
