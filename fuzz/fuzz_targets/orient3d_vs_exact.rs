@@ -6,63 +6,10 @@
 //! out-of-range coordinates (see `in_exact_range`) are skipped.
 #![no_main]
 
-use envelope_predicates::{Checked, Exact, Filtered, Kernel, in_exact_range, next_down, next_up};
-use glam::DVec3;
+use envelope_fuzz::input::{Input, ok};
+use envelope_predicates::{Checked, Exact, Filtered, Kernel, in_exact_range};
 
 type K = Checked<Filtered, Exact>;
-
-struct Input<'a>(&'a [u8]);
-
-impl Input<'_> {
-    fn u8(&mut self) -> u8 {
-        match self.0.split_first() {
-            Some((&b, rest)) => {
-                self.0 = rest;
-                b
-            }
-            None => 0,
-        }
-    }
-    fn raw(&mut self) -> f64 {
-        let mut b = [0u8; 8];
-        for x in &mut b {
-            *x = self.u8();
-        }
-        f64::from_le_bytes(b)
-    }
-    fn scalar(&mut self) -> f64 {
-        match self.u8() % 4 {
-            0 | 1 => (self.u8() as i8) as f64 / 10f64.powi((self.u8() % 8) as i32),
-            2 => {
-                let mut x = (self.u8() as i8) as f64 / 10f64.powi((self.u8() % 4) as i32);
-                let k = self.u8() as i8;
-                for _ in 0..k.unsigned_abs() % 8 {
-                    x = if k > 0 { next_up(x) } else { next_down(x) };
-                }
-                x
-            }
-            _ => self.raw(),
-        }
-    }
-    fn point(&mut self, prev: &[DVec3]) -> DVec3 {
-        let pick = |i: u8| if prev.is_empty() { DVec3::ZERO } else { prev[i as usize % prev.len()] };
-        match self.u8() % 4 {
-            0 | 1 => DVec3::new(self.scalar(), self.scalar(), self.scalar()),
-            2 => {
-                let (a, b) = (pick(self.u8()), pick(self.u8()));
-                a + (b - a) * self.scalar()
-            }
-            _ => {
-                let (a, b, c) = (pick(self.u8()), pick(self.u8()), pick(self.u8()));
-                a + (b - a) * self.scalar() + (c - a) * self.scalar()
-            }
-        }
-    }
-}
-
-fn ok(p: &[DVec3]) -> bool {
-    p.iter().all(|q| q.to_array().iter().all(|&x| in_exact_range(x)))
-}
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
     let mut input = Input(data);
