@@ -180,6 +180,18 @@ impl Tolerance {
     }
 }
 
+/// A sufficient test for `dist(p, t)^2 <= e2` in f64 with a rigorous error bound: the
+/// squared distance to a vertex of `t`, rounded up. It spares the exact predicate its worst
+/// case, a point exactly on a vertex of `t` (zero signs defeat floating-point filters).
+fn near_vertex(p: DVec3, t: &[DVec3; 3], e2: f64) -> bool {
+    t.iter().any(|&v| {
+        // Each difference, square and sum is rounded to nearest: relative error below 6u;
+        // `1 + 16 eps` covers it, and `MIN_POSITIVE` covers underflow of the squares.
+        let s = (p - v).length_squared();
+        s * (1.0 + 16.0 * f64::EPSILON) + 4.0 * f64::MIN_POSITIVE <= e2
+    })
+}
+
 /// A sub-triangle corner: the f64 point, a bound on its distance to the exact corner, and the
 /// exact corner's barycentric numerators (denominator `2^level`).
 #[derive(Clone, Copy, Debug)]
@@ -266,8 +278,9 @@ impl Search<'_> {
 
     fn corners_within(&self, s: &Sub, t: u32, e2: f64) -> bool {
         let tri = self.target.tris[t as usize];
-        s.c.iter()
-            .all(|c| cmp_point_triangle(c.p, tri, e2) != Sign::Positive)
+        s.c.iter().all(|c| {
+            near_vertex(c.p, &tri, e2) || cmp_point_triangle(c.p, tri, e2) != Sign::Positive
+        })
     }
 
     /// A proved upper bound of `max dist(p, t)` over the f64 sub-triangle, from the
@@ -392,11 +405,6 @@ impl Search<'_> {
 
     fn face(&self, face: FaceId, tri: [DVec3; 3]) -> FaceResult {
         let mut out = FaceResult::default();
-        let query = Aabb::from_triangle(tri).inflated(self.tol.eps);
-        let mut cands = Vec::new();
-        self.target
-            .bvh
-            .for_each_overlapping(&query, |t| cands.push(t));
         let corner = |k: usize| {
             let mut bary = [0; 3];
             bary[k] = 1;
@@ -406,6 +414,36 @@ impl Search<'_> {
                 bary,
             }
         };
+        // Fast path: the triangle nearest the centroid usually covers the whole face (the
+        // same proof as below, with one candidate and no candidate list).
+        let centroid = (tri[0] + tri[1] + tri[2]) / 3.0;
+        if let Some((t0, _)) = self.target.nearest_approx(centroid) {
+            let s0 = Sub {
+                c: [corner(0), corner(1), corner(2)],
+                level: 0,
+                cands: Vec::new(),
+            };
+            let d = tri.map(|p| approx_sq_dist(p, &self.target.tris[t0 as usize]));
+            let m = d[0].max(d[1]).max(d[2]);
+            let est = Estimate {
+                best: Some((t0, m)),
+                corner_min: d,
+            };
+            if let Some(u) = self.prove(&s0, &est, 0.0) {
+                // `d` over-estimates each corner's distance: only a ranking for the lower
+                // bound, which is certified separately.
+                let j = (0..3).max_by(|&a, &b| d[a].total_cmp(&d[b])).unwrap_or(0);
+                out.lower_candidate = Some((d[j], tri[j]));
+                out.upper = u;
+                out.subdivisions = 1;
+                return out;
+            }
+        }
+        let query = Aabb::from_triangle(tri).inflated(self.tol.eps);
+        let mut cands = Vec::new();
+        self.target
+            .bvh
+            .for_each_overlapping(&query, |t| cands.push(t));
         let mut stack = vec![Sub {
             c: [corner(0), corner(1), corner(2)],
             level: 0,
@@ -520,7 +558,7 @@ pub(crate) fn one_sided(
     lows.sort_by(|a, b| b.0.total_cmp(&a.0));
     let mut lower = lows
         .iter()
-        .take(8)
+        .take(32)
         .map(|&(_, p)| target.certified_lower(p))
         .fold(0.0, f64::max);
     if let Some(w) = &witness {
