@@ -1,8 +1,9 @@
 //! The `envelope` program.
 //!
 //! Exit codes: 0 success (for `check`: acceptable input), 1 the mesh has degeneracies (for
-//! `verify`: a property is violated), 2 the input cannot be read or the arguments are wrong,
-//! 3 (`verify` only) undecided.
+//! `verify`, `simplify`, `lod`, `demo`: the output violates a certified property), 2 the input
+//! cannot be read or is not acceptable, or the arguments are wrong, 3 (`verify`, `simplify`,
+//! `lod`, `demo`) a certificate is undecided.
 //!
 //! One module per subcommand; each exposes `Args` (clap) and `run(&Args) -> Result<ExitCode,
 //! String>` (an `Err` is printed as `envelope: error: ...` with exit 2).
@@ -10,14 +11,15 @@
 
 mod check;
 mod envelopes;
+mod lod;
+mod simplify;
 mod verify;
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use envelope_io::{Format, write_path};
-use envelope_mesh::{TriangleSoup, generate};
+use envelope_mesh::generate;
 
 use check::run_check;
 
@@ -51,9 +53,17 @@ enum Command {
     /// Certify that APPROX is within epsilon of ORIG both ways, free of self-intersections,
     /// and of the same topology (exit 0 holds, 1 violated, 2 unreadable, 3 undecided).
     Verify(verify::Args),
-    /// Run the main job on a built-in model, writing into ./envelope-demo/.
+    /// Simplify IN within epsilon of it (Cohen et al. 5-6) and write OUT atomically.
     ///
-    /// Until the simplifier lands, the main job is `check` on the built-in model.
+    /// Exit 0 written and certified, 1 the output fails its certificate (OUT untouched, the
+    /// output goes to OUT.failed.EXT), 2 bad input or arguments, 3 certificate undecided.
+    Simplify(simplify::Args),
+    /// Levels of detail with nested vertex sets and switching distances (Cohen et al. 7.2).
+    ///
+    /// Writes OUTDIR/level-0.off (the input), level-1.off, ... and summary.json.
+    Lod(lod::Args),
+    /// Run the main job on a built-in model (a cup: curved wall, sharp bottom crease, open
+    /// rim): its chain of levels of detail at 1/64% ... 1%, certified, into ./envelope-demo/.
     Demo {
         /// Output directory.
         #[arg(long, default_value = "envelope-demo")]
@@ -71,6 +81,8 @@ fn main() -> ExitCode {
         } => run_check(&input, json, examples),
         Command::Envelopes(args) => envelopes::run(&args),
         Command::Verify(args) => verify::run(&args),
+        Command::Simplify(args) => simplify::run(&args),
+        Command::Lod(args) => lod::run(&args),
         Command::Demo { out_dir } => run_demo(&out_dir),
     };
     match result {
@@ -82,18 +94,23 @@ fn main() -> ExitCode {
     }
 }
 
-/// The built-in model: a torus (curved, genus 1). The simplifier issue replaces it with a
-/// model that also has sharp edges and a border.
-fn builtin_model() -> TriangleSoup {
-    generate::torus(1.0, 0.35, 96, 48)
-}
-
+/// The built-in model: a cup with curvature, a sharp crease and a border
+/// (`envelope_mesh::generate::demo_model`).
 fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
-    std::fs::create_dir_all(out_dir)
-        .map_err(|e| format!("cannot create {}: {e}", out_dir.display()))?;
-    let model = builtin_model();
-    let path = out_dir.join("model.off");
-    write_path(&path, &model, Format::Off).map_err(|e| e.to_string())?;
-    println!("wrote the built-in model to {}", path.display());
-    run_check(&path, false, 5)
+    let model = generate::demo_model();
+    println!(
+        "built-in model: a cup, {} faces, {} vertices (curved fluted wall, sharp bottom crease, open rim)",
+        model.num_faces(),
+        model.num_vertices()
+    );
+    lod::run_chain(
+        &model,
+        lod::Chain {
+            input_label: "built-in cup (generate::demo_model)".into(),
+            out_dir,
+            epsilons: lod::DEFAULT_EPSILONS,
+            options: envelope_simplify::LodOptions::new(Vec::new()),
+            quiet: false,
+        },
+    )
 }

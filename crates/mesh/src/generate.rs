@@ -11,6 +11,7 @@
 //! | [`torus`], [`box_with_tunnel`] | 1 | 0 | 1 |
 //! | [`plate_with_holes`]`(k)` | 1 | 0 | k |
 //! | [`open_cylinder`] | 1 | 2 | 0 |
+//! | [`demo_model`] (a cup) | 1 | 1 | 0 |
 //! | [`disk_with_holes`]`(k)` | 1 | k + 1 | 0 |
 
 use crate::{TriangleSoup, VertexId};
@@ -200,6 +201,89 @@ pub fn open_cylinder(radius: f64, height: f64, n_around: u32, n_up: u32) -> Tria
                 [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)],
             );
         }
+    }
+    soup(pos, faces)
+}
+
+/// The built-in model of `envelope demo`: a cup with a flat bottom, a bulging, fluted wall
+/// (curvature in both directions), a sharp crease where wall and bottom meet, and an open
+/// rim (one border loop). Outward-oriented (the bottom faces down); 64 segments around,
+/// 24 wall rows, 8 bottom rings: 2,049 vertices, 4,032 faces, genus 0.
+///
+/// ```
+/// let cup = envelope_mesh::generate::demo_model();
+/// let t = envelope_mesh::analyze(&cup);
+/// assert_eq!((cup.num_faces(), t.genus, t.num_border_loops()), (4032, Some(0), 1));
+/// ```
+#[must_use]
+pub fn demo_model() -> TriangleSoup {
+    const AROUND: u32 = 64;
+    const ROWS: u32 = 24;
+    const RINGS: u32 = 8;
+    const HEIGHT: f64 = 1.2;
+    let radius = |u: f64, z: f64| {
+        let t = z / HEIGHT;
+        (0.5 + 0.12 * (PI * t).sin() + 0.1 * t) * (1.0 + 0.03 * (6.0 * u).cos())
+    };
+    let mut pos = Vec::new();
+    // Wall rows 0..=ROWS (row 0 is the bottom's outer ring), then bottom rings RINGS-1..1,
+    // then the bottom centre.
+    for j in 0..=ROWS {
+        let z = HEIGHT * f64::from(j) / f64::from(ROWS);
+        for i in 0..AROUND {
+            let u = TAU * f64::from(i) / f64::from(AROUND);
+            let r = radius(u, z);
+            pos.push(DVec3::new(r * u.cos(), r * u.sin(), z));
+        }
+    }
+    for k in (1..RINGS).rev() {
+        for i in 0..AROUND {
+            let u = TAU * f64::from(i) / f64::from(AROUND);
+            let r = radius(u, 0.0) * f64::from(k) / f64::from(RINGS);
+            pos.push(DVec3::new(r * u.cos(), r * u.sin(), 0.0));
+        }
+    }
+    let centre = pos.len() as u32;
+    pos.push(DVec3::ZERO);
+    let wall = |i: u32, j: u32| j * AROUND + i % AROUND;
+    // Bottom ring k (RINGS is the wall's row 0).
+    let ring = |i: u32, k: u32| {
+        if k == RINGS {
+            wall(i, 0)
+        } else {
+            (ROWS + 1) * AROUND + (RINGS - 1 - k) * AROUND + i % AROUND
+        }
+    };
+    let mut faces = Vec::new();
+    for j in 0..ROWS {
+        for i in 0..AROUND {
+            quad(
+                &mut faces,
+                [
+                    wall(i, j),
+                    wall(i + 1, j),
+                    wall(i + 1, j + 1),
+                    wall(i, j + 1),
+                ],
+            );
+        }
+    }
+    // Seen from below (outside): counter-clockwise is inner i, inner i+1, outer i+1, outer i.
+    for k in 2..=RINGS {
+        for i in 0..AROUND {
+            quad(
+                &mut faces,
+                [
+                    ring(i, k - 1),
+                    ring(i + 1, k - 1),
+                    ring(i + 1, k),
+                    ring(i, k),
+                ],
+            );
+        }
+    }
+    for i in 0..AROUND {
+        faces.push([centre, ring(i + 1, 1), ring(i, 1)]);
     }
     soup(pos, faces)
 }

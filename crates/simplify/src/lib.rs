@@ -8,18 +8,27 @@
 //!   choice the paper leaves open); [`simplify_local_with`] takes any [`Policies`]:
 //!   [`QueueOrder`], [`HoleFiller`] ([`Greedy`], [`Exhaustive`]), [`StopRule`], [`Visitor`].
 //!
+//! * [`simplify`]: the whole job (input check, envelopes, local algorithm, optional
+//!   certificate) with a [`SimplifyReport`]; [`lod_chain`]: nested levels of detail (7.2).
+//!
 //! Decisions are exact predicates (`envelope-predicates`); aspect ratios and queue
 //! priorities are f64 numbers that only order the work.
 #![forbid(unsafe_code)]
 
 mod barriers;
+mod driver;
 mod fill;
 mod filter;
 mod grid;
 pub mod local;
+pub mod lod;
 mod policy;
 
 pub use barriers::{BarrierError, BarrierKind, Barriers};
+pub use driver::{
+    DriverError, EnvelopeReport, Progress, SimplifyOptions, SimplifyReport, Stage, VerifyReport,
+    input_problems, peak_memory_bytes, simplify,
+};
 pub use fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
 pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, NoFilter};
 pub use grid::FaceGrid;
@@ -27,6 +36,7 @@ pub use local::{
     HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Policies, Removal, RemovalQueue,
     SimplifyError, Stats, queue_vertices, simplify_local, simplify_local_with,
 };
+pub use lod::{Level, LodOptions, LodRule, Screen, lod_chain};
 pub use policy::{
     Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor, aspect_ratio,
 };

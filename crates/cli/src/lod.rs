@@ -1,0 +1,258 @@
+//! `envelope lod IN OUTDIR`: a chain of levels of detail with nested vertex sets (Cohen et al.
+//! 7.2), each certified against the original at its cumulative bound.
+//!
+//! Writes `OUTDIR/level-0.off` (the input), `level-1.off` ... and `summary.json`. The rule
+//! for the cumulative bound and the switching-distance formula
+//! `d = eps * W / (2 * P * tan(fov / 2))` are documented in `envelope_simplify::lod`.
+//!
+//! Exit codes: 0 every level certified (or certification skipped), 1 a level violates its
+//! bound, 2 bad input or arguments, 3 a certificate is undecided.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use envelope_io::{Format, read_path, write_path};
+use envelope_mesh::TriangleSoup;
+use envelope_simplify::{Level, LodOptions, LodRule, Screen, lod_chain};
+use envelope_verify::Verdict;
+use serde_json::json;
+
+use crate::simplify::{Bar, FillArg, MethodArg, resolve_epsilon};
+
+/// The paper's bunny epsilons (Table 1, Figure 11): 1/64 % ... 1 % of the diagonal.
+pub(crate) const DEFAULT_EPSILONS: &str = "1/64%,1/32%,1/16%,1/8%,1/4%,1/2%,1%";
+
+/// How the requested epsilons become bounds.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub(crate) enum RuleArg {
+    /// Each epsilon is the level's bound to the original; steps are the differences.
+    Cumulative,
+    /// Each epsilon is a step; the bound is the running sum (the paper's 7.2).
+    Sum,
+}
+
+/// Arguments of `envelope lod`.
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// Input mesh (OBJ, OFF, PLY, STL); must pass `envelope check`.
+    input: PathBuf,
+    /// Output directory (created).
+    out_dir: PathBuf,
+    /// Comma-separated epsilons (`1/64%`, `0.5%`, or absolute lengths), increasing.
+    #[arg(long, default_value = DEFAULT_EPSILONS)]
+    epsilons: String,
+    /// How the epsilons become bounds to the original.
+    #[arg(long, value_enum, default_value_t = RuleArg::Cumulative)]
+    rule: RuleArg,
+    /// Tolerated screen error in pixels, for switching distances.
+    #[arg(long, default_value_t = 1.0)]
+    pixels: f64,
+    /// Screen width in pixels, for switching distances.
+    #[arg(long, default_value_t = 1920.0)]
+    resolution: f64,
+    /// Horizontal field of view in degrees, for switching distances.
+    #[arg(long, default_value_t = 60.0)]
+    fov: f64,
+    /// Envelope method.
+    #[arg(long, value_enum, default_value_t = MethodArg::Analytical)]
+    envelope: MethodArg,
+    /// Hole filling.
+    #[arg(long, value_enum, default_value_t = FillArg::Greedy)]
+    hole_filling: FillArg,
+    /// Skip the certificates against the original.
+    #[arg(long)]
+    no_verify: bool,
+    /// No progress bar and no table.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// Everything a chain needs besides the mesh.
+pub(crate) struct Chain<'a> {
+    pub(crate) input_label: String,
+    pub(crate) out_dir: &'a Path,
+    pub(crate) epsilons: &'a str,
+    pub(crate) options: LodOptions,
+    pub(crate) quiet: bool,
+}
+
+pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
+    let (soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
+    for (flag, x) in [("--pixels", args.pixels), ("--resolution", args.resolution)] {
+        if !(x.is_finite() && x > 0.0) {
+            return Err(format!("{flag} must be positive (got {x})"));
+        }
+    }
+    if !(args.fov > 0.0 && args.fov < 180.0) {
+        return Err(format!(
+            "--fov must be in (0, 180) degrees (got {})",
+            args.fov
+        ));
+    }
+    let mut options = LodOptions::new(Vec::new());
+    options.rule = match args.rule {
+        RuleArg::Cumulative => LodRule::Cumulative,
+        RuleArg::Sum => LodRule::Sum,
+    };
+    options.method = args.envelope.method();
+    options.hole_filling = args.hole_filling.hole_filling();
+    options.verify = !args.no_verify;
+    options.screen = Screen {
+        pixels: args.pixels,
+        resolution: args.resolution,
+        fov_degrees: args.fov,
+    };
+    run_chain(
+        &soup,
+        Chain {
+            input_label: args.input.display().to_string(),
+            out_dir: &args.out_dir,
+            epsilons: &args.epsilons,
+            options,
+            quiet: args.quiet,
+        },
+    )
+}
+
+/// Runs a chain on `original` and writes its files, table and summary.
+pub(crate) fn run_chain(original: &TriangleSoup, mut chain: Chain<'_>) -> Result<ExitCode, String> {
+    let diagonal = original.diagonal();
+    chain.options.epsilons = chain
+        .epsilons
+        .split(',')
+        .map(|s| resolve_epsilon("--epsilons", s.trim(), diagonal))
+        .collect::<Result<_, _>>()?;
+    let dir = chain.out_dir;
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let level_path = |i: usize| dir.join(format!("level-{i}.off"));
+    write_path(level_path(0), original, Format::Off).map_err(|e| e.to_string())?;
+
+    let start = std::time::Instant::now();
+    let mut bar = Bar::new(chain.quiet, "");
+    let n = chain.options.epsilons.len();
+    let mut write_error = None;
+    let mut on_level = |l: &Level| {
+        if let Err(e) = write_path(level_path(l.index), &l.mesh, Format::Off) {
+            write_error.get_or_insert(e.to_string());
+        }
+    };
+    // The bar's prefix names the level being built.
+    struct Prefixed<'b> {
+        bar: &'b mut Bar,
+        level: usize,
+        n: usize,
+    }
+    impl envelope_simplify::Progress for Prefixed<'_> {
+        fn stage(&mut self, stage: envelope_simplify::Stage) {
+            if stage == envelope_simplify::Stage::Check {
+                self.level += 1;
+                let p = format!("level {}/{}: ", self.level, self.n);
+                self.bar.set_prefix(&p);
+            }
+            self.bar.stage(stage);
+        }
+        fn step(&mut self, attempts: usize, removed: usize) {
+            self.bar.step(attempts, removed);
+        }
+    }
+    let mut prefixed = Prefixed {
+        bar: &mut bar,
+        level: 0,
+        n,
+    };
+    let result = lod_chain(original, &chain.options, &mut prefixed, &mut on_level);
+    bar.finish();
+    let levels = result.map_err(|e| format!("{}: {e}", chain.input_label))?;
+    if let Some(e) = write_error {
+        return Err(e);
+    }
+    let seconds = start.elapsed().as_secs_f64();
+
+    let rule = match chain.options.rule {
+        LodRule::Cumulative => "cumulative",
+        LodRule::Sum => "sum",
+    };
+    let s = chain.options.screen;
+    let summary = json!({
+        "input": chain.input_label,
+        "diagonal": diagonal,
+        "rule": rule,
+        "rule_doc": match chain.options.rule {
+            LodRule::Cumulative => "level i is simplified from level i-1 with step eps_i - eps_(i-1); its bound to the original is eps_i (triangle inequality, both directions)",
+            LodRule::Sum => "level i is simplified from level i-1 with step eps_i; its bound to the original is eps_1 + ... + eps_i (triangle inequality, both directions)",
+        },
+        "screen": { "pixels": s.pixels, "resolution": s.resolution, "fov_degrees": s.fov_degrees },
+        "switching_distance_formula": "d = cumulative_bound * resolution / (2 * pixels * tan(fov / 2))",
+        "seconds": seconds,
+        "level_0": { "file": "level-0.off", "faces": original.num_faces(), "vertices": original.num_vertices() },
+        "levels": levels.iter().map(|l| {
+            let mut v = l.to_json(diagonal);
+            v["file"] = format!("level-{}.off", l.index).into();
+            v
+        }).collect::<Vec<_>>(),
+    });
+    let summary_path = dir.join("summary.json");
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    std::fs::write(&summary_path, text + "\n")
+        .map_err(|e| format!("{}: {e}", summary_path.display()))?;
+
+    if !chain.quiet {
+        print_table(original, &levels, diagonal);
+        println!(
+            "{} levels in {seconds:.1} s; files and summary.json in {}",
+            levels.len(),
+            dir.display()
+        );
+    }
+    let worst = levels
+        .iter()
+        .filter_map(|l| l.certified.as_ref().map(|c| c.verdict))
+        .max();
+    Ok(match worst {
+        Some(Verdict::Violated) => {
+            eprintln!(
+                "envelope: a level FAILED its certificate against the original (see summary.json)"
+            );
+            ExitCode::from(1)
+        }
+        Some(Verdict::Undecided) => ExitCode::from(3),
+        _ => ExitCode::SUCCESS,
+    })
+}
+
+fn print_table(original: &TriangleSoup, levels: &[Level], diagonal: f64) {
+    println!(
+        "{:>5} {:>8} {:>8} {:>10} {:>10} {:>12} {:>9}  certified (out->orig, orig->out)",
+        "level", "faces", "verts", "eps %", "bound %", "switch at", "seconds"
+    );
+    println!(
+        "{:>5} {:>8} {:>8} {:>10} {:>10} {:>12} {:>9}  input",
+        0,
+        original.num_faces(),
+        original.num_vertices(),
+        "-",
+        "0",
+        "0",
+        "-"
+    );
+    for l in levels {
+        let cert = l.certified.as_ref().map_or("skipped".to_string(), |c| {
+            format!(
+                "{} ({:.4}%, {:.4}%)",
+                c.verdict.as_str(),
+                100.0 * c.approx_to_orig_upper / diagonal,
+                100.0 * c.orig_to_approx_upper / diagonal
+            )
+        });
+        println!(
+            "{:>5} {:>8} {:>8} {:>10.4} {:>10.4} {:>12.4} {:>9.2}  {cert}",
+            l.index,
+            l.mesh.num_faces(),
+            l.mesh.num_vertices(),
+            100.0 * l.requested / diagonal,
+            100.0 * l.cumulative / diagonal,
+            l.switching_distance,
+            l.report.seconds
+        );
+    }
+}

@@ -1,0 +1,333 @@
+//! `envelope simplify IN OUT`: the local algorithm between simplification envelopes (Cohen et
+//! al. 5.1, 5.2, 6.1-6.3), then a certificate of the output (`envelope-verify`).
+//!
+//! Exit codes: 0 written and certified (or certification skipped), 1 the certificate found a
+//! violation (OUT is left as it was; the output goes to `OUT.failed.EXT` for inspection), 2 bad
+//! input or arguments (OUT is left as it was), 3 the certificate is undecided (OUT written).
+//! OUT is written atomically (temporary file, then rename).
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use envelope_io::{Format, read_path, write_path};
+use envelope_mesh::TriangleSoup;
+use envelope_offset::{EpsilonField, Method, parse_epsilon, read_epsilon_file};
+use envelope_simplify::{HoleFilling, Progress, SimplifyOptions, SimplifyReport, Stage, simplify};
+use envelope_verify::Verdict;
+use glam::DVec3;
+use indicatif::{ProgressBar, ProgressStyle};
+
+/// Which epsilon method.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub(crate) enum MethodArg {
+    /// Prism clipping (4.1), exact proof and repair (default: fastest, as good a face count).
+    Analytical,
+    /// Iterative growth with exact checks (4.2).
+    Numerical,
+}
+
+impl MethodArg {
+    pub(crate) fn method(self) -> Method {
+        match self {
+            MethodArg::Analytical => Method::Analytical,
+            MethodArg::Numerical => Method::Numerical,
+        }
+    }
+}
+
+/// Which hole filler.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub(crate) enum FillArg {
+    /// The paper's single greedy pass (with a forced-triangle look-ahead).
+    Greedy,
+    /// Every triangulation of holes up to 10 vertices, greedy above.
+    Exhaustive,
+}
+
+impl FillArg {
+    pub(crate) fn hole_filling(self) -> HoleFilling {
+        match self {
+            FillArg::Greedy => HoleFilling::default(),
+            FillArg::Exhaustive => HoleFilling::Exhaustive { max_vertices: 10 },
+        }
+    }
+}
+
+/// Arguments of `envelope simplify`.
+#[derive(clap::Args)]
+pub(crate) struct Args {
+    /// Input mesh (OBJ, OFF, PLY, STL); must pass `envelope check`.
+    input: PathBuf,
+    /// Output mesh; the format follows the extension.
+    output: PathBuf,
+    /// Epsilon: `0.5%` or `1/64%` of the bounding-box diagonal, or an absolute length. With
+    /// --viewpoint: the epsilon at the vertex nearest the viewpoint.
+    #[arg(long, required_unless_present = "epsilon_file")]
+    epsilon: Option<String>,
+    /// Per-vertex epsilon file (6.3): one value per line in vertex order, same syntax as
+    /// --epsilon, `#` comments.
+    #[arg(long, conflicts_with_all = ["epsilon", "viewpoint"])]
+    epsilon_file: Option<PathBuf>,
+    /// Adaptive epsilon (6.3) growing with the distance to this point `X,Y,Z`: linear from
+    /// --epsilon at the nearest vertex to --epsilon-far at the farthest.
+    #[arg(long, value_parser = parse_point, requires_all = ["epsilon", "epsilon_far"], allow_hyphen_values = true)]
+    viewpoint: Option<DVec3>,
+    /// With --viewpoint: the epsilon at the farthest vertex.
+    #[arg(long, requires = "viewpoint")]
+    epsilon_far: Option<String>,
+    /// Envelope method.
+    #[arg(long, value_enum, default_value_t = MethodArg::Analytical)]
+    envelope: MethodArg,
+    /// Hole filling.
+    #[arg(long, value_enum, default_value_t = FillArg::Greedy)]
+    hole_filling: FillArg,
+    /// Write the report as JSON to this file.
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// Skip the certificate of the output.
+    #[arg(long)]
+    no_verify: bool,
+    /// No progress bar and no summary (errors are still printed).
+    #[arg(long)]
+    quiet: bool,
+}
+
+fn parse_point(s: &str) -> Result<DVec3, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| t.trim().parse::<f64>().map_err(|e| format!("{t:?}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(x, y, z)),
+        _ => Err("expected three finite numbers X,Y,Z".into()),
+    }
+}
+
+/// Resolves a length given as `--epsilon` syntax against `diagonal`.
+pub(crate) fn resolve_epsilon(flag: &str, s: &str, diagonal: f64) -> Result<f64, String> {
+    let e = parse_epsilon(s)
+        .map_err(|err| format!("{flag} {s:?}: {err}"))?
+        .resolve(diagonal);
+    if e.is_finite() && e > 0.0 {
+        Ok(e)
+    } else {
+        Err(format!("{flag} {s:?}: must be positive"))
+    }
+}
+
+fn field(args: &Args, soup: &TriangleSoup) -> Result<EpsilonField, String> {
+    let diagonal = soup.diagonal();
+    if let Some(f) = &args.epsilon_file {
+        let specs = read_epsilon_file(f, soup.num_vertices())
+            .map_err(|err| format!("{}: {err}", f.display()))?;
+        return Ok(EpsilonField::from_specs(&specs, diagonal));
+    }
+    let Some(e) = &args.epsilon else {
+        return Err("--epsilon or --epsilon-file is required".into());
+    };
+    let near = resolve_epsilon("--epsilon", e, diagonal)?;
+    let Some(viewpoint) = args.viewpoint else {
+        return Ok(EpsilonField::Constant(near));
+    };
+    let far = resolve_epsilon(
+        "--epsilon-far",
+        args.epsilon_far.as_deref().unwrap_or_default(),
+        diagonal,
+    )?;
+    let d: Vec<f64> = soup
+        .positions
+        .iter()
+        .map(|p| p.distance(viewpoint))
+        .collect();
+    let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| {
+        (lo.min(x), hi.max(x))
+    });
+    let span = (hi - lo).max(f64::MIN_POSITIVE);
+    Ok(EpsilonField::PerVertex(
+        d.iter()
+            .map(|&x| near + (far - near) * (x - lo) / span)
+            .collect(),
+    ))
+}
+
+/// A progress bar on stderr (hidden when stderr is not a terminal or when quiet).
+pub(crate) struct Bar {
+    bar: ProgressBar,
+    prefix: String,
+}
+
+impl Bar {
+    pub(crate) fn new(quiet: bool, prefix: &str) -> Bar {
+        let bar = if quiet || !std::io::stderr().is_terminal() {
+            ProgressBar::hidden()
+        } else {
+            ProgressBar::new_spinner()
+        };
+        Bar {
+            bar,
+            prefix: prefix.to_string(),
+        }
+    }
+
+    pub(crate) fn set_prefix(&mut self, prefix: &str) {
+        prefix.clone_into(&mut self.prefix);
+    }
+
+    pub(crate) fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+impl Progress for Bar {
+    fn stage(&mut self, stage: Stage) {
+        let p = &self.prefix;
+        match stage {
+            Stage::Check => self.spin(format!("{p}checking the input")),
+            Stage::Envelopes => self.spin(format!("{p}building envelopes")),
+            Stage::Simplify { vertices } => {
+                self.bar.set_length(vertices as u64);
+                self.bar.set_position(0);
+                self.bar.set_style(
+                    ProgressStyle::with_template(
+                        "{msg} [{bar:30}] {pos}/{len} vertices removed ({elapsed})",
+                    )
+                    .unwrap_or_else(|_| ProgressStyle::default_bar())
+                    .progress_chars("=> "),
+                );
+                self.bar.set_message(format!("{p}simplifying"));
+            }
+            Stage::Verify => self.spin(format!("{p}certifying the output")),
+        }
+    }
+
+    fn step(&mut self, _attempts: usize, removed: usize) {
+        self.bar.set_position(removed as u64);
+    }
+}
+
+impl Bar {
+    fn spin(&self, msg: String) {
+        self.bar.set_style(
+            ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+                .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+        );
+        self.bar.set_message(msg);
+        self.bar
+            .enable_steady_tick(std::time::Duration::from_millis(120));
+    }
+}
+
+/// `OUT.failed.EXT` next to OUT.
+fn failed_path(out: &Path) -> PathBuf {
+    let ext = out
+        .extension()
+        .map(|e| e.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "off".into());
+    out.with_extension(format!("failed.{ext}"))
+}
+
+fn print_summary(args: &Args, r: &SimplifyReport) {
+    println!(
+        "{} -> {}: {} -> {} faces ({} -> {} vertices) in {:.2} s",
+        args.input.display(),
+        args.output.display(),
+        r.input_faces,
+        r.output_faces,
+        r.input_vertices,
+        r.output_vertices,
+        r.seconds
+    );
+    let g = |x: Option<u32>| x.map_or("undefined".to_string(), |g| g.to_string());
+    println!(
+        "epsilon {:.6e} ({:.4}% of the diagonal); genus {} -> {}; border loops {} -> {}",
+        r.epsilon_abs,
+        100.0 * r.epsilon_fraction,
+        g(r.genus_in),
+        g(r.genus_out),
+        r.border_loops_in,
+        r.border_loops_out
+    );
+    let e = &r.envelope;
+    println!(
+        "envelopes {}: achieved median {:.1}%, p5 {:.1}% of requested, proof {}, {} tubes, {:.2} s",
+        e.method,
+        100.0 * e.achieved_median,
+        100.0 * e.achieved_p5,
+        if e.proved { "holds" } else { "FAILED" },
+        e.tubes,
+        e.seconds
+    );
+    if let Some(mb) = r.peak_memory_bytes {
+        println!("peak memory {:.1} MiB", mb as f64 / (1024.0 * 1024.0));
+    }
+    match &r.verify {
+        Some(v) => println!(
+            "certificate {}: output->input <= {:.4e}, input->output <= {:.4e}, {} self-intersections, topology {}",
+            v.verdict.as_str(),
+            v.approx_to_orig_upper,
+            v.orig_to_approx_upper,
+            v.self_intersections,
+            if v.topology_matches {
+                "unchanged"
+            } else {
+                "CHANGED"
+            }
+        ),
+        None => println!("certificate skipped (--no-verify)"),
+    }
+}
+
+pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
+    let (soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
+    let format = Format::from_path(&args.output).ok_or_else(|| {
+        format!(
+            "{}: unknown output format (use .obj, .off, .ply or .stl)",
+            args.output.display()
+        )
+    })?;
+    let options = SimplifyOptions {
+        method: args.envelope.method(),
+        hole_filling: args.hole_filling.hole_filling(),
+        verify: !args.no_verify,
+        ..SimplifyOptions::new(field(args, &soup)?)
+    };
+    let mut bar = Bar::new(args.quiet, "");
+    let result = simplify(&soup, &options, &mut bar);
+    bar.finish();
+    let (out, report) = result.map_err(|e| format!("{}: {e}", args.input.display()))?;
+    let verdict = report.verify.as_ref().map(|v| v.verdict);
+    let target = if verdict == Some(Verdict::Violated) {
+        failed_path(&args.output)
+    } else {
+        args.output.clone()
+    };
+    write_path(&target, &out, format).map_err(|e| e.to_string())?;
+    if let Some(path) = &args.report {
+        let mut v = report.to_json();
+        v["input"] = args.input.display().to_string().into();
+        v["output"] = target.display().to_string().into();
+        let text = serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?;
+        std::fs::write(path, text + "\n").map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    if !args.quiet {
+        print_summary(args, &report);
+    }
+    Ok(match verdict {
+        Some(Verdict::Violated) => {
+            eprintln!(
+                "envelope: the output FAILED its certificate ({}); written to {}, {} left as it was",
+                report
+                    .verify
+                    .as_ref()
+                    .map(|v| v.violations.join(", "))
+                    .unwrap_or_default(),
+                target.display(),
+                args.output.display()
+            );
+            ExitCode::from(1)
+        }
+        Some(Verdict::Undecided) => ExitCode::from(3),
+        _ => ExitCode::SUCCESS,
+    })
+}
