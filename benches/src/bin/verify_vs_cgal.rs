@@ -10,6 +10,7 @@
 //! * `cluster`: vertex clustering on a grid of cell `t D / sqrt(3)` (every vertex moves less
 //!   than `t D`, faces collapse: a real decimation); epsilon = `2 t D`. Skipped for CGAL when it
 //!   does not load as a polygon mesh.
+//!
 //! And a 1-million-face pair: a torus against its `noise` approximation at `t` = 1e-4.
 //!
 //! Timing: ours best of 3 on the in-memory soups (all rayon threads, and one thread), file
@@ -111,7 +112,7 @@ fn main() -> ExitCode {
          bounded_error_Hausdorff both directions (bound {cgal_bound:e} eps) + does_self_intersect"
     );
     println!(
-        "{:<22} {:>7} {:>7} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:<10} {}",
+        "{:<22} {:>7} {:>7} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:<10} intervals A->O, O->A vs CGAL",
         "pair",
         "faces A",
         "faces B",
@@ -122,7 +123,6 @@ fn main() -> ExitCode {
         "/1t",
         "H/eps",
         "verdict",
-        "intervals A->O, O->A vs CGAL"
     );
     let mut ok = true;
     for (name, op, orig, ap, approx, eps) in &pairs {

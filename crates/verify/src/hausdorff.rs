@@ -103,7 +103,7 @@ impl Target {
         };
         let mut l2 = d2 * (1.0 - 2f64.powi(-20));
         for _ in 0..4 {
-            if !(l2 > 0.0) {
+            if l2.is_nan() || l2 <= 0.0 {
                 return 0.0;
             }
             let r = next_up(sqrt_up(l2) * (1.0 + 2f64.powi(-40)));

@@ -69,7 +69,8 @@ pub(crate) fn approx_sq_dist(p: DVec3, t: &[DVec3; 3]) -> f64 {
     let ab = b - a;
     let ac = c - a;
     let n2 = ab.cross(ac).length_squared();
-    if !(n2 > 1e-30 * ab.length_squared() * ac.length_squared()) {
+    let flat = n2.partial_cmp(&(1e-30 * ab.length_squared() * ac.length_squared()));
+    if flat != Some(std::cmp::Ordering::Greater) {
         return approx_sq_dist_segment(p, a, b)
             .min(approx_sq_dist_segment(p, b, c))
             .min(approx_sq_dist_segment(p, c, a));
