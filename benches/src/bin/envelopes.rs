@@ -6,7 +6,9 @@
 //! off (closed models).
 //!
 //! `cargo run --release -p envelope-benches --bin envelopes [-- --quick] [--skip-large]
-//! [--corpus DIR]`. `--quick` (CI smoke): a generated sphere and torus only, two epsilons.
+//! [--corpus DIR] [--only-mesh SUBSTR] [--only-eps LABEL] [--only-method numerical|analytical]`.
+//! `--quick` (CI smoke): a generated sphere and torus only, two epsilons. The `--only-*` flags
+//! restrict the table to matching rows (for profiling one configuration).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -26,6 +28,19 @@ fn vm_hwm_mib() -> f64 {
         .map_or(f64::NAN, |kib| kib / 1024.0)
 }
 
+/// User + system CPU seconds of this process so far (`/proc/self/stat`, 100 ticks/s): on a
+/// shared machine the wall time depends on the load, the CPU time much less.
+fn cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            let rest = s.rsplit_once(')')?.1;
+            let f: Vec<&str> = rest.split_whitespace().collect();
+            Some((f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?) / 100.0)
+        })
+        .unwrap_or(f64::NAN)
+}
+
 fn quantile(sorted: &[f64], q: f64) -> f64 {
     sorted[((sorted.len() - 1) as f64 * q).round() as usize]
 }
@@ -39,6 +54,17 @@ fn main() -> ExitCode {
         .position(|a| a == "--corpus")
         .and_then(|i| args.get(i + 1))
         .map_or_else(|| PathBuf::from(".corpus/data/meshes"), PathBuf::from);
+    let only = |flag: &str| {
+        args.iter()
+            .position(|a| a == flag)
+            .and_then(|i| args.get(i + 1))
+            .cloned()
+    };
+    let (only_mesh, only_eps, only_method) = (
+        only("--only-mesh"),
+        only("--only-eps"),
+        only("--only-method"),
+    );
     let mut meshes: Vec<(String, TriangleSoup)> = Vec::new();
     let percents: &[(&str, f64)] = if quick {
         meshes.push(("icosphere(4)".into(), generate::icosphere(4, 1.0)));
@@ -52,37 +78,60 @@ fn main() -> ExitCode {
             }
         }
         if !skip_large {
-            meshes.push(("torus 1000x500 (1M)".into(), generate::torus(1.0, 0.3, 1000, 500)));
+            meshes.push((
+                "torus 1000x500 (1M)".into(),
+                generate::torus(1.0, 0.3, 1000, 500),
+            ));
         }
-        &[("1/64%", 1.0 / 64.0), ("1/16%", 1.0 / 16.0), ("1/4%", 0.25), ("1%", 1.0)]
+        &[
+            ("1/64%", 1.0 / 64.0),
+            ("1/16%", 1.0 / 16.0),
+            ("1/4%", 0.25),
+            ("1%", 1.0),
+        ]
     };
     println!(
-        "| mesh | faces | eps | method | time (s) | peak RSS (MiB) | median | p5 | proved | repair rounds |"
+        "| mesh | faces | eps | method | time (s) | CPU (s) | peak RSS (MiB) | median | p5 | proved | repair rounds |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     let mut all_proved = true;
+    meshes.retain(|(name, _)| only_mesh.as_ref().is_none_or(|m| name.contains(m.as_str())));
     for (name, soup) in &meshes {
         let diag = soup.diagonal();
         for &(label, pct) in percents {
+            if only_eps.as_ref().is_some_and(|e| e != label) {
+                continue;
+            }
             for method in [Method::Numerical, Method::Analytical] {
+                if only_method
+                    .as_ref()
+                    .is_some_and(|m| !format!("{method:?}").eq_ignore_ascii_case(m))
+                {
+                    continue;
+                }
                 let _ = std::fs::write("/proc/self/clear_refs", "5");
                 let mut o = EnvelopeOptions::new(EpsilonField::Constant(pct / 100.0 * diag));
                 o.method = method;
                 o.tube_segments = None;
                 let t = Instant::now();
+                let cpu0 = cpu_seconds();
                 let env = match build_envelopes(soup, &o) {
                     Ok(e) => e,
                     Err(e) => {
-                        println!("| {name} | {} | {label} | {method:?} | error: {e} |", soup.num_faces());
+                        println!(
+                            "| {name} | {} | {label} | {method:?} | error: {e} |",
+                            soup.num_faces()
+                        );
                         all_proved = false;
                         continue;
                     }
                 };
                 let secs = t.elapsed().as_secs_f64();
+                let cpu = cpu_seconds() - cpu0;
                 let f = env.achieved_fractions();
                 all_proved &= env.proof.holds();
                 println!(
-                    "| {name} | {} | {label} | {method:?} | {secs:.2} | {:.0} | {:.1}% | {:.1}% | {} | {} |",
+                    "| {name} | {} | {label} | {method:?} | {secs:.2} | {cpu:.2} | {:.0} | {:.1}% | {:.1}% | {} | {} |",
                     soup.num_faces(),
                     vm_hwm_mib(),
                     100.0 * quantile(&f, 0.5),
@@ -93,5 +142,9 @@ fn main() -> ExitCode {
             }
         }
     }
-    if all_proved { ExitCode::SUCCESS } else { ExitCode::FAILURE }
+    if all_proved {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
 }

@@ -32,7 +32,9 @@ pub(crate) struct Scene<'a> {
     /// Index used for adjacency (an unmoved vertex aliases the input vertex it sits on).
     pub alias: Vec<u32>,
     pub faces: Vec<[u32; 3]>,
-    /// Over the swept boxes of `faces`.
+    /// The swept box of every face: every position it can take while the movers move.
+    pub swept: Vec<Aabb>,
+    /// Over `swept`.
     pub bvh: Bvh,
     /// Pairs `(star face, other face)` never tested.
     pub exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
@@ -43,6 +45,8 @@ pub(crate) struct Scene<'a> {
 pub(crate) struct StepPolicy {
     pub k: u32,
     pub max_halvings: u32,
+    /// Factor applied to the step after every accepted step (1 = the paper's fixed step).
+    pub growth: f64,
 }
 
 /// Vertices moving together with one parameter.
@@ -59,6 +63,9 @@ pub(crate) struct Mover {
     pub steps: u32,
     pub halvings: u32,
     pub done: bool,
+    /// Scene faces whose swept box overlaps the swept box of the star (filled by [`grow`],
+    /// freed when the mover is done): a superset of every face the star can meet.
+    pub cands: Vec<u32>,
 }
 
 impl Mover {
@@ -154,8 +161,19 @@ fn surely_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) -> bool 
     p1.separates(p2.t, gs) || p2.separates(p1.t, fs)
 }
 
-/// Exact check of mover `m` at parameter `t` against the scene: one BVH query with the box
-/// of the whole star, then each candidate against each star face whose box it overlaps.
+/// The faces whose swept box overlaps the swept box of `m`'s star, sorted: every face the
+/// star can meet at any parameter, since every position of every face lies in its swept box.
+fn candidates(scene: &Scene<'_>, m: &Mover) -> Vec<u32> {
+    let reach = m
+        .star
+        .iter()
+        .fold(Aabb::EMPTY, |b, &f| b.union(&scene.swept[f as usize]));
+    scene.bvh.overlapping(&reach)
+}
+
+/// Exact check of mover `m` at parameter `t` against the scene: each of the mover's
+/// candidates (see [`candidates`]) whose current box overlaps the box of the whole star
+/// against each star face whose box it overlaps.
 fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
     let new = m.positions_at(t);
     let pos = |i: u32| match m.verts.iter().position(|&x| x == i) {
@@ -179,16 +197,12 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
         })
         .collect();
     let all = star.iter().fold(Aabb::EMPTY, |b, s| b.union(&s.3));
-    let mut hit = false;
-    scene.bvh.for_each_overlapping(&all, |g| {
-        if hit {
-            return;
-        }
+    for &g in &m.cands {
         let gv = scene.faces[g as usize];
         let tg = gv.map(pos);
         let bg = Aabb::from_triangle(tg);
         if !bg.overlaps(&all) {
-            return;
+            continue;
         }
         let g_in_star = m.star.contains(&g);
         let ag = gv.map(alias);
@@ -207,15 +221,14 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
                 continue;
             }
             if tris_intersect(pf.t, af, tg, ag) {
-                hit = true;
-                return;
+                return false;
             }
         }
-    });
-    !hit
+    }
+    true
 }
 
-fn commit(scene: &mut Scene<'_>, m: &mut Mover, t: f64) {
+fn commit(scene: &mut Scene<'_>, m: &mut Mover, t: f64, policy: StepPolicy) {
     for (k, p) in m.positions_at(t).into_iter().enumerate() {
         let v = m.verts[k] as usize;
         scene.positions[v] = p;
@@ -224,8 +237,9 @@ fn commit(scene: &mut Scene<'_>, m: &mut Mover, t: f64) {
     m.t = t;
     m.steps += 1;
     m.halvings = 0;
+    m.step *= policy.growth;
     if m.t >= m.target {
-        m.done = true;
+        finish(m);
     }
 }
 
@@ -234,8 +248,13 @@ fn reject(m: &mut Mover, policy: StepPolicy) {
         m.step *= 0.5;
         m.halvings += 1;
     } else {
-        m.done = true;
+        finish(m);
     }
+}
+
+fn finish(m: &mut Mover) {
+    m.done = true;
+    m.cands = Vec::new();
 }
 
 /// Batches of movers: by group, then greedy colour such that no two movers of a batch have
@@ -311,6 +330,10 @@ pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPoli
         }
     }
     let batches = batches(movers, &scene.faces, scene.positions.len());
+    let frozen: &Scene<'_> = scene;
+    movers.par_iter_mut().filter(|m| !m.done).for_each(|m| {
+        m.cands = candidates(frozen, m);
+    });
     loop {
         let mut any = false;
         for batch in &batches {
@@ -348,13 +371,13 @@ pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPoli
             }
             for (k, &(i, t)) in accepted.iter().enumerate() {
                 if !conflicted[k] {
-                    commit(scene, &mut movers[i as usize], t);
+                    commit(scene, &mut movers[i as usize], t, policy);
                 }
             }
             for (k, &(i, t)) in accepted.iter().enumerate() {
                 if conflicted[k] {
                     if check(scene, &movers[i as usize], t) {
-                        commit(scene, &mut movers[i as usize], t);
+                        commit(scene, &mut movers[i as usize], t, policy);
                     } else {
                         reject(&mut movers[i as usize], policy);
                     }

@@ -76,6 +76,10 @@ pub struct NumericalParams {
     pub local_fraction: f64,
     /// Maximum halvings of one step.
     pub max_halvings: u32,
+    /// Factor applied to a mover's step after each accepted step (`1.0`: the paper's fixed
+    /// step; `2.0`: doubling, so an unobstructed vertex reaches its target in about
+    /// `log2(target / step)` checks instead of `target / step`).
+    pub step_growth: f64,
 }
 
 impl Default for NumericalParams {
@@ -85,6 +89,7 @@ impl Default for NumericalParams {
             global_fraction: 0.01,
             local_fraction: 0.5,
             max_halvings: 10,
+            step_growth: 2.0,
         }
     }
 }
@@ -225,7 +230,6 @@ pub fn build_envelopes(
         Method::Analytical => analytical::analytical_eps(soup, &vf, &normals, &requested),
         Method::Numerical => numerical_eps(
             soup,
-            &vf,
             &normals,
             &requested,
             &options.numerical,
@@ -298,6 +302,7 @@ pub fn build_envelopes(
             let policy = StepPolicy {
                 k: options.numerical.k,
                 max_halvings: options.numerical.max_halvings,
+                growth: options.numerical.step_growth,
             };
             let (t, c) =
                 tubes::build_tubes(&input, &topo, k, policy, options.numerical.global_fraction);
@@ -339,9 +344,80 @@ fn accept_input(soup: &TriangleSoup) -> Result<Vec<(Vec<VertexId>, bool)>, Envel
     Ok(out)
 }
 
-/// Per-vertex `(eps_plus, eps_minus)` by the numerical method (section 4.2): outer and inner
-/// vertices are movers of one scene (input + outer + inner), see [`engine`].
+/// Morton (Z-order) key of `p` in the box `b`, 21 bits per axis.
+fn morton(p: DVec3, b: &Aabb) -> u64 {
+    let spread = |x: u64| {
+        let mut x = x & 0x1f_ffff;
+        x = (x | x << 32) & 0x1f_0000_0000_ffff;
+        x = (x | x << 16) & 0x1f_0000_ff00_00ff;
+        x = (x | x << 8) & 0x100f_00f0_0f00_f00f;
+        x = (x | x << 4) & 0x10c3_0c30_c30c_30c3;
+        (x | x << 2) & 0x1249_2492_4924_9249
+    };
+    let ext = (b.max - b.min).max(DVec3::splat(f64::MIN_POSITIVE));
+    let q = ((p - b.min) / ext * 2_097_151.0).clamp(DVec3::ZERO, DVec3::splat(2_097_151.0));
+    spread(q.x as u64) | spread(q.y as u64) << 1 | spread(q.z as u64) << 2
+}
+
+/// Per-vertex `(eps_plus, eps_minus)` by the numerical method (section 4.2).
+///
+/// The mesh is first renumbered in Z-order (vertices by position, faces by centroid) so that
+/// the movers of one batch and the faces each check touches are close in memory; a scanned
+/// mesh's own order makes every check a string of cache misses. The renumbering changes
+/// only the order of moves (the result depends on it, as the paper's sequential order
+/// does), not what is checked.
 fn numerical_eps(
+    soup: &TriangleSoup,
+    normals: &[DVec3],
+    requested: &[f64],
+    params: &NumericalParams,
+    diagonal: f64,
+) -> (Vec<f64>, Vec<f64>) {
+    let n = soup.num_vertices();
+    let bounds = Aabb::from_points(&soup.positions);
+    let mut order: Vec<u32> = (0..n as u32).collect();
+    order.sort_by_cached_key(|&v| (morton(soup.positions[v as usize], &bounds), v));
+    let mut rank = vec![0u32; n];
+    for (new, &old) in order.iter().enumerate() {
+        rank[old as usize] = new as u32;
+    }
+    let mut faces: Vec<[VertexId; 3]> = soup
+        .faces
+        .iter()
+        .map(|f| f.map(|v| VertexId(rank[v.0 as usize])))
+        .collect();
+    let key = |f: &[VertexId; 3]| {
+        let c = order_pos(soup, &order, f[0]) + order_pos(soup, &order, f[1]);
+        morton((c + order_pos(soup, &order, f[2])) / 3.0, &bounds)
+    };
+    faces.sort_by_cached_key(|f| (key(f), f.map(|v| v.0)));
+    let sorted = TriangleSoup::new(
+        order.iter().map(|&v| soup.positions[v as usize]).collect(),
+        faces,
+    );
+    let pick = |a: &[f64]| -> Vec<f64> { order.iter().map(|&v| a[v as usize]).collect() };
+    let sorted_normals: Vec<DVec3> = order.iter().map(|&v| normals[v as usize]).collect();
+    let vf = VertexFaces::new(n, &sorted.faces);
+    let (p, m) = numerical_eps_ordered(
+        &sorted,
+        &vf,
+        &sorted_normals,
+        &pick(requested),
+        params,
+        diagonal,
+    );
+    let back = |a: &[f64]| -> Vec<f64> { rank.iter().map(|&r| a[r as usize]).collect() };
+    (back(&p), back(&m))
+}
+
+fn order_pos(soup: &TriangleSoup, order: &[u32], v: VertexId) -> DVec3 {
+    soup.positions[order[v.0 as usize] as usize]
+}
+
+/// [`numerical_eps`] on a renumbered mesh: outer and inner vertices are movers of one scene
+/// (input + outer + inner, interleaved: copy `s` of vertex `v` is `3 v + s`, of face `f` is
+/// `3 f + s`, with `s` 0 input, 1 outer, 2 inner), see [`engine`].
+fn numerical_eps_ordered(
     soup: &TriangleSoup,
     vf: &VertexFaces,
     normals: &[DVec3],
@@ -350,16 +426,16 @@ fn numerical_eps(
     diagonal: f64,
 ) -> (Vec<f64>, Vec<f64>) {
     let n = soup.num_vertices();
-    let nu = n as u32;
-    let nf = soup.num_faces() as u32;
     let mut positions = Vec::with_capacity(3 * n);
-    for _ in 0..3 {
-        positions.extend_from_slice(&soup.positions);
+    for &p in &soup.positions {
+        positions.extend_from_slice(&[p, p, p]);
     }
-    let alias: Vec<u32> = (0..3 * nu).map(|i| i % nu).collect();
+    let alias: Vec<u32> = (0..3 * n as u32).map(|i| i - i % 3).collect();
     let mut faces: Vec<[u32; 3]> = Vec::with_capacity(3 * soup.num_faces());
-    for s in 0..3 {
-        faces.extend(soup.faces.iter().map(|f| f.map(|v| v.0 + s * nu)));
+    for f in &soup.faces {
+        for s in 0..3 {
+            faces.push(f.map(|v| 3 * v.0 + s));
+        }
     }
     let mut sweep: Vec<Aabb> = positions.iter().map(|&p| Aabb::from_points(&[p])).collect();
     let mut movers = Vec::with_capacity(2 * n);
@@ -393,13 +469,13 @@ fn numerical_eps(
             let step = (params.global_fraction * diagonal)
                 .min(target / params.k as f64)
                 .min(params.local_fraction * shortest);
-            let gv = side * nu + v as u32;
+            let gv = 3 * v as u32 + side;
             sweep[gv as usize] = engine::sweep_box(p, dir, target);
             movers.push(Mover {
                 verts: vec![gv],
                 base: vec![p],
                 dirs: vec![dir],
-                star: fan.iter().map(|&f| f + side * nf).collect(),
+                star: fan.iter().map(|&f| 3 * f + side).collect(),
                 group: side,
                 target,
                 t: 0.0,
@@ -407,6 +483,7 @@ fn numerical_eps(
                 steps: 0,
                 halvings: 0,
                 done: false,
+                cands: Vec::new(),
             });
         }
     }
@@ -417,17 +494,19 @@ fn numerical_eps(
         alias,
         faces,
         bvh: Bvh::new(&boxes),
+        swept: boxes,
         exempt: &never,
     };
     let policy = StepPolicy {
         k: params.k,
         max_halvings: params.max_halvings,
+        growth: params.step_growth,
     };
     engine::grow(&mut scene, &mut movers, policy);
     let mut plus = vec![0.0; n];
     let mut minus = vec![0.0; n];
     for m in &movers {
-        let v = (m.verts[0] % nu) as usize;
+        let v = (m.verts[0] / 3) as usize;
         if m.group == 1 {
             plus[v] = m.t;
         } else {

@@ -209,6 +209,7 @@ pub(crate) fn build_tubes(
                 steps: 0,
                 halvings: 0,
                 done: false,
+                cands: Vec::new(),
             });
         }
         let segs = if *closed { m } else { m - 1 };
@@ -259,6 +260,7 @@ pub(crate) fn build_tubes(
         alias,
         faces: layout.faces.clone(),
         bvh: Bvh::new(&boxes),
+        swept: boxes,
         exempt: &ex,
     };
     engine::grow(&mut scene, &mut movers, policy);
