@@ -1,0 +1,33 @@
+//! `envelope demo` runs end to end on the built-in cup and writes its chain.
+
+use std::process::Command;
+
+#[test]
+fn demo_writes_a_certified_chain() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("demo");
+    let out = Command::new(env!("CARGO_BIN_EXE_envelope"))
+        .args(["demo", "--out-dir", out_dir.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("level"), "{stdout}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+            .unwrap();
+    let levels = s["levels"].as_array().unwrap();
+    assert_eq!(levels.len(), 7);
+    for l in levels {
+        assert!(out_dir.join(l["file"].as_str().unwrap()).is_file());
+        assert_eq!(l["certified_vs_original"]["verdict"], "holds", "{l:#}");
+        assert_eq!(l["border_loops"], 1);
+        assert_eq!(l["genus"], 0);
+    }
+    assert!(levels[6]["faces"].as_u64().unwrap() < 500);
+}

@@ -1,0 +1,93 @@
+//! End-to-end tests of `envelope lod`: nested vertex sets, monotone face counts, summary.
+
+use std::collections::HashSet;
+use std::process::Command;
+
+use envelope_io::{Format, read_path, write_path};
+use envelope_mesh::generate;
+
+fn key(p: glam::DVec3) -> [u64; 3] {
+    p.to_array().map(f64::to_bits)
+}
+
+#[test]
+fn torus_chain_is_nested_monotone_and_certified() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("torus.off");
+    write_path(&input, &generate::torus(1.0, 0.35, 48, 24), Format::Off).unwrap();
+    let out_dir = dir.path().join("lod");
+    let out = Command::new(env!("CARGO_BIN_EXE_envelope"))
+        .args(["lod", input.to_str().unwrap(), out_dir.to_str().unwrap()])
+        .args([
+            "--epsilons",
+            "1/8%, 1/4%,1/2%,1%",
+            "--pixels",
+            "2",
+            "--resolution",
+            "1000",
+            "--fov",
+            "90",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+            .unwrap();
+    let levels = s["levels"].as_array().unwrap();
+    assert_eq!(levels.len(), 4);
+    assert_eq!(s["rule"], "cumulative");
+    let diag = s["diagonal"].as_f64().unwrap();
+    let mut previous = read_path(out_dir.join("level-0.off")).unwrap().0;
+    assert_eq!(previous.num_faces(), 48 * 24 * 2);
+    for (i, l) in levels.iter().enumerate() {
+        let (mesh, _) = read_path(out_dir.join(format!("level-{}.off", i + 1))).unwrap();
+        assert_eq!(l["faces"], mesh.num_faces());
+        assert_eq!(l["vertices"], mesh.num_vertices());
+        assert!(mesh.num_faces() <= previous.num_faces(), "level {}", i + 1);
+        let before: HashSet<[u64; 3]> = previous.positions.iter().map(|&p| key(p)).collect();
+        assert!(
+            mesh.positions.iter().all(|&p| before.contains(&key(p))),
+            "level {} not nested",
+            i + 1
+        );
+        let bound = l["cumulative_bound"].as_f64().unwrap();
+        let requested = l["epsilon_requested"].as_f64().unwrap();
+        assert!((bound - requested).abs() <= 1e-15 * diag);
+        // d = eps W / (2 P tan(fov/2)) with W = 1000, P = 2, fov = 90 degrees (tan 45 = 1).
+        let d = l["switching_distance"].as_f64().unwrap();
+        assert!((d - bound * 1000.0 / 4.0).abs() <= 1e-9 * d, "{l:#}");
+        let c = &l["certified_vs_original"];
+        assert_eq!(c["verdict"], "holds", "{c:#}");
+        assert!(c["approx_to_orig"]["upper"].as_f64().unwrap() <= bound);
+        assert!(c["orig_to_approx"]["upper"].as_f64().unwrap() <= bound);
+        assert_eq!(l["genus"], 1);
+        previous = mesh;
+    }
+    let first = levels[0]["faces"].as_u64().unwrap();
+    let last = levels[3]["faces"].as_u64().unwrap();
+    assert!(last < first, "{first} -> {last}");
+}
+
+#[test]
+fn decreasing_epsilons_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("s.off");
+    write_path(&input, &generate::icosphere(2, 1.0), Format::Off).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_envelope"))
+        .args([
+            "lod",
+            input.to_str().unwrap(),
+            dir.path().join("o").to_str().unwrap(),
+        ])
+        .args(["--epsilons", "1%,1/2%"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("increasing"));
+}
