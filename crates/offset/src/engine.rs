@@ -158,7 +158,69 @@ impl Planar {
 /// shared vertices. A `false` decides nothing.
 #[inline]
 fn surely_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) -> bool {
-    p1.separates(p2.t, gs) || p2.separates(p1.t, fs)
+    p1.separates(p2.t, gs) || p2.separates(p1.t, fs) || edge_axes_apart(&p1.t, fs, &p2.t, gs)
+}
+
+/// `L·(p - o)` as an interval that certainly holds the exact value for the f64 points `p`,
+/// `o` and the f64 vector `L`: the difference and the dot product each round by at most
+/// `u` per operation, so `|error| <= 5u Σ|L_i||d_i|` (`d = fl(p - o)`); `8u` plus an
+/// absolute `1e-300` for underflow is a safe margin.
+#[inline]
+fn projection(l: DVec3, p: DVec3, o: DVec3) -> (f64, f64) {
+    let d = p - o;
+    let v = l.dot(d);
+    let tol = 8.0 * f64::EPSILON * l.abs().dot(d.abs()) + 1e-300;
+    (v - tol, v + tol)
+}
+
+/// The separating-axis test on the nine edge-cross-edge directions (any direction is a
+/// valid axis, so the f64 cross products need no error bound; the projections carry one,
+/// see [`projection`]). With no shared vertex: the projections of the two triangles are
+/// disjoint intervals. With exactly one shared vertex `s`: the unshared vertices of one
+/// project strictly below `s`, of the other strictly above, so the triangles (convex
+/// combinations) meet at most in `s`. A `false` decides nothing.
+fn edge_axes_apart(t1: &[DVec3; 3], fs: [bool; 3], t2: &[DVec3; 3], gs: [bool; 3]) -> bool {
+    let shared = fs.iter().filter(|&&b| b).count();
+    if shared > 1 {
+        return false;
+    }
+    let origin = match fs.iter().position(|&b| b) {
+        Some(k) => t1[k],
+        None => t1[0],
+    };
+    for i in 0..3 {
+        let e1 = t1[(i + 1) % 3] - t1[i];
+        for j in 0..3 {
+            let l = e1.cross(t2[(j + 1) % 3] - t2[j]);
+            let (mut lo1, mut hi1, mut lo2, mut hi2) = (
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            );
+            for k in 0..3 {
+                if !fs[k] {
+                    let (lo, hi) = projection(l, t1[k], origin);
+                    lo1 = lo1.min(lo);
+                    hi1 = hi1.max(hi);
+                }
+                if !gs[k] {
+                    let (lo, hi) = projection(l, t2[k], origin);
+                    lo2 = lo2.min(lo);
+                    hi2 = hi2.max(hi);
+                }
+            }
+            let apart = if shared == 0 {
+                hi1 < lo2 || hi2 < lo1
+            } else {
+                (hi1 < 0.0 && lo2 > 0.0) || (hi2 < 0.0 && lo1 > 0.0)
+            };
+            if apart {
+                return true;
+            }
+        }
+    }
+    false
 }
 
 /// The faces whose swept box overlaps the swept box of `m`'s star, sorted: every face the

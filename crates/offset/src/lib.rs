@@ -85,11 +85,11 @@ pub struct NumericalParams {
 impl Default for NumericalParams {
     fn default() -> Self {
         NumericalParams {
-            k: 8,
+            k: 4,
             global_fraction: 0.01,
             local_fraction: 0.5,
             max_halvings: 10,
-            step_growth: 2.0,
+            step_growth: 3.0,
         }
     }
 }
