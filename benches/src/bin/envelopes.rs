@@ -8,7 +8,9 @@
 //! `cargo run --release -p envelope-benches --bin envelopes [-- --quick] [--skip-large]
 //! [--corpus DIR] [--only-mesh SUBSTR] [--only-eps LABEL] [--only-method numerical|analytical]`.
 //! `--quick` (CI smoke): a generated sphere and torus only, two epsilons. The `--only-*` flags
-//! restrict the table to matching rows (for profiling one configuration).
+//! restrict the table to matching rows (for profiling one configuration). `--isolate` runs
+//! every row in a fresh child process (same arguments plus `--only-*`), so that the peak RSS
+//! of a row is its own and not the high-water mark of the rows before it.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -41,6 +43,25 @@ fn cpu_seconds() -> f64 {
         .unwrap_or(f64::NAN)
 }
 
+/// Runs one row in a child process and prints its row; true when it proved.
+fn run_child(args: &[String], mesh: &str, eps: &str, method: Method) -> bool {
+    let mut cmd = std::process::Command::new(std::env::current_exe().expect("own path"));
+    let mesh_key = mesh.split_whitespace().next().unwrap_or(mesh);
+    cmd.args(args.iter().filter(|a| *a != "--isolate"))
+        .args(["--no-header", "--only-mesh", mesh_key, "--only-eps", eps])
+        .args(["--only-method", &format!("{method:?}")]);
+    match cmd.output() {
+        Ok(o) => {
+            print!("{}", String::from_utf8_lossy(&o.stdout));
+            o.status.success()
+        }
+        Err(e) => {
+            println!("| {mesh} | | {eps} | {method:?} | error: {e} |");
+            false
+        }
+    }
+}
+
 fn quantile(sorted: &[f64], q: f64) -> f64 {
     sorted[((sorted.len() - 1) as f64 * q).round() as usize]
 }
@@ -49,6 +70,8 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let quick = args.iter().any(|a| a == "--quick");
     let skip_large = args.iter().any(|a| a == "--skip-large");
+    let isolate = args.iter().any(|a| a == "--isolate");
+    let no_header = args.iter().any(|a| a == "--no-header");
     let corpus = args
         .iter()
         .position(|a| a == "--corpus")
@@ -90,10 +113,12 @@ fn main() -> ExitCode {
             ("1%", 1.0),
         ]
     };
-    println!(
-        "| mesh | faces | eps | method | time (s) | CPU (s) | peak RSS (MiB) | median | p5 | proved | repair rounds |"
-    );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    if !no_header {
+        println!(
+            "| mesh | faces | eps | method | time (s) | CPU (s) | peak RSS (MiB) | median | p5 | proved | repair rounds |"
+        );
+        println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    }
     let mut all_proved = true;
     meshes.retain(|(name, _)| only_mesh.as_ref().is_none_or(|m| name.contains(m.as_str())));
     for (name, soup) in &meshes {
@@ -107,6 +132,10 @@ fn main() -> ExitCode {
                     .as_ref()
                     .is_some_and(|m| !format!("{method:?}").eq_ignore_ascii_case(m))
                 {
+                    continue;
+                }
+                if isolate {
+                    all_proved &= run_child(&args, name, label, method);
                     continue;
                 }
                 let _ = std::fs::write("/proc/self/clear_refs", "5");

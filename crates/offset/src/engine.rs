@@ -230,7 +230,9 @@ fn candidates(scene: &Scene<'_>, m: &Mover) -> Vec<u32> {
         .star
         .iter()
         .fold(Aabb::EMPTY, |b, &f| b.union(&scene.swept[f as usize]));
-    scene.bvh.overlapping(&reach)
+    let mut c = scene.bvh.overlapping(&reach);
+    c.shrink_to_fit();
+    c
 }
 
 /// Exact check of mover `m` at parameter `t` against the scene: each of the mover's
