@@ -1,0 +1,873 @@
+//! `envelope simplify` against its peers on the same meshes and tolerances, in one run:
+//! * `envelope`: `envelope simplify IN OUT --epsilon E --report R.json --quiet`;
+//! * `cgal`: CGAL 5.5 `edge_collapse` with `Polyhedral_envelope_filter` (`benches/peers`);
+//! * `openmesh`: OpenMesh 9 `DecimaterT` with `ModQuadricT` + `ModHausdorffT` (`benches/peers`);
+//! * `meshopt`: meshoptimizer's `simplify` (the `meshopt` crate), target 0 triangles,
+//!   `ErrorAbsolute` target error epsilon: a speed ceiling with no guarantee.
+//!
+//! Every tool runs as a child process (meshopt: this program re-run with `--meshopt-child`)
+//! under `/usr/bin/time` for its peak RSS, with a per-run timeout (the process group is killed).
+//! Seconds are what the tool reports for the simplification alone (I/O excluded) when it does,
+//! else wall seconds. Every output is then measured independently: the two-sided Hausdorff
+//! distance over epsilon with CGAL (`envelope-oracle hausdorff`, both directions, error bound
+//! 1% of epsilon), our certified decision (`envelope_verify::certify`, distance only) and CGAL's
+//! self-intersection count (mesh, else soup semantics).
+//!
+//! ```sh
+//! benches/peers/build.sh && cargo build --release -p envelope-cli
+//! cargo run --release -p envelope-benches --bin peers -- [--quick] [--meshes a,b]
+//!     [--epsilons 1/64%,1%] [--tools envelope,cgal,openmesh,meshopt] [--timeout S]
+//!     [--json PATH] [--keep DIR] [--envelope PATH]
+//! ```
+//! Prints one markdown table; writes the raw results as JSON (default
+//! `benches/results/peers-<unix time>.json`). See `benches/README.md`.
+
+use std::ffi::OsString;
+use std::fmt::Write as _;
+use std::fs::{self, File};
+use std::io::{BufWriter, Write};
+use std::os::unix::process::CommandExt;
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode, Stdio};
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+use envelope_io::read_path;
+use envelope_mesh::TriangleSoup;
+use envelope_tests::oracle::{Oracle, corpus_dir, repo_root};
+use envelope_verify::{Options, Verdict, certify};
+use serde_json::{Value, json};
+
+const DEFAULT_MESHES: [&str; 4] = ["bunny00", "fandisk", "mech-holes-shark", "armadillo"];
+const DEFAULT_EPSILONS: [&str; 7] = ["1/64%", "1/32%", "1/16%", "1/8%", "1/4%", "1/2%", "1%"];
+/// CGAL's Hausdorff error bound, relative to epsilon.
+const HAUSDORFF_BOUND: f64 = 0.01;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Tool {
+    Envelope,
+    Cgal,
+    OpenMesh,
+    Meshopt,
+}
+
+impl Tool {
+    const ALL: [Tool; 4] = [Tool::Envelope, Tool::Cgal, Tool::OpenMesh, Tool::Meshopt];
+
+    fn name(self) -> &'static str {
+        match self {
+            Tool::Envelope => "envelope",
+            Tool::Cgal => "cgal",
+            Tool::OpenMesh => "openmesh",
+            Tool::Meshopt => "meshopt",
+        }
+    }
+
+    fn parse(s: &str) -> Option<Tool> {
+        Tool::ALL.into_iter().find(|t| t.name() == s)
+    }
+}
+
+struct Args {
+    meshes: Vec<String>,
+    /// (label, fraction of the bounding-box diagonal)
+    epsilons: Vec<(String, f64)>,
+    tools: Vec<Tool>,
+    timeout: f64,
+    json: Option<PathBuf>,
+    keep: Option<PathBuf>,
+    envelope: Option<PathBuf>,
+}
+
+fn main() -> ExitCode {
+    let argv: Vec<String> = std::env::args().skip(1).collect();
+    if argv.first().map(String::as_str) == Some("--meshopt-child") {
+        return match argv.as_slice() {
+            [_, inp, out, eps] => match eps.parse() {
+                Ok(e) => meshopt_child(Path::new(inp), Path::new(out), e),
+                Err(_) => usage(),
+            },
+            _ => usage(),
+        };
+    }
+    let Some(args) = parse_args(&argv) else {
+        return usage();
+    };
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn usage() -> ExitCode {
+    eprintln!(
+        "usage: peers [--quick] [--meshes a,b] [--epsilons 1/64%,...,1%] \
+         [--tools envelope,cgal,openmesh,meshopt] [--timeout S] [--json PATH] [--keep DIR] \
+         [--envelope PATH]\n\
+         epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
+    );
+    ExitCode::FAILURE
+}
+
+fn parse_epsilon(s: &str) -> Option<(String, f64)> {
+    let p = s.strip_suffix('%')?;
+    let v = match p.split_once('/') {
+        Some((a, b)) => a.parse::<f64>().ok()? / b.parse::<f64>().ok()?,
+        None => p.parse::<f64>().ok()?,
+    };
+    (v.is_finite() && v > 0.0).then(|| (s.to_string(), v / 100.0))
+}
+
+fn parse_args(argv: &[String]) -> Option<Args> {
+    let mut a = Args {
+        meshes: DEFAULT_MESHES.iter().map(|s| (*s).to_string()).collect(),
+        epsilons: DEFAULT_EPSILONS
+            .iter()
+            .map(|s| parse_epsilon(s).expect("valid"))
+            .collect(),
+        tools: Tool::ALL.to_vec(),
+        timeout: 600.0,
+        json: None,
+        keep: None,
+        envelope: None,
+    };
+    let mut it = argv.iter();
+    let list = |v: Option<&String>| -> Option<Vec<String>> {
+        Some(
+            v?.split(',')
+                .filter(|s| !s.is_empty())
+                .map(str::to_string)
+                .collect(),
+        )
+    };
+    while let Some(f) = it.next() {
+        match f.as_str() {
+            "--quick" => {
+                a.meshes = vec!["mech-holes-shark".into()];
+                a.epsilons = vec![parse_epsilon("1/4%")?, parse_epsilon("1%")?];
+                a.timeout = 60.0;
+            }
+            "--meshes" => a.meshes = list(it.next())?,
+            "--epsilons" => {
+                a.epsilons = list(it.next())?
+                    .iter()
+                    .map(|s| parse_epsilon(s))
+                    .collect::<Option<_>>()?;
+            }
+            "--tools" => {
+                a.tools = list(it.next())?
+                    .iter()
+                    .map(|s| Tool::parse(s))
+                    .collect::<Option<_>>()?;
+            }
+            "--timeout" => a.timeout = it.next()?.parse().ok().filter(|t: &f64| *t > 0.0)?,
+            "--json" => a.json = Some(PathBuf::from(it.next()?)),
+            "--keep" => a.keep = Some(PathBuf::from(it.next()?)),
+            "--envelope" => a.envelope = Some(PathBuf::from(it.next()?)),
+            _ => return None,
+        }
+    }
+    (!a.meshes.is_empty() && !a.epsilons.is_empty() && !a.tools.is_empty()).then_some(a)
+}
+
+/// How one tool run ended.
+#[derive(Clone, Debug, PartialEq)]
+enum Status {
+    Ok,
+    Unavailable(String),
+    Timeout,
+    Failed(String),
+}
+
+/// One tool on one (mesh, epsilon).
+#[derive(Clone, Debug)]
+struct Run {
+    status: Status,
+    faces: Option<usize>,
+    /// Tool-reported seconds (simplification only), else wall.
+    seconds: Option<f64>,
+    seconds_source: &'static str,
+    wall: Option<f64>,
+    peak_mib: Option<f64>,
+    /// CGAL: max of the two one-sided distances, over epsilon (with the two sides).
+    dist: Option<(f64, f64, f64)>,
+    dist_error: Option<String>,
+    /// Ours: certified verdict, and the larger lower bound over epsilon.
+    cert: Option<(Verdict, f64, f64)>,
+    /// Self-intersecting pairs (CGAL), with the semantics used.
+    self_int: Option<(usize, &'static str)>,
+    self_int_error: Option<String>,
+}
+
+impl Run {
+    fn status(status: Status) -> Run {
+        Run {
+            status,
+            faces: None,
+            seconds: None,
+            seconds_source: "",
+            wall: None,
+            peak_mib: None,
+            dist: None,
+            dist_error: None,
+            cert: None,
+            self_int: None,
+            self_int_error: None,
+        }
+    }
+}
+
+/// The peers' binaries and whether `envelope simplify` exists.
+struct Programs {
+    cgal: Option<PathBuf>,
+    openmesh: Option<PathBuf>,
+    envelope: Result<PathBuf, String>,
+    me: PathBuf,
+}
+
+fn locate_programs(args: &Args) -> Programs {
+    let root = repo_root();
+    let peers = root.join("benches/peers/build");
+    let needs_cpp = args.tools.contains(&Tool::Cgal) || args.tools.contains(&Tool::OpenMesh);
+    if needs_cpp {
+        let st = Command::new(root.join("benches/peers/build.sh"))
+            .stdout(Stdio::null())
+            .status();
+        if !st.is_ok_and(|s| s.success()) {
+            eprintln!("warning: benches/peers/build.sh failed; C++ peers unavailable");
+        }
+    }
+    let exe = |p: PathBuf| p.is_file().then_some(p);
+    Programs {
+        cgal: exe(peers.join("cgal_envelope_collapse")),
+        openmesh: exe(peers.join("openmesh_decimate")),
+        envelope: locate_envelope(args.envelope.as_deref(), &root),
+        me: std::env::current_exe().expect("current exe"),
+    }
+}
+
+/// `--envelope`, `$ENVELOPE_BIN`, then the newest `release/envelope` of `$CARGO_TARGET_DIR` and
+/// `target/` that has a `simplify` subcommand.
+fn locate_envelope(given: Option<&Path>, root: &Path) -> Result<PathBuf, String> {
+    let mut cands: Vec<PathBuf> = Vec::new();
+    if let Some(p) = given {
+        cands.push(p.to_path_buf());
+    } else if let Some(p) = std::env::var_os("ENVELOPE_BIN") {
+        cands.push(PathBuf::from(p));
+    } else {
+        if let Some(t) = std::env::var_os("CARGO_TARGET_DIR") {
+            let t = PathBuf::from(t);
+            cands.push(if t.is_absolute() { t } else { root.join(t) }.join("release/envelope"));
+        }
+        cands.push(root.join("target/release/envelope"));
+        let mtime = |p: &PathBuf| fs::metadata(p).and_then(|m| m.modified()).ok();
+        cands.sort_by_key(|p| std::cmp::Reverse(mtime(p)));
+    }
+    for c in &cands {
+        let ok = Command::new(c)
+            .args(["simplify", "--help"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success());
+        if ok {
+            return Ok(c.clone());
+        }
+    }
+    Err(format!(
+        "no `envelope simplify` in {} (cargo build --release -p envelope-cli, or --envelope PATH)",
+        cands
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    ))
+}
+
+/// Result of one measured child process.
+struct Measured {
+    status: Status,
+    stdout: String,
+    wall: f64,
+    peak_mib: Option<f64>,
+}
+
+/// Runs `cmd` in its own process group under `/usr/bin/time -f %M` (when present), killing the
+/// group after `timeout` seconds.
+fn run_measured(cmd: &[OsString], timeout: f64, dir: &Path, tag: &str) -> Measured {
+    let time_bin = Path::new("/usr/bin/time");
+    let rss_file = dir.join(format!("{tag}.rss"));
+    let out_file = dir.join(format!("{tag}.stdout"));
+    let err_file = dir.join(format!("{tag}.stderr"));
+    let mut c = if time_bin.is_file() {
+        let mut c = Command::new(time_bin);
+        c.arg("-f").arg("%M").arg("-o").arg(&rss_file).args(cmd);
+        c
+    } else {
+        let mut c = Command::new(&cmd[0]);
+        c.args(&cmd[1..]);
+        c
+    };
+    let (Ok(o), Ok(e)) = (File::create(&out_file), File::create(&err_file)) else {
+        return Measured {
+            status: Status::Failed("cannot create log files".into()),
+            stdout: String::new(),
+            wall: 0.0,
+            peak_mib: None,
+        };
+    };
+    c.stdin(Stdio::null()).stdout(o).stderr(e).process_group(0);
+    let start = Instant::now();
+    let mut child = match c.spawn() {
+        Ok(ch) => ch,
+        Err(e) => {
+            return Measured {
+                status: Status::Failed(format!("spawn: {e}")),
+                stdout: String::new(),
+                wall: 0.0,
+                peak_mib: None,
+            };
+        }
+    };
+    let exit = loop {
+        match child.try_wait() {
+            Ok(Some(s)) => break Some(s),
+            Ok(None) if start.elapsed().as_secs_f64() > timeout => {
+                let _ = Command::new("kill")
+                    .args(["-KILL", "--", &format!("-{}", child.id())])
+                    .status();
+                let _ = child.wait();
+                break None;
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
+            Err(e) => {
+                return Measured {
+                    status: Status::Failed(format!("wait: {e}")),
+                    stdout: String::new(),
+                    wall: start.elapsed().as_secs_f64(),
+                    peak_mib: None,
+                };
+            }
+        }
+    };
+    let wall = start.elapsed().as_secs_f64();
+    let stdout = fs::read_to_string(&out_file).unwrap_or_default();
+    let stderr = fs::read_to_string(&err_file).unwrap_or_default();
+    let peak_mib = fs::read_to_string(&rss_file)
+        .ok()
+        .and_then(|s| s.lines().last()?.trim().parse::<f64>().ok())
+        .map(|kib| kib / 1024.0);
+    let status = match exit {
+        None => Status::Timeout,
+        Some(s) if s.success() => Status::Ok,
+        Some(s) => Status::Failed(format!(
+            "{s}: {}",
+            stderr
+                .lines()
+                .last()
+                .unwrap_or("")
+                .chars()
+                .take(200)
+                .collect::<String>()
+        )),
+    };
+    Measured {
+        status,
+        stdout,
+        wall,
+        peak_mib,
+    }
+}
+
+/// `key=value` from a peer's stdout.
+fn field(stdout: &str, key: &str) -> Option<f64> {
+    stdout
+        .split_whitespace()
+        .find_map(|w| w.strip_prefix(key)?.strip_prefix('=')?.parse().ok())
+}
+
+/// A number `seconds`-like at the top level of (or one level into) `envelope`'s report.
+fn report_seconds(report: &Path) -> Option<f64> {
+    let v: Value = serde_json::from_str(&fs::read_to_string(report).ok()?).ok()?;
+    let find = |o: &serde_json::Map<String, Value>| {
+        [
+            "seconds",
+            "simplify_seconds",
+            "time_seconds",
+            "elapsed_seconds",
+        ]
+        .iter()
+        .find_map(|k| o.get(*k)?.as_f64())
+    };
+    let o = v.as_object()?;
+    find(o).or_else(|| o.values().find_map(|x| find(x.as_object()?)))
+}
+
+/// One tool on one input; the output goes to `out`.
+fn run_tool(
+    tool: Tool,
+    progs: &Programs,
+    input: &Path,
+    out: &Path,
+    eps: f64,
+    timeout: f64,
+    dir: &Path,
+    tag: &str,
+) -> Run {
+    let e = format!("{eps:e}");
+    let report = dir.join(format!("{tag}.report.json"));
+    let cmd: Vec<OsString> = match tool {
+        Tool::Envelope => match &progs.envelope {
+            Ok(b) => vec![
+                b.into(),
+                "simplify".into(),
+                input.into(),
+                out.into(),
+                "--epsilon".into(),
+                e.into(),
+                "--report".into(),
+                report.clone().into(),
+                "--quiet".into(),
+            ],
+            Err(m) => return Run::status(Status::Unavailable(m.clone())),
+        },
+        Tool::Cgal | Tool::OpenMesh => {
+            let b = if tool == Tool::Cgal {
+                &progs.cgal
+            } else {
+                &progs.openmesh
+            };
+            match b {
+                Some(b) => vec![b.into(), input.into(), out.into(), e.into()],
+                None => {
+                    return Run::status(Status::Unavailable(
+                        "benches/peers/build.sh did not build it".into(),
+                    ));
+                }
+            }
+        }
+        Tool::Meshopt => vec![
+            progs.me.clone().into(),
+            "--meshopt-child".into(),
+            input.into(),
+            out.into(),
+            e.into(),
+        ],
+    };
+    let _ = fs::remove_file(out);
+    let m = run_measured(&cmd, timeout, dir, tag);
+    let mut r = Run::status(m.status.clone());
+    r.wall = Some(m.wall);
+    r.peak_mib = m.peak_mib;
+    if m.status != Status::Ok {
+        return r;
+    }
+    let reported = match tool {
+        Tool::Envelope => report_seconds(&report),
+        _ => field(&m.stdout, "seconds"),
+    };
+    (r.seconds, r.seconds_source) = match reported {
+        Some(s) => (Some(s), "tool"),
+        None => (Some(m.wall), "wall"),
+    };
+    r
+}
+
+/// Measures an output: faces, CGAL's two-sided distance, our certificate, self-intersections.
+fn measure(r: &mut Run, oracle: &Oracle, input: &Path, orig: &TriangleSoup, out: &Path, eps: f64) {
+    let approx = match read_path(out) {
+        Ok((s, _)) => s,
+        Err(e) => {
+            r.status = Status::Failed(format!("output unreadable: {e}"));
+            return;
+        }
+    };
+    r.faces = Some(approx.faces.len());
+    let bound = HAUSDORFF_BOUND * eps;
+    match (
+        oracle.try_hausdorff(out, input, bound),
+        oracle.try_hausdorff(input, out, bound),
+    ) {
+        (Ok(ao), Ok(oa)) => r.dist = Some((ao.max(oa) / eps, ao / eps, oa / eps)),
+        (Err(e), _) | (_, Err(e)) => r.dist_error = Some(e.to_string()),
+    }
+    let options = Options {
+        resolution: 1e-3 * eps,
+        ..Options::distance_only(eps)
+    };
+    let c = certify(orig, &approx, &options);
+    let lower = c.approx_to_orig.lower.max(c.orig_to_approx.lower) / eps;
+    let upper = c.approx_to_orig.upper.max(c.orig_to_approx.upper) / eps;
+    r.cert = Some((c.verdict, lower, upper));
+    match oracle.try_self_intersections(out, false) {
+        Ok(s) => r.self_int = Some((s.pairs.len(), kind_name(&format!("{:?}", s.kind)))),
+        Err(_) => match oracle.try_self_intersections(out, true) {
+            Ok(s) => r.self_int = Some((s.pairs.len(), "soup")),
+            Err(e) => r.self_int_error = Some(e.to_string()),
+        },
+    }
+}
+
+fn kind_name(debug: &str) -> &'static str {
+    if debug.to_ascii_lowercase().contains("soup") {
+        "soup"
+    } else {
+        "mesh"
+    }
+}
+
+/// All tools' runs for one (mesh, epsilon).
+struct Row {
+    mesh: String,
+    eps_label: String,
+    eps: f64,
+    input_faces: usize,
+    runs: Vec<(Tool, Run)>,
+}
+
+fn run(args: &Args) -> Result<(), String> {
+    let corpus = corpus_dir().ok_or("corpus missing: run scripts/corpus.sh")?;
+    let oracle = Oracle::locate().map_err(|e| e.to_string())?;
+    let progs = locate_programs(args);
+    if let Err(m) = &progs.envelope {
+        if args.tools.contains(&Tool::Envelope) {
+            eprintln!("warning: {m}; its rows are marked n/a");
+        }
+    }
+    let stamp = SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let dir = match &args.keep {
+        Some(d) => d.clone(),
+        None => std::env::temp_dir().join(format!("envelope-peers-{}", std::process::id())),
+    };
+    fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let mut rows = Vec::new();
+    let started = Instant::now();
+    for mesh in &args.meshes {
+        let input = corpus.join(format!("{mesh}.off"));
+        let (orig, _) = read_path(&input).map_err(|e| format!("{}: {e}", input.display()))?;
+        let diag = orig.diagonal();
+        for (label, frac) in &args.epsilons {
+            let eps = frac * diag;
+            let mut row = Row {
+                mesh: mesh.clone(),
+                eps_label: label.clone(),
+                eps,
+                input_faces: orig.faces.len(),
+                runs: Vec::new(),
+            };
+            for &tool in &args.tools {
+                let tag = format!("{mesh}-{}-{}", label.replace('/', "_"), tool.name());
+                let out = dir.join(format!("{tag}.off"));
+                eprint!(
+                    "[{:>6.0} s] {mesh} {label} {} ...",
+                    started.elapsed().as_secs_f64(),
+                    tool.name()
+                );
+                let mut r = run_tool(tool, &progs, &input, &out, eps, args.timeout, &dir, &tag);
+                if r.status == Status::Ok {
+                    measure(&mut r, &oracle, &input, &orig, &out, eps);
+                }
+                eprintln!(" {}", summary(&r));
+                row.runs.push((tool, r));
+            }
+            rows.push(row);
+        }
+    }
+    let table = table(&rows, &args.tools);
+    println!("{table}");
+    let json_path = args
+        .json
+        .clone()
+        .unwrap_or_else(|| repo_root().join(format!("benches/results/peers-{stamp}.json")));
+    if let Some(p) = json_path.parent() {
+        let _ = fs::create_dir_all(p);
+    }
+    let mut w = BufWriter::new(File::create(&json_path).map_err(|e| e.to_string())?);
+    serde_json::to_writer_pretty(&mut w, &to_json(&rows, args, &progs, stamp))
+        .map_err(|e| e.to_string())?;
+    w.flush().map_err(|e| e.to_string())?;
+    eprintln!("raw results: {}", json_path.display());
+    if args.keep.is_none() {
+        let _ = fs::remove_dir_all(&dir);
+    }
+    Ok(())
+}
+
+fn summary(r: &Run) -> String {
+    match &r.status {
+        Status::Ok => format!(
+            "{} faces, {:.3} s, {:.0} MiB, d/eps {}, cert {}, self-int {}",
+            r.faces.map_or("?".into(), |f| f.to_string()),
+            r.seconds.unwrap_or(f64::NAN),
+            r.peak_mib.unwrap_or(f64::NAN),
+            dist_cell(r),
+            cert_cell(r),
+            si_cell(r)
+        ),
+        s => format!("{s:?}"),
+    }
+}
+
+fn dist_cell(r: &Run) -> String {
+    match (&r.dist, &r.dist_error) {
+        (Some((d, _, _)), _) => format!("{d:.2}"),
+        (None, Some(_)) => "err".into(),
+        _ => String::new(),
+    }
+}
+
+/// `ok` when certified within epsilon both ways, `>=x` when violated (x = proved lower bound
+/// over epsilon), `?` when undecided.
+fn cert_cell(r: &Run) -> String {
+    match r.cert {
+        Some((Verdict::Holds, _, _)) => "ok".into(),
+        Some((Verdict::Violated, lo, _)) => format!(">={lo:.2}"),
+        Some((Verdict::Undecided, _, _)) => "?".into(),
+        None => String::new(),
+    }
+}
+
+fn si_cell(r: &Run) -> String {
+    match (&r.self_int, &r.self_int_error) {
+        (Some((0, _)), _) => "no".into(),
+        (Some((n, "soup")), _) => format!("yes {n} (soup)"),
+        (Some((n, _)), _) => format!("yes {n}"),
+        (None, Some(_)) => "err".into(),
+        _ => String::new(),
+    }
+}
+
+fn table(rows: &[Row], tools: &[Tool]) -> String {
+    let mut s = String::new();
+    let mut head = vec!["mesh".to_string(), "eps".into()];
+    for t in tools {
+        for c in ["faces", "s", "MiB", "d/eps", "cert", "self-int"] {
+            head.push(format!("{} {c}", t.name()));
+        }
+    }
+    let ours = tools.contains(&Tool::Envelope);
+    let peers: Vec<Tool> = tools
+        .iter()
+        .copied()
+        .filter(|t| *t != Tool::Envelope)
+        .collect();
+    if ours {
+        for p in &peers {
+            head.push(format!("faces ours/{}", p.name()));
+            head.push(format!("speed {}/ours", p.name()));
+        }
+    }
+    let _ = writeln!(s, "| {} |", head.join(" | "));
+    let _ = writeln!(s, "|{}", "---|".repeat(head.len()));
+    for row in rows {
+        let mut cells = vec![
+            format!("{} ({} f)", row.mesh, row.input_faces),
+            format!("{} ({:.3e})", row.eps_label, row.eps),
+        ];
+        for (_, r) in &row.runs {
+            match &r.status {
+                Status::Ok => {
+                    cells.push(r.faces.map_or("?".into(), |f| f.to_string()));
+                    let src = if r.seconds_source == "wall" { "*" } else { "" };
+                    cells.push(
+                        r.seconds
+                            .map_or(String::new(), |x| format!("{}{src}", secs(x))),
+                    );
+                    cells.push(r.peak_mib.map_or("-".into(), |m| format!("{m:.0}")));
+                    cells.push(dist_cell(r));
+                    cells.push(cert_cell(r));
+                    cells.push(si_cell(r));
+                }
+                other => {
+                    let tag = match other {
+                        Status::Unavailable(_) => "n/a".to_string(),
+                        Status::Timeout => "timeout".into(),
+                        _ => "failed".into(),
+                    };
+                    let wall = if *other == Status::Timeout {
+                        r.wall.map_or(String::new(), |w| format!(">{}", secs(w)))
+                    } else {
+                        String::new()
+                    };
+                    let mib = r.peak_mib.map_or(String::new(), |m| format!("{m:.0}"));
+                    cells.extend([tag, wall, mib, String::new(), String::new(), String::new()]);
+                }
+            }
+        }
+        if ours {
+            let get = |t: Tool| {
+                row.runs
+                    .iter()
+                    .find(|(x, _)| *x == t)
+                    .map(|(_, r)| r)
+                    .filter(|r| r.status == Status::Ok)
+            };
+            let o = get(Tool::Envelope);
+            for p in &peers {
+                let (fr, sr) = match (o, get(*p)) {
+                    (Some(o), Some(q)) => (
+                        ratio(o.faces.map(|f| f as f64), q.faces.map(|f| f as f64)),
+                        ratio(q.seconds, o.seconds),
+                    ),
+                    _ => (String::new(), String::new()),
+                };
+                cells.push(fr);
+                cells.push(sr);
+            }
+        }
+        let _ = writeln!(s, "| {} |", cells.join(" | "));
+    }
+    s.push_str(
+        "\ns: the tool's own simplification time (I/O excluded; `*` = wall time of the process). \
+         MiB: peak RSS of the process. d/eps: two-sided Hausdorff distance over epsilon \
+         (CGAL bounded_error_Hausdorff_distance, bound 1% eps). cert: envelope-verify's \
+         certified two-sided check (ok = proved <= eps, >=x = proved violated by x eps). \
+         self-int: CGAL self-intersecting face pairs of the output.\n",
+    );
+    s
+}
+
+fn secs(x: f64) -> String {
+    if x < 1.0 {
+        format!("{x:.3}")
+    } else if x < 100.0 {
+        format!("{x:.2}")
+    } else {
+        format!("{x:.0}")
+    }
+}
+
+fn ratio(a: Option<f64>, b: Option<f64>) -> String {
+    match (a, b) {
+        (Some(a), Some(b)) if b > 0.0 => format!("{:.2}", a / b),
+        _ => String::new(),
+    }
+}
+
+fn to_json(rows: &[Row], args: &Args, progs: &Programs, stamp: u64) -> Value {
+    let runs = |row: &Row| -> Vec<Value> {
+        row.runs
+            .iter()
+            .map(|(t, r)| {
+                json!({
+                    "tool": t.name(),
+                    "status": match &r.status {
+                        Status::Ok => "ok".to_string(),
+                        Status::Unavailable(m) => format!("unavailable: {m}"),
+                        Status::Timeout => "timeout".into(),
+                        Status::Failed(m) => format!("failed: {m}"),
+                    },
+                    "faces": r.faces,
+                    "seconds": r.seconds,
+                    "seconds_source": r.seconds_source,
+                    "wall_seconds": r.wall,
+                    "peak_rss_mib": r.peak_mib,
+                    "hausdorff_over_eps": r.dist.map(|d| d.0),
+                    "hausdorff_out_to_in_over_eps": r.dist.map(|d| d.1),
+                    "hausdorff_in_to_out_over_eps": r.dist.map(|d| d.2),
+                    "hausdorff_error": r.dist_error,
+                    "certified_verdict": r.cert.map(|c| c.0.as_str()),
+                    "certified_lower_over_eps": r.cert.map(|c| c.1),
+                    "certified_upper_over_eps": r.cert.map(|c| c.2),
+                    "self_intersecting_pairs": r.self_int.map(|s| s.0),
+                    "self_intersection_semantics": r.self_int.map(|s| s.1),
+                    "self_intersection_error": r.self_int_error,
+                })
+            })
+            .collect()
+    };
+    json!({
+        "unix_time": stamp,
+        "timeout_seconds": args.timeout,
+        "hausdorff_bound_over_eps": HAUSDORFF_BOUND,
+        "envelope_binary": progs.envelope.as_ref().map(|p| p.display().to_string()).ok(),
+        "rows": rows.iter().map(|row| json!({
+            "mesh": row.mesh,
+            "epsilon_label": row.eps_label,
+            "epsilon": row.eps,
+            "input_faces": row.input_faces,
+            "runs": runs(row),
+        })).collect::<Vec<_>>(),
+    })
+}
+
+/// `--meshopt-child IN OUT EPS`: meshoptimizer's `simplify` to 0 triangles under absolute
+/// error EPS (positions in f32, as meshoptimizer takes them). Prints `faces=N seconds=S
+/// result_error=E` (S: the simplify call alone).
+fn meshopt_child(input: &Path, output: &Path, eps: f64) -> ExitCode {
+    let soup = match read_path(input) {
+        Ok((s, _)) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    #[allow(clippy::cast_possible_truncation)]
+    let pos: Vec<[f32; 3]> = soup
+        .positions
+        .iter()
+        .map(|p| [p.x as f32, p.y as f32, p.z as f32])
+        .collect();
+    let indices: Vec<u32> = soup.faces.iter().flat_map(|f| f.map(|v| v.0)).collect();
+    let bytes = meshopt::utilities::typed_to_bytes(&pos);
+    let adapter = match meshopt::VertexDataAdapter::new(bytes, 12, 0) {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let t = Instant::now();
+    let mut err = 0f32;
+    #[allow(clippy::cast_possible_truncation)]
+    let out = meshopt::simplify(
+        &indices,
+        &adapter,
+        0,
+        eps as f32,
+        meshopt::SimplifyOptions::ErrorAbsolute,
+        Some(&mut err),
+    );
+    let secs = t.elapsed().as_secs_f64();
+    // Compact the used vertices; f32 -> f64 is exact, `{}` prints the shortest round trip.
+    let mut map = vec![u32::MAX; pos.len()];
+    let mut used = Vec::new();
+    for &i in &out {
+        if map[i as usize] == u32::MAX {
+            map[i as usize] = u32::try_from(used.len()).expect("fits");
+            used.push(i);
+        }
+    }
+    let write = || -> std::io::Result<()> {
+        let mut w = BufWriter::new(File::create(output)?);
+        writeln!(w, "OFF\n{} {} 0", used.len(), out.len() / 3)?;
+        for &i in &used {
+            let p = pos[i as usize];
+            writeln!(
+                w,
+                "{} {} {}",
+                f64::from(p[0]),
+                f64::from(p[1]),
+                f64::from(p[2])
+            )?;
+        }
+        for t in out.chunks_exact(3) {
+            writeln!(
+                w,
+                "3 {} {} {}",
+                map[t[0] as usize], map[t[1] as usize], map[t[2] as usize]
+            )?;
+        }
+        w.flush()
+    };
+    if let Err(e) = write() {
+        eprintln!("error: {}: {e}", output.display());
+        return ExitCode::FAILURE;
+    }
+    println!("faces={} seconds={secs} result_error={err}", out.len() / 3);
+    ExitCode::SUCCESS
+}
