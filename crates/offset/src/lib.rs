@@ -230,13 +230,9 @@ pub fn build_envelopes(
     let diagonal = soup.diagonal();
     let (mut eps_plus, mut eps_minus) = match options.method {
         Method::Analytical => analytical::analytical_eps(soup, &vf, &normals, &requested),
-        Method::Numerical => numerical_eps(
-            soup,
-            &normals,
-            &requested,
-            &options.numerical,
-            diagonal,
-        ),
+        Method::Numerical => {
+            numerical_eps(soup, &normals, &requested, &options.numerical, diagonal)
+        }
     };
     // Exact proof and repair.
     let place = |eps: &[f64], s: f64| -> Vec<DVec3> {
