@@ -1,0 +1,233 @@
+//! `envelope_simplify::simplify` against CGAL (and OpenMesh): every output must
+//!
+//! * have no self-intersecting face pair (CGAL `does_self_intersect` pairs),
+//! * be within epsilon of the input in **both** directions by CGAL's
+//!   `bounded_error_Hausdorff_distance` (see [`within`] for how its error bound is used),
+//! * keep the genus, components and border loops (CGAL `Surface_mesh` topology line),
+//! * and hold `envelope-verify`'s exact certificate at epsilon (both directions, no
+//!   self-intersection, same topology).
+//!
+//! Meshes: generated ones (icosphere, torus, box, open cylinder, the demo cup) at 1/16 %,
+//! 1/4 % and 1 % of the bounding-box diagonal, and corpus meshes at 1/4 % and 1 %:
+//! `fandisk.off`, `mech-holes-shark.off` and `elephant.off` always, `bunny00.off` and
+//! `armadillo.off` only with `ENVELOPE_FULL_CORPUS=1` or in a release build.
+//!
+//! Every failing (mesh, epsilon, property) is collected and printed together; the test then
+//! fails naming all of them, except the ones listed in [`KNOWN_FAILURES`] (printed as
+//! `KNOWN FAIL`; the test also fails when one of them starts passing, so the list stays true). Nothing is skipped silently: a corpus mesh that is missing or
+//! not acceptable input is named in the output.
+
+use std::path::Path;
+
+use envelope_io::{Format, read_path, write_path};
+use envelope_mesh::{TriangleSoup, generate};
+use envelope_offset::EpsilonField;
+use envelope_simplify::{SimplifyOptions, input_problems, simplify};
+use envelope_tests::oracle::{Oracle, TopoCounts, corpus_dir, oracle_or_skip};
+use glam::DVec3;
+
+/// Outputs known to violate the bound, with the diagnosis. Open problem, not hidden.
+///
+/// `mech-holes-shark.off` (4 border loops): the output is up to 6.7 eps (1/4 %) from the input
+/// at the midpoint of an interior edge joining two border vertices across a hole
+/// (`envelope-verify` witness on face 369 at 1/4 %). The envelopes are open along the
+/// borders and the tubes of 6.2 only constrain *new border edges*, so an interior triangle
+/// next to a border can leave the space between the envelopes through the border gap.
+const KNOWN_FAILURES: &[(&str, f64)] = &[
+    ("mech-holes-shark.off", 0.25),
+    ("mech-holes-shark.off", 1.0),
+];
+
+fn full_requested() -> bool {
+    std::env::var("ENVELOPE_FULL_CORPUS").is_ok_and(|v| v == "1") || !cfg!(debug_assertions)
+}
+
+/// CGAL returns `h` with `|h - true distance| <= bound`. We ask with `bound = 0.05 eps` and
+/// fail when `h > eps + bound`: then the true distance is `>= h - bound > eps`, a certain
+/// violation. A pass means the true distance is `<= eps + 2 bound = 1.1 eps`. The bound is
+/// that loose because CGAL's branch and bound is very slow where the surfaces coincide
+/// (distance 0: a simplified flat box side took > 60 s and 5 GB at `1e-3 eps`, 15 s at
+/// `0.05 eps`). The exact check at `eps` is `envelope-verify`'s certificate, also run here
+/// (and itself cross-checked against CGAL in `cross_verify`).
+fn within(oracle: &Oracle, a: &Path, b: &Path, eps: f64) -> Result<f64, String> {
+    let bound = 0.05 * eps;
+    let h = oracle
+        .try_hausdorff(a, b, bound)
+        .map_err(|e| format!("CGAL hausdorff failed: {e}"))?;
+    if h <= eps + bound {
+        Ok(h)
+    } else {
+        Err(format!(
+            "distance {h:.6e} > eps {eps:.6e} + bound {bound:.1e}"
+        ))
+    }
+}
+
+fn cgal_topology(oracle: &Oracle, path: &Path) -> Result<TopoCounts, String> {
+    oracle.topology(path).cgal
+}
+
+struct Case {
+    name: String,
+    soup: TriangleSoup,
+    percents: &'static [f64],
+}
+
+const GENERATED_PERCENTS: &[f64] = &[1.0 / 16.0, 0.25, 1.0];
+const CORPUS_PERCENTS: &[f64] = &[0.25, 1.0];
+
+fn cases(log: &mut Vec<String>) -> Vec<Case> {
+    let mut v: Vec<Case> = [
+        ("icosphere(3)", generate::icosphere(3, 1.0)),
+        ("torus(48x24)", generate::torus(1.0, 0.35, 48, 24)),
+        (
+            "box(1x2x3, 6)",
+            generate::box_mesh(DVec3::new(1.0, 2.0, 3.0), 6),
+        ),
+        (
+            "open_cylinder(32x8)",
+            generate::open_cylinder(1.0, 2.0, 32, 8),
+        ),
+        ("demo_model (cup)", generate::demo_model()),
+    ]
+    .into_iter()
+    .map(|(n, soup)| Case {
+        name: n.to_string(),
+        soup,
+        percents: GENERATED_PERCENTS,
+    })
+    .collect();
+    let mut corpus = vec!["fandisk.off", "mech-holes-shark.off", "elephant.off"];
+    if full_requested() {
+        corpus.extend(["bunny00.off", "armadillo.off"]);
+    } else {
+        log.push(
+            "skipped in debug (ENVELOPE_FULL_CORPUS=1 runs them): bunny00.off, armadillo.off"
+                .into(),
+        );
+    }
+    let Some(dir) = corpus_dir() else {
+        log.push("corpus missing: corpus meshes not run".into());
+        return v;
+    };
+    for name in corpus {
+        match read_path(dir.join(name)) {
+            Ok((soup, _)) if input_problems(&soup).is_empty() => v.push(Case {
+                name: name.to_string(),
+                soup,
+                percents: CORPUS_PERCENTS,
+            }),
+            Ok(_) => log.push(format!("{name}: not acceptable input, not run")),
+            Err(e) => log.push(format!("{name}: unreadable ({e}), not run")),
+        }
+    }
+    v
+}
+
+#[test]
+fn outputs_pass_cgal() {
+    let Some(oracle) = oracle_or_skip() else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let mut log = Vec::new();
+    let mut failures = Vec::new();
+    for (k, case) in cases(&mut log).iter().enumerate() {
+        let orig_path = tmp.path().join(format!("{k}-orig.off"));
+        write_path(&orig_path, &case.soup, Format::Off).unwrap();
+        let topo_in = cgal_topology(&oracle, &orig_path);
+        for &percent in case.percents {
+            let tag = format!("{} at {percent}%", case.name);
+            let eps = percent / 100.0 * case.soup.diagonal();
+            let mut options = SimplifyOptions::new(EpsilonField::Constant(eps));
+            options.verify = true;
+            let (out, report) = match simplify(&case.soup, &options, &mut ()) {
+                Ok(r) => r,
+                Err(e) => {
+                    failures.push(format!("{tag}: simplify failed: {e}"));
+                    continue;
+                }
+            };
+            let out_path = tmp.path().join(format!("{k}-{percent}.off"));
+            write_path(&out_path, &out, Format::Off).unwrap();
+            let mut problems = Vec::new();
+            if let Some(v) = report.verify.as_ref().filter(|v| {
+                !v.violations.is_empty() || v.verdict != envelope_verify::Verdict::Holds
+            }) {
+                problems.push(format!(
+                    "envelope-verify {}: {:?}",
+                    v.verdict.as_str(),
+                    v.violations
+                ));
+            }
+            let pairs = oracle.self_intersections(&out_path);
+            if !pairs.is_empty() {
+                problems.push(format!(
+                    "{} self-intersecting pairs (first {:?})",
+                    pairs.len(),
+                    pairs[0]
+                ));
+            }
+            let mut dist = [f64::NAN; 2];
+            for (i, (a, b, dir)) in [
+                (&out_path, &orig_path, "output->input"),
+                (&orig_path, &out_path, "input->output"),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                match within(&oracle, a, b, eps) {
+                    Ok(h) => dist[i] = h,
+                    Err(e) => problems.push(format!("{dir}: {e}")),
+                }
+            }
+            match (&topo_in, cgal_topology(&oracle, &out_path)) {
+                (Ok(a), Ok(b)) => {
+                    if (a.genus, a.borders, a.components) != (b.genus, b.borders, b.components) {
+                        problems.push(format!(
+                            "topology changed: genus {:?} -> {:?}, borders {} -> {}, components {} -> {}",
+                            a.genus, b.genus, a.borders, b.borders, a.components, b.components
+                        ));
+                    }
+                }
+                (a, b) => problems.push(format!("CGAL topology unavailable: {a:?} / {b:?}")),
+            }
+            let line = format!(
+                "{tag}: {} -> {} faces, {:.2} s, CGAL h(out,in) {:.4}% h(in,out) {:.4}% of diag, envelope proof {}",
+                report.input_faces,
+                report.output_faces,
+                report.seconds,
+                100.0 * dist[0] / report.diagonal,
+                100.0 * dist[1] / report.diagonal,
+                report.envelope.proved
+            );
+            let known = KNOWN_FAILURES.contains(&(case.name.as_str(), percent));
+            match (problems.is_empty(), known) {
+                (true, false) => {
+                    eprintln!("ok   {line}");
+                    log.push(format!("ok   {line}"));
+                }
+                (true, true) => {
+                    eprintln!("FIXED {line}");
+                    failures.push(format!("{tag}: passes now; remove it from KNOWN_FAILURES"));
+                }
+                (false, true) => {
+                    eprintln!("KNOWN FAIL {line}: {}", problems.join("; "));
+                    log.push(format!("KNOWN FAIL {line}: {}", problems.join("; ")));
+                }
+                (false, false) => {
+                    eprintln!("FAIL {line}: {}", problems.join("; "));
+                    log.push(format!("FAIL {line}"));
+                    failures.push(format!("{tag}: {}", problems.join("; ")));
+                }
+            }
+        }
+    }
+    println!("{}", log.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} outputs fail the CGAL oracle:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
