@@ -214,6 +214,18 @@ fn outputs_pass_cgal() {
                 (false, true) => {
                     eprintln!("KNOWN FAIL {line}: {}", problems.join("; "));
                     log.push(format!("KNOWN FAIL {line}: {}", problems.join("; ")));
+                    // The open problem must never reach a user as a good output: our own
+                    // certificate has to flag it (then `envelope simplify` exits 1 and leaves
+                    // OUT alone).
+                    let flagged = report
+                        .verify
+                        .as_ref()
+                        .is_some_and(|v| v.verdict == envelope_verify::Verdict::Violated);
+                    if !flagged {
+                        failures.push(format!(
+                            "{tag}: known violation not flagged by envelope-verify"
+                        ));
+                    }
                 }
                 (false, false) => {
                     eprintln!("FAIL {line}: {}", problems.join("; "));
