@@ -32,6 +32,15 @@ pub(crate) struct Args {
     /// Skip the topology comparison.
     #[arg(long)]
     no_topology: bool,
+    /// Only decide whether APPROX lies in ORIG's epsilon-envelope (every point of APPROX within
+    /// epsilon of ORIG: the one-sided Hausdorff distance approx -> orig); orig -> approx is not
+    /// checked. Self-intersections and topology follow their own flags.
+    #[arg(long)]
+    envelope_of: bool,
+    /// Stop the self-intersection test at the first intersecting pair (same verdict; the
+    /// report names one pair instead of all).
+    #[arg(long)]
+    stop_at_first: bool,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -56,6 +65,8 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     }
     options.self_intersections = !args.no_self_intersections;
     options.topology = !args.no_topology;
+    options.orig_to_approx = !args.envelope_of;
+    options.first_intersection_only = args.stop_at_first;
     let cert = certify(&orig, &approx, &options);
     if args.json {
         let mut v = cert.to_json();
@@ -140,7 +151,16 @@ fn render_text(args: &Args, c: &Certificate) -> String {
         c.resolution
     );
     render_side(&mut out, "approx -> orig", &c.approx_to_orig, c.diagonal);
-    render_side(&mut out, "orig -> approx", &c.orig_to_approx, c.diagonal);
+    if c.two_sided {
+        render_side(&mut out, "orig -> approx", &c.orig_to_approx, c.diagonal);
+    } else {
+        let _ = writeln!(out, "orig -> approx   not checked (--envelope-of)");
+    }
+    let _ = writeln!(
+        out,
+        "envelope_of: {} (approx within epsilon of orig everywhere)",
+        c.envelope_of().as_str()
+    );
     if let Some(pairs) = &c.self_intersections {
         let first: Vec<String> = pairs
             .iter()
@@ -149,8 +169,13 @@ fn render_text(args: &Args, c: &Certificate) -> String {
             .collect();
         let _ = writeln!(
             out,
-            "self-intersections of approx: {}{}",
+            "self-intersections of approx: {}{}{}",
             pairs.len(),
+            if c.self_intersections_complete || pairs.is_empty() {
+                ""
+            } else {
+                " or more (stopped at the first)"
+            },
             if first.is_empty() {
                 String::new()
             } else {

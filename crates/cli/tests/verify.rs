@@ -183,3 +183,34 @@ fn unreadable_input_exits_2() {
     ]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn envelope_of_and_stop_at_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, a) = pair(dir.path());
+    // Vertex 0 moved by 0.01: inside the 0.0101-envelope, outside the 0.0099 one.
+    let (code, v) = verify_json(&o, &a, &["--epsilon", "0.0101", "--envelope-of"]);
+    assert_eq!(code, 0, "{v:#}");
+    assert_eq!(v["envelope_of"], "holds");
+    assert_eq!(v["two_sided"], false);
+    assert!(v["orig_to_approx"].is_null());
+    let (code, v) = verify_json(
+        &o,
+        &a,
+        &["--epsilon", "0.0099", "--envelope-of", "--stop-at-first"],
+    );
+    assert_eq!(code, 1, "{v:#}");
+    assert_eq!(v["envelope_of"], "violated");
+    assert_eq!(v["self_intersections"]["complete"], false);
+    let out = envelope(&[
+        "verify",
+        o.to_str().unwrap(),
+        a.to_str().unwrap(),
+        "--epsilon",
+        "0.0101",
+        "--envelope-of",
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("envelope_of: holds"), "{text}");
+    assert!(text.contains("not checked"), "{text}");
+}

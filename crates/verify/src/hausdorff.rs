@@ -23,11 +23,18 @@
 //! * **Tolerance.** `eps` is the user's double; `dist <= eps` is decided against the exact
 //!   rational `eps^2`: proofs compare with the largest double `<= (eps - delta)^2`, witnesses
 //!   with the smallest double `>= eps^2` and, in the gap between the two, with rationals.
-
-use std::sync::atomic::{AtomicU64, Ordering};
+//! * **Shared triangles.** A triangle of `from` whose three corners are, as a multiset,
+//!   bitwise equal to the corners of a triangle of `to` is the same closed point set: its
+//!   distance is 0, proved without any predicate (simplifiers keep many input triangles).
+//!   Only bit equality is used, so `-0.0` against `0.0` merely misses the shortcut.
+//!
+//! Speed without changing what is proved: faces are processed in fixed chunks, each chunk
+//! sequentially, so the nearest-triangle search of a face starts from the triangle found for
+//! the previous face (spatial coherence prunes the BVH descent; the search result is only an
+//! estimate that the exact predicates then check), and scratch buffers are reused.
 
 use envelope_mesh::FaceId;
-use envelope_predicates::bvh::{Aabb, Bvh, NodeKind};
+use envelope_predicates::bvh::{Aabb, Bvh, NodeId, NodeKind};
 use envelope_predicates::{Sign, cmp_point_triangle, next_up};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -42,11 +49,80 @@ use crate::{OneSided, Verdict, Witness};
 /// Subdivision depth limit (barycentric numerators stay in `u64`).
 const MAX_LEVEL: u32 = 60;
 
-/// The mesh distances are measured to: its triangles, their boxes and a BVH.
+/// Faces per sequential chunk of the parallel loop (the nearest-triangle hint is carried
+/// within a chunk).
+const CHUNK: usize = 256;
+
+/// The corners of a triangle as bit patterns, sorted: equal keys mean equal corner multisets,
+/// hence the same closed triangle.
+type TriKey = [[u64; 3]; 3];
+
+fn tri_key(t: &[DVec3; 3]) -> TriKey {
+    let [mut a, mut b, mut c] = t.map(|p| p.to_array().map(f64::to_bits));
+    // A three-element sorting network.
+    if b < a {
+        std::mem::swap(&mut a, &mut b);
+    }
+    if c < b {
+        std::mem::swap(&mut b, &mut c);
+    }
+    if b < a {
+        std::mem::swap(&mut a, &mut b);
+    }
+    [a, b, c]
+}
+
+/// A multiply-rotate mix of a key (not adversarial input: a collision only costs a probe).
+fn key_hash(k: &TriKey) -> u64 {
+    let mut h = 0u64;
+    for x in k.as_flattened() {
+        h = (h.rotate_left(23) ^ x).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+    h ^ (h >> 29)
+}
+
+/// The target's triangles by corner key: open addressing with linear probing over face
+/// indices (plus one; 0 is empty). A hit is confirmed by comparing the full keys.
+struct KeyTable {
+    slots: Vec<u32>,
+    mask: usize,
+}
+
+impl KeyTable {
+    fn new(tris: &[[DVec3; 3]]) -> KeyTable {
+        let size = (2 * tris.len()).next_power_of_two().max(2);
+        let mut slots = vec![0u32; size];
+        let mask = size - 1;
+        for (i, t) in tris.iter().enumerate() {
+            let mut h = key_hash(&tri_key(t)) as usize & mask;
+            while slots[h] != 0 {
+                h = (h + 1) & mask;
+            }
+            slots[h] = i as u32 + 1;
+        }
+        KeyTable { slots, mask }
+    }
+
+    fn contains(&self, tris: &[[DVec3; 3]], t: &[DVec3; 3]) -> bool {
+        let k = tri_key(t);
+        let mut h = key_hash(&k) as usize & self.mask;
+        loop {
+            match self.slots[h] {
+                0 => return false,
+                i if tri_key(&tris[i as usize - 1]) == k => return true,
+                _ => h = (h + 1) & self.mask,
+            }
+        }
+    }
+}
+
+/// The mesh distances are measured to: its triangles, their boxes, a BVH and the set of its
+/// triangles' corner keys.
 pub(crate) struct Target {
     tris: Vec<[DVec3; 3]>,
     boxes: Vec<Aabb>,
     bvh: Bvh,
+    keys: KeyTable,
 }
 
 impl Target {
@@ -56,14 +132,45 @@ impl Target {
             .map(|f| f.map(|i| positions[i as usize]))
             .collect();
         let boxes: Vec<Aabb> = tris.iter().map(|&t| Aabb::from_triangle(t)).collect();
-        let bvh = Bvh::new(&boxes);
-        Target { tris, boxes, bvh }
+        let (bvh, keys) = rayon::join(|| Bvh::new(&boxes), || KeyTable::new(&tris));
+        Target {
+            tris,
+            boxes,
+            bvh,
+            keys,
+        }
+    }
+
+    /// The BVH over the target's triangle boxes (item = face index).
+    pub(crate) fn bvh(&self) -> &Bvh {
+        &self.bvh
+    }
+
+    /// Whether `t` is (bitwise) one of the target's triangles: then its distance is 0.
+    fn has_triangle(&self, t: &[DVec3; 3]) -> bool {
+        self.keys.contains(&self.tris, t)
     }
 
     /// Approximate nearest triangle to `p` (f64 branch and bound); `None` when empty.
     fn nearest_approx(&self, p: DVec3) -> Option<(u32, f64)> {
-        let mut best: Option<(u32, f64)> = None;
-        let mut stack = vec![self.bvh.root()?];
+        self.nearest_approx_from(p, None, &mut Vec::new())
+    }
+
+    /// [`Target::nearest_approx`] starting from the candidate `hint` (it only prunes the
+    /// descent), with a reusable stack.
+    fn nearest_approx_from(
+        &self,
+        p: DVec3,
+        hint: Option<u32>,
+        stack: &mut Vec<NodeId>,
+    ) -> Option<(u32, f64)> {
+        let mut best: Option<(u32, f64)> =
+            hint.map(|t| (t, approx_sq_dist(p, &self.tris[t as usize])));
+        if best.is_some_and(|(_, d)| d.is_nan()) {
+            best = None;
+        }
+        stack.clear();
+        stack.push(self.bvh.root()?);
         while let Some(n) = stack.pop() {
             let lb = self.bvh.bounds(n).sq_distance_lower_bound(p);
             if best.is_some_and(|(_, d)| lb > d) {
@@ -403,8 +510,16 @@ impl Search<'_> {
         })
     }
 
-    fn face(&self, face: FaceId, tri: [DVec3; 3]) -> FaceResult {
-        let mut out = FaceResult::default();
+    fn face(&self, face: FaceId, tri: [DVec3; 3], scratch: &mut Scratch) -> FaceResult {
+        let mut out = FaceResult {
+            subdivisions: 1,
+            ..FaceResult::default()
+        };
+        if self.target.has_triangle(&tri) {
+            // The same closed triangle: distance 0 everywhere, no lower-bound candidate.
+            return out;
+        }
+        out.subdivisions = 0;
         let corner = |k: usize| {
             let mut bary = [0; 3];
             bary[k] = 1;
@@ -417,7 +532,11 @@ impl Search<'_> {
         // Fast path: the triangle nearest the centroid usually covers the whole face (the
         // same proof as below, with one candidate and no candidate list).
         let centroid = (tri[0] + tri[1] + tri[2]) / 3.0;
-        if let Some((t0, _)) = self.target.nearest_approx(centroid) {
+        if let Some((t0, _)) =
+            self.target
+                .nearest_approx_from(centroid, scratch.hint, &mut scratch.stack)
+        {
+            scratch.hint = Some(t0);
             let s0 = Sub {
                 c: [corner(0), corner(1), corner(2)],
                 level: 0,
@@ -520,6 +639,70 @@ impl Search<'_> {
     }
 }
 
+/// Per-chunk state of the face loop: the previous face's nearest triangle and a BVH stack.
+#[derive(Default)]
+struct Scratch {
+    hint: Option<u32>,
+    stack: Vec<NodeId>,
+}
+
+/// The face results of one chunk, folded.
+#[derive(Default)]
+struct Summary {
+    upper: f64,
+    undecided: usize,
+    witness: Option<Witness>,
+    /// The most distant lower-bound candidates, at most [`LOWS`], farthest first.
+    lows: Vec<(f64, DVec3)>,
+    subdivisions: u64,
+}
+
+/// Exact points certified for the lower bound.
+const LOWS: usize = 32;
+
+impl Summary {
+    fn add(&mut self, r: FaceResult) {
+        self.upper = self.upper.max(r.upper);
+        self.undecided += usize::from(r.undecided);
+        self.subdivisions += r.subdivisions;
+        if let Some(w) = r.witness
+            && self
+                .witness
+                .as_ref()
+                .is_none_or(|b| w.distance > b.distance)
+        {
+            self.witness = Some(w);
+        }
+        self.lows.extend(r.lower_candidate);
+        if self.lows.len() >= 4 * LOWS {
+            self.trim();
+        }
+    }
+
+    fn trim(&mut self) {
+        self.lows.sort_by(|a, b| b.0.total_cmp(&a.0));
+        self.lows.truncate(LOWS);
+    }
+
+    /// `self` then `o`, in face order (ties keep the earlier face: deterministic).
+    fn merge(mut self, o: Summary) -> Summary {
+        self.upper = self.upper.max(o.upper);
+        self.undecided += o.undecided;
+        self.subdivisions += o.subdivisions;
+        if let Some(w) = o.witness
+            && self
+                .witness
+                .as_ref()
+                .is_none_or(|b| w.distance > b.distance)
+        {
+            self.witness = Some(w);
+        }
+        self.lows.extend(o.lows);
+        self.trim();
+        self
+    }
+}
+
 /// Decides whether every point of the triangles `faces` of `positions` lies within `eps` of
 /// `target`, with a certified interval for the one-sided Hausdorff distance.
 pub(crate) fn one_sided(
@@ -529,36 +712,32 @@ pub(crate) fn one_sided(
     tol: &Tolerance,
 ) -> OneSided {
     let search = Search { target, tol };
-    let subdivisions = AtomicU64::new(0);
-    let results: Vec<(usize, FaceResult)> = faces
-        .par_iter()
+    let sum = faces
+        .par_chunks(CHUNK)
         .enumerate()
-        .map(|(i, f)| {
-            let tri = f.map(|k| positions[k as usize]);
-            let r = search.face(FaceId::from_index(i), tri);
-            subdivisions.fetch_add(r.subdivisions, Ordering::Relaxed);
-            (i, r)
+        .map(|(c, chunk)| {
+            let mut scratch = Scratch::default();
+            let mut sum = Summary::default();
+            for (k, f) in chunk.iter().enumerate() {
+                let tri = f.map(|v| positions[v as usize]);
+                let id = FaceId::from_index(c * CHUNK + k);
+                sum.add(search.face(id, tri, &mut scratch));
+            }
+            sum
         })
-        .collect();
-    let mut upper = 0.0f64;
-    let mut undecided = 0usize;
-    let mut witness: Option<Witness> = None;
-    let mut lows: Vec<(f64, DVec3)> = Vec::new();
-    for (_, r) in results {
-        upper = upper.max(r.upper);
-        undecided += usize::from(r.undecided);
-        if let Some(w) = r.witness
-            && witness.as_ref().is_none_or(|b| w.distance > b.distance)
-        {
-            witness = Some(w);
-        }
-        lows.extend(r.lower_candidate);
-    }
+        .reduce(Summary::default, Summary::merge);
+    let Summary {
+        mut upper,
+        undecided,
+        witness,
+        mut lows,
+        subdivisions,
+    } = sum;
     // Certify the few most distant exact points for the lower bound.
     lows.sort_by(|a, b| b.0.total_cmp(&a.0));
     let mut lower = lows
         .iter()
-        .take(32)
+        .take(LOWS)
         .map(|&(_, p)| target.certified_lower(p))
         .fold(0.0, f64::max);
     if let Some(w) = &witness {
@@ -580,6 +759,6 @@ pub(crate) fn one_sided(
         upper,
         witness,
         undecided_regions: undecided,
-        subdivisions: subdivisions.into_inner(),
+        subdivisions,
     }
 }

@@ -40,7 +40,10 @@ mod hausdorff;
 mod numeric;
 
 use envelope_mesh::{FaceId, Topology, TriangleSoup, analyze};
-use envelope_predicates::self_intersections;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use envelope_predicates::bvh::Bvh;
+use envelope_predicates::faces_intersect;
 use glam::DVec3;
 use serde_json::{Value, json};
 
@@ -54,8 +57,14 @@ pub struct Options {
     pub resolution: f64,
     /// Look for self-intersections of `approx`.
     pub self_intersections: bool,
+    /// Stop at the first intersecting pair found (like CGAL's `does_self_intersect`) instead of
+    /// listing them all; the verdict is the same, the certificate names one pair.
+    pub first_intersection_only: bool,
     /// Compare genus, components and border loops.
     pub topology: bool,
+    /// Check `orig -> approx` too (two-sided). When false only `approx -> orig` is decided:
+    /// the envelope question, see [`Certificate::envelope_of`].
+    pub orig_to_approx: bool,
 }
 
 impl Options {
@@ -66,7 +75,19 @@ impl Options {
             epsilon,
             resolution: epsilon * 1e-6,
             self_intersections: true,
+            first_intersection_only: false,
             topology: true,
+            orig_to_approx: true,
+        }
+    }
+
+    /// Only whether `approx` lies in the epsilon-envelope of `orig` (every point of `approx`
+    /// within epsilon of `orig`), plus self-intersections and topology: no `orig -> approx`.
+    #[must_use]
+    pub fn envelope_of(epsilon: f64) -> Options {
+        Options {
+            orig_to_approx: false,
+            ..Options::new(epsilon)
         }
     }
 
@@ -199,15 +220,47 @@ pub struct Certificate {
     pub diagonal: f64,
     /// Every point of `approx` within epsilon of `orig`?
     pub approx_to_orig: OneSided,
-    /// Every point of `orig` within epsilon of `approx`?
+    /// Every point of `orig` within epsilon of `approx`? When [`Options::orig_to_approx`] is
+    /// off this is [`OneSided::unchecked`] (undecided, interval `[0, inf]`) and does not enter
+    /// the verdict.
     pub orig_to_approx: OneSided,
-    /// Intersecting face pairs of `approx`, when asked.
+    /// Whether `orig_to_approx` was checked.
+    pub two_sided: bool,
+    /// Intersecting face pairs of `approx`, when asked: all of them, or one when
+    /// [`Options::first_intersection_only`] (empty when there is none, either way).
     pub self_intersections: Option<Vec<(FaceId, FaceId)>>,
+    /// Whether `self_intersections` lists every pair (false when it stopped at the first).
+    pub self_intersections_complete: bool,
     /// Topology of both, when asked.
     pub topology: Option<TopologyCheck>,
 }
 
+impl OneSided {
+    /// A direction that was not checked: undecided, with the trivial interval `[0, inf]`.
+    #[must_use]
+    pub fn unchecked() -> OneSided {
+        OneSided {
+            verdict: Verdict::Undecided,
+            lower: 0.0,
+            upper: f64::INFINITY,
+            witness: None,
+            undecided_regions: 0,
+            subdivisions: 0,
+        }
+    }
+}
+
 impl Certificate {
+    /// Whether `approx` lies inside the epsilon-envelope of `orig`, `{p : dist(p, orig) <=
+    /// epsilon}` (the Minkowski sum of `orig` with the closed epsilon-ball): exactly the
+    /// `approx -> orig` decision. CGAL's `Polyhedral_envelope` (and fast-envelope) test a union
+    /// of per-face prisms that is designed to lie inside this set, so their "inside" implies
+    /// `Holds` here, but not conversely (they may reject outputs within epsilon).
+    #[must_use]
+    pub fn envelope_of(&self) -> Verdict {
+        self.approx_to_orig.verdict
+    }
+
     /// Names of the violated properties (`approx_to_orig`, `orig_to_approx`,
     /// `self_intersections`, `topology`).
     #[must_use]
@@ -216,7 +269,7 @@ impl Certificate {
         if self.approx_to_orig.verdict == Verdict::Violated {
             v.push("approx_to_orig");
         }
-        if self.orig_to_approx.verdict == Verdict::Violated {
+        if self.two_sided && self.orig_to_approx.verdict == Verdict::Violated {
             v.push("orig_to_approx");
         }
         if self
@@ -270,14 +323,21 @@ impl Certificate {
             "epsilon_relative": rel(self.epsilon),
             "resolution": self.resolution,
             "diagonal": self.diagonal,
+            "two_sided": self.two_sided,
+            "envelope_of": self.envelope_of().as_str(),
             "approx_to_orig": side(&self.approx_to_orig),
-            "orig_to_approx": side(&self.orig_to_approx),
-            "hausdorff": {
-                "lower": num(self.approx_to_orig.lower.max(self.orig_to_approx.lower)),
-                "upper": num(self.approx_to_orig.upper.max(self.orig_to_approx.upper)),
+            "orig_to_approx": if self.two_sided { side(&self.orig_to_approx) } else { Value::Null },
+            "hausdorff": if self.two_sided {
+                json!({
+                    "lower": num(self.approx_to_orig.lower.max(self.orig_to_approx.lower)),
+                    "upper": num(self.approx_to_orig.upper.max(self.orig_to_approx.upper)),
+                })
+            } else {
+                Value::Null
             },
             "self_intersections": self.self_intersections.as_ref().map(|p| json!({
                 "count": p.len(),
+                "complete": self.self_intersections_complete,
                 "pairs": p.iter().take(100).map(|(a, b)| [a.index(), b.index()]).collect::<Vec<_>>(),
             })),
             "topology": self.topology.map(|t| json!({
@@ -296,6 +356,47 @@ fn raw_faces(soup: &TriangleSoup) -> Vec<[u32; 3]> {
         .map(|f| f.map(|v| v.0))
         .filter(|f| f.iter().all(|&v| (v as usize) < n))
         .collect()
+}
+
+/// One intersecting pair of faces `(i, j)`, `i < j`, or `None` when the faces do not intersect
+/// (same exact, adjacency-aware test and candidate pairs as
+/// [`envelope_predicates::self_intersections`], which lists them all). Once a pair is found
+/// the remaining candidates are skipped without running the exact test, so the cost of a mesh
+/// that does intersect is mostly the box traversal. With several threads, which pair is named
+/// may vary between runs; whether there is one does not.
+///
+/// ```
+/// use envelope_verify::first_self_intersection;
+/// use glam::DVec3;
+/// let pos = [DVec3::ZERO, DVec3::X, DVec3::Y,
+///            DVec3::new(0.2, 0.2, -1.0), DVec3::new(0.2, 0.2, 1.0), DVec3::new(0.4, 0.4, 0.0)];
+/// assert_eq!(first_self_intersection(&pos, &[[0, 1, 2], [3, 4, 5]]), Some((0, 1)));
+/// assert_eq!(first_self_intersection(&pos, &[[0, 1, 2]]), None);
+/// ```
+#[must_use]
+pub fn first_self_intersection(positions: &[DVec3], faces: &[[u32; 3]]) -> Option<(u32, u32)> {
+    first_pair(&Bvh::from_triangles(positions, faces), positions, faces)
+}
+
+/// [`first_self_intersection`] with the faces' BVH given.
+fn first_pair(tree: &Bvh, positions: &[DVec3], faces: &[[u32; 3]]) -> Option<(u32, u32)> {
+    let found = AtomicBool::new(false);
+    let pairs = tree.self_pairs_where(|i, j| {
+        if found.load(Ordering::Relaxed) {
+            return false;
+        }
+        let hit = faces_intersect(positions, faces[i as usize], faces[j as usize]);
+        if hit {
+            found.store(true, Ordering::Relaxed);
+        }
+        hit
+    });
+    pairs.first().copied()
+}
+
+/// [`envelope_predicates::self_intersections`] with the faces' BVH given (the same pairs).
+fn all_pairs(tree: &Bvh, positions: &[DVec3], faces: &[[u32; 3]]) -> Vec<(u32, u32)> {
+    tree.self_pairs_where(|i, j| faces_intersect(positions, faces[i as usize], faces[j as usize]))
 }
 
 /// Decides whether every point of `from` lies within `epsilon` of `to` (one direction only),
@@ -353,22 +454,41 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
     );
     let (of, af) = (raw_faces(orig), raw_faces(approx));
     let tol = hausdorff::Tolerance::new(eps, options.resolution.max(0.0));
+    // The BVH of `approx`'s target is also the candidate source of the self-intersection test.
+    let (to_orig, to_approx) = rayon::join(
+        || hausdorff::Target::new(&orig.positions, &of),
+        || {
+            (options.orig_to_approx || options.self_intersections)
+                .then(|| hausdorff::Target::new(&approx.positions, &af))
+        },
+    );
     let ((approx_to_orig, orig_to_approx), (self_intersections, topology)) = rayon::join(
         || {
-            let to_orig = hausdorff::Target::new(&orig.positions, &of);
-            let to_approx = hausdorff::Target::new(&approx.positions, &af);
-            (
-                hausdorff::one_sided(&approx.positions, &af, &to_orig, &tol),
-                hausdorff::one_sided(&orig.positions, &of, &to_approx, &tol),
-            )
+            let forward = || hausdorff::one_sided(&approx.positions, &af, &to_orig, &tol);
+            match to_approx.as_ref().filter(|_| options.orig_to_approx) {
+                Some(back) => rayon::join(forward, || {
+                    hausdorff::one_sided(&orig.positions, &of, back, &tol)
+                }),
+                None => (forward(), OneSided::unchecked()),
+            }
         },
         || {
-            let si = options.self_intersections.then(|| {
-                self_intersections(&approx.positions, &af)
-                    .into_iter()
-                    .map(|(a, b)| (FaceId(a), FaceId(b)))
-                    .collect::<Vec<_>>()
-            });
+            let si = to_approx
+                .as_ref()
+                .filter(|_| options.self_intersections)
+                .map(|t| {
+                    let pairs = if options.first_intersection_only {
+                        first_pair(t.bvh(), &approx.positions, &af)
+                            .into_iter()
+                            .collect()
+                    } else {
+                        all_pairs(t.bvh(), &approx.positions, &af)
+                    };
+                    pairs
+                        .into_iter()
+                        .map(|(a, b)| (FaceId(a), FaceId(b)))
+                        .collect::<Vec<_>>()
+                });
             let topo = options.topology.then(|| TopologyCheck {
                 orig: TopologySummary::of(orig),
                 approx: TopologySummary::of(approx),
@@ -383,13 +503,17 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
         diagonal: orig.diagonal(),
         approx_to_orig,
         orig_to_approx,
+        two_sided: options.orig_to_approx,
         self_intersections,
+        self_intersections_complete: !options.first_intersection_only,
         topology,
     };
     c.verdict = if !c.violations().is_empty() {
         Verdict::Violated
-    } else {
+    } else if c.two_sided {
         c.approx_to_orig.verdict.max(c.orig_to_approx.verdict)
+    } else {
+        c.approx_to_orig.verdict
     };
     c
 }
