@@ -25,10 +25,9 @@ use envelope_verify::{Certificate, Verdict};
 use serde_json::{Value, json};
 use thiserror::Error;
 
-use crate::policy::{Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces};
+use crate::policy::Rejection;
 use crate::{
-    BarrierError, Barriers, EnvelopeFilter, Exhaustive, Greedy, HoleFiller, HoleFilling, Order,
-    Policies, SimplifyError, Visitor, simplify_local_with,
+    BarrierError, Barriers, HoleFilling, Order, SimplifyError, Visitor, simplify_local_visited,
 };
 
 /// What [`simplify`] does.
@@ -468,36 +467,10 @@ fn run_local(
     options: &SimplifyOptions,
     progress: &mut dyn Progress,
 ) -> Result<crate::Stats, SimplifyError> {
-    let filter = EnvelopeFilter::new(barriers);
-    let order: &dyn QueueOrder = match options.order {
-        Order::Fifo => &Fifo,
-        Order::FlatFirst => &FlatFirst,
-    };
-    let (exhaustive, greedy);
-    let filler: &dyn HoleFiller = match options.hole_filling {
-        HoleFilling::Greedy { forced_lookahead } => {
-            greedy = Greedy { forced_lookahead };
-            &greedy
-        }
-        HoleFilling::Exhaustive { max_vertices } => {
-            exhaustive = Exhaustive { max_vertices };
-            &exhaustive
-        }
-    };
-    let target;
-    let stop: &dyn StopRule = match options.target_faces {
-        None => &Exhaust,
-        Some(n) => {
-            target = TargetFaces(n);
-            &target
-        }
-    };
-    let policies = Policies {
-        filter: &filter,
-        order,
-        filler,
-        stop,
-        keep_border: !barriers.has_tubes(),
+    let local_options = crate::Options {
+        order: options.order,
+        hole_filling: options.hole_filling,
+        target_faces: options.target_faces,
         check_each_step: false,
     };
     let mut visitor = ProgressVisitor {
@@ -505,5 +478,5 @@ fn run_local(
         attempts: 0,
         removed: 0,
     };
-    simplify_local_with(mesh, &policies, &mut visitor)
+    simplify_local_visited(mesh, barriers, &local_options, &mut visitor)
 }

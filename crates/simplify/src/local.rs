@@ -162,6 +162,16 @@ pub fn simplify_local(
     barriers: &Barriers,
     options: &Options,
 ) -> Result<Stats, SimplifyError> {
+    simplify_local_visited(mesh, barriers, options, &mut ())
+}
+
+/// [`simplify_local`] reporting every attempt to `visitor` (progress bars, tracing).
+pub fn simplify_local_visited(
+    mesh: &mut HalfEdgeMesh,
+    barriers: &Barriers,
+    options: &Options,
+    visitor: &mut dyn Visitor,
+) -> Result<Stats, SimplifyError> {
     let filter = EnvelopeFilter::new(barriers);
     let order: &dyn QueueOrder = match options.order {
         Order::Fifo => &Fifo,
@@ -194,7 +204,7 @@ pub fn simplify_local(
         keep_border: !barriers.has_tubes(),
         check_each_step: options.check_each_step,
     };
-    simplify_local_with(mesh, &policies, &mut ())
+    simplify_local_with(mesh, &policies, visitor)
 }
 
 /// [`simplify_local`] with any policies and a visitor.
