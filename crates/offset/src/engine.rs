@@ -33,7 +33,6 @@
 //! re-checked one by one in mover order after the others are committed. The outcome depends
 //! only on the mover order, not on thread timing.
 use envelope_predicates::bvh::{Aabb, Bvh};
-use envelope_predicates::{Shared, adjacent_triangles_intersect, triangles_intersect};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -89,39 +88,9 @@ impl Mover {
     }
 }
 
-/// The vertex indices two faces share (by alias), `Err(())` when all three.
-fn shared(f: [u32; 3], g: [u32; 3]) -> Result<Option<Shared>, ()> {
-    let mut pairs = [(0usize, 0usize); 3];
-    let mut n = 0;
-    for i in 0..3 {
-        if f[..i].contains(&f[i]) {
-            continue;
-        }
-        if let Some(j) = g.iter().position(|&x| x == f[i]) {
-            pairs[n] = (i, j);
-            n += 1;
-        }
-    }
-    match n {
-        0 => Ok(None),
-        1 => Ok(Some(Shared::Vertex(pairs[0].0, pairs[0].1))),
-        2 => Ok(Some(Shared::Edge(
-            [pairs[0].0, pairs[1].0],
-            [pairs[0].1, pairs[1].1],
-        ))),
-        _ => Err(()),
-    }
-}
-
 /// Exact, adjacency-aware: closed triangles `t1`, `t2` with (aliased) indices `f`, `g` meet
 /// away from what they share.
-pub(crate) fn tris_intersect(t1: [DVec3; 3], f: [u32; 3], t2: [DVec3; 3], g: [u32; 3]) -> bool {
-    match shared(f, g) {
-        Ok(None) => triangles_intersect(t1, t2),
-        Ok(Some(s)) => adjacent_triangles_intersect(t1, t2, s),
-        Err(()) => true,
-    }
-}
+pub(crate) use envelope_predicates::indexed_triangles_intersect as tris_intersect;
 
 /// A triangle with its f64 plane normal and the scale of its error bound.
 #[derive(Clone, Copy)]

@@ -178,18 +178,39 @@ fn shared_indices(f: [u32; 3], g: [u32; 3]) -> Option<Option<Shared>> {
     }
 }
 
-/// True when mesh faces `f` and `g` intersect, adjacency-aware: faces sharing vertex indices
-/// intersect only if they meet away from the shared vertex/edge; two faces with the same three
-/// vertex indices always count as intersecting (a duplicated face).
+/// True when triangles `t1` and `t2`, whose corners carry the vertex indices `f` and `g`,
+/// intersect, adjacency-aware: triangles sharing indices intersect only if they meet away from
+/// the shared vertex/edge; the same three indices twice always count as intersecting (a
+/// duplicated face). Indices only name corners here (they may be aliases of the positions).
+///
+/// ```
+/// use envelope_predicates::indexed_triangles_intersect;
+/// use glam::DVec3;
+/// let t1 = [DVec3::ZERO, DVec3::X, DVec3::Y];
+/// let t2 = [DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)]; // shares the edge, flat
+/// assert!(!indexed_triangles_intersect(t1, [0, 1, 2], t2, [1, 2, 3]));
+/// assert!(indexed_triangles_intersect(t1, [0, 1, 2], t2, [4, 5, 6])); // touching, unshared
+/// ```
 #[must_use]
-pub fn faces_intersect(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> bool {
-    let t1 = f.map(|i| positions[i as usize]);
-    let t2 = g.map(|i| positions[i as usize]);
+pub fn indexed_triangles_intersect(
+    t1: [DVec3; 3],
+    f: [u32; 3],
+    t2: [DVec3; 3],
+    g: [u32; 3],
+) -> bool {
     match shared_indices(f, g) {
         None => triangles_intersect(t1, t2),
         Some(Some(shared)) => adjacent_triangles_intersect(t1, t2, shared),
         Some(None) => true,
     }
+}
+
+/// True when mesh faces `f` and `g` intersect, adjacency-aware; see
+/// [`indexed_triangles_intersect`].
+#[must_use]
+pub fn faces_intersect(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> bool {
+    let corners = |h: [u32; 3]| h.map(|i| positions[i as usize]);
+    indexed_triangles_intersect(corners(f), f, corners(g), g)
 }
 
 /// All pairs of intersecting faces, `(i, j)` with `i < j`, sorted.
