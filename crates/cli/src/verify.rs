@@ -17,10 +17,11 @@ pub(crate) struct Args {
     orig: PathBuf,
     /// The simplified mesh to certify against ORIG.
     approx: PathBuf,
-    /// Tolerance: every point of each mesh must be within it of the other.
+    /// Tolerance: every point of each mesh must be within it of the other. An absolute length,
+    /// or a percentage of ORIG's bounding-box diagonal (`0.5%`, `1/64%`), as for `simplify`.
     #[arg(long)]
-    epsilon: f64,
-    /// Read --epsilon (and --resolution) as fractions of ORIG's bounding-box diagonal.
+    epsilon: String,
+    /// Read a plain --epsilon (and --resolution) as fractions of ORIG's bounding-box diagonal.
     #[arg(long)]
     relative: bool,
     /// Answer `undecided` where the bounds are closer than this [default: 1e-6 * epsilon].
@@ -47,10 +48,15 @@ pub(crate) struct Args {
 }
 
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
+    let spec = envelope_offset::parse_epsilon(&args.epsilon)
+        .map_err(|e| format!("--epsilon {:?}: {e}", args.epsilon))?;
     let (orig, _) = read_path(&args.orig).map_err(|e| e.to_string())?;
     let (approx, _) = read_path(&args.approx).map_err(|e| e.to_string())?;
     let scale = if args.relative { orig.diagonal() } else { 1.0 };
-    let epsilon = args.epsilon * scale;
+    let epsilon = match spec {
+        envelope_offset::EpsilonSpec::Absolute(e) => e * scale,
+        percent => percent.resolve(orig.diagonal()),
+    };
     if !(epsilon > 0.0 && epsilon.is_finite()) {
         return Err(format!(
             "--epsilon must be positive and finite (got {epsilon})"
