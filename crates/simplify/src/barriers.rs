@@ -16,6 +16,9 @@ pub enum BarrierKind {
     /// A border tube (section 6.2): no new *border edge* may touch it. Tubes are not tested
     /// against whole triangles: the surface near a border leaves the tube through its wall.
     Tube,
+    /// A border wall ([`crate::border_walls`]): joins the outer and inner envelopes along a
+    /// border, and like them no candidate triangle may touch it.
+    Wall,
 }
 
 /// Why [`Barriers::new`] refused its input. Names the surface (index in the argument order:
@@ -75,13 +78,24 @@ impl Barriers {
         envelopes: Vec<TriangleSoup>,
         tubes: Vec<TriangleSoup>,
     ) -> Result<Self, BarrierError> {
+        Self::with_walls(envelopes, tubes, Vec::new())
+    }
+
+    /// Like [`Barriers::new`], plus border walls ([`BarrierKind::Wall`], full barriers).
+    /// Surfaces are numbered envelopes first, then tubes, then walls.
+    pub fn with_walls(
+        envelopes: Vec<TriangleSoup>,
+        tubes: Vec<TriangleSoup>,
+        walls: Vec<TriangleSoup>,
+    ) -> Result<Self, BarrierError> {
         let mut triangles = Vec::new();
         let mut kinds = Vec::new();
         let has_tubes = tubes.iter().any(|t| t.num_faces() > 0);
         let all = envelopes
             .iter()
             .map(|s| (s, BarrierKind::Envelope))
-            .chain(tubes.iter().map(|s| (s, BarrierKind::Tube)));
+            .chain(tubes.iter().map(|s| (s, BarrierKind::Tube)))
+            .chain(walls.iter().map(|s| (s, BarrierKind::Wall)));
         for (surface, (soup, kind)) in all.enumerate() {
             for (vertex, p) in soup.positions.iter().enumerate() {
                 for x in p.to_array() {
@@ -134,7 +148,7 @@ impl Barriers {
         (self.triangles[i], self.kinds[i])
     }
 
-    /// True when the closed triangle `t` touches an envelope triangle, or when one of the
+    /// True when the closed triangle `t` touches an envelope or wall triangle, or when one of the
     /// closed segments `t[i] t[i+1]` with `border_edges[i]` touches a tube triangle. Exact.
     #[must_use]
     pub fn blocks(&self, t: [DVec3; 3], border_edges: [bool; 3]) -> bool {
@@ -161,7 +175,7 @@ impl Barriers {
                     for &i in items {
                         let b = self.triangles[i as usize];
                         let hit = match self.kinds[i as usize] {
-                            BarrierKind::Envelope => {
+                            BarrierKind::Envelope | BarrierKind::Wall => {
                                 !plane.separates(&Aabb::from_triangle(b))
                                     && triangles_intersect(t, b)
                             }

@@ -7,7 +7,8 @@
 //! simplify
 //!   accept_input        envelope-check: no error-class degeneracy (else DriverError::Unacceptable)
 //!   build_envelopes     envelope-offset: outer, inner, tubes, exact non-intersection proof
-//!   Barriers::new       outer + inner as envelopes, tubes as tubes
+//!   border_walls        walls joining outer and inner envelope along each input border loop
+//!   Barriers            outer + inner as envelopes, tubes as tubes, walls as full barriers
 //!   simplify_local      section 5.2 with the 5.1 validity test
 //!   certify             (optional) two-sided Hausdorff <= max epsilon, no self-intersection,
 //!                       same genus / components / border loops
@@ -27,7 +28,8 @@ use thiserror::Error;
 
 use crate::policy::Rejection;
 use crate::{
-    BarrierError, Barriers, HoleFilling, Order, SimplifyError, Visitor, simplify_local_visited,
+    BarrierError, Barriers, HoleFilling, Order, SimplifyError, Visitor, border_walls,
+    simplify_local_visited,
 };
 
 /// What [`simplify`] does.
@@ -403,7 +405,13 @@ pub fn simplify(
             (hi.max(e), lo.min(e))
         });
     let tubes: Vec<TriangleSoup> = env.tubes.into_iter().map(|t| t.mesh).collect();
-    let barriers = Barriers::new(vec![env.outer, env.inner], tubes)?;
+    // Without the walls, the space between the envelopes is open along the border and an
+    // interior candidate triangle can leave it there (see `walls`).
+    let walls: Vec<TriangleSoup> = border_walls(soup, &topo_in, &env.outer, &env.inner)
+        .into_iter()
+        .map(|w| w.mesh)
+        .collect();
+    let barriers = Barriers::with_walls(vec![env.outer, env.inner], tubes, walls)?;
 
     let mut mesh = HalfEdgeMesh::from_soup(soup)?;
     progress.stage(Stage::Simplify {

@@ -8,6 +8,7 @@
 //!   choice the paper leaves open); [`simplify_local_with`] takes any [`Policies`]:
 //!   [`QueueOrder`], [`HoleFiller`] ([`Greedy`], [`Exhaustive`]), [`StopRule`], [`Visitor`].
 //!
+//! * [`border_walls`]: half-tubes closing the space between the envelopes along borders.
 //! * [`simplify`]: the whole job (input check, envelopes, local algorithm, optional
 //!   certificate) with a [`SimplifyReport`]; [`lod_chain`]: nested levels of detail (7.2).
 //!
@@ -23,6 +24,7 @@ mod grid;
 pub mod local;
 pub mod lod;
 mod policy;
+mod walls;
 
 pub use barriers::{BarrierError, BarrierKind, Barriers};
 pub use driver::{
@@ -41,3 +43,4 @@ pub use lod::{Level, LodOptions, LodRule, Screen, lod_chain};
 pub use policy::{
     Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor, aspect_ratio,
 };
+pub use walls::{WALL_SEGMENTS, Wall, border_walls};
