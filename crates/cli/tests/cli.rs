@@ -172,19 +172,3 @@ fn unreadable_input_gives_exit_2_and_a_message_naming_the_problem() {
     // Wrong arguments.
     assert_eq!(envelope(&["check"]).status.code(), Some(2));
 }
-
-#[test]
-fn demo_writes_the_model_and_checks_it() {
-    let dir = tempfile::tempdir().unwrap();
-    let out_dir = dir.path().join("demo");
-    let out = envelope(&["demo", "--out-dir", out_dir.to_str().unwrap()]);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(String::from_utf8_lossy(&out.stdout).contains("acceptable input"));
-    let (code, v) = check_json(&out_dir.join("model.off"));
-    assert_eq!((code, v["genus"].as_u64()), (0, Some(1)));
-}
