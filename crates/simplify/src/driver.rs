@@ -23,6 +23,7 @@ use envelope_check::{CheckOptions, DegeneracyClass, check};
 use envelope_mesh::{BuildError, HalfEdgeMesh, TriangleSoup, analyze};
 use envelope_offset::{EnvelopeError, EnvelopeOptions, EpsilonField, Method, build_envelopes};
 use envelope_verify::{Certificate, Verdict};
+use glam::DVec3;
 use serde_json::{Value, json};
 use thiserror::Error;
 
@@ -249,6 +250,10 @@ pub struct SimplifyReport {
     pub envelope: EnvelopeReport,
     /// The certificate of the output, when asked for.
     pub verify: Option<VerifyReport>,
+    /// The simplification method that ran ([`SimplifyStep`]): `"local"` by default.
+    pub method: &'static str,
+    /// What the method adds to the report (candidate counts for the global one).
+    pub method_details: Value,
 }
 
 impl SimplifyReport {
@@ -285,6 +290,8 @@ impl SimplifyReport {
                 "seconds": e.seconds,
             },
             "verify": self.verify.as_ref().map(VerifyReport::to_json),
+            "method": self.method,
+            "method_details": self.method_details,
         })
     }
 }
@@ -361,6 +368,73 @@ pub fn simplify(
     options: &SimplifyOptions,
     progress: &mut dyn Progress,
 ) -> Result<(TriangleSoup, SimplifyReport), DriverError> {
+    simplify_with(soup, options, &LocalStep, progress)
+}
+
+/// What a [`SimplifyStep`] is given besides the mesh.
+#[derive(Clone, Copy, Debug)]
+pub struct StepInput<'a> {
+    /// Envelopes, tubes and walls as barriers.
+    pub barriers: &'a Barriers,
+    /// Outer envelope point of every input vertex (`v + eps_plus n_v`, f64 construction).
+    pub outer: &'a [DVec3],
+    /// Inner envelope point of every input vertex (`v - eps_minus n_v`, f64 construction).
+    pub inner: &'a [DVec3],
+    /// The job's options.
+    pub options: &'a SimplifyOptions,
+}
+
+/// What a [`SimplifyStep`] did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepOutcome {
+    /// Counts (attempts, removals, candidate tests).
+    pub stats: crate::Stats,
+    /// The method's name for the report.
+    pub method: &'static str,
+    /// Extra report fields (`Value::Null` when none).
+    pub details: Value,
+}
+
+/// The simplification step of [`simplify_with`]: the local algorithm ([`LocalStep`]) or
+/// another one (the global simplifier of `envelope-global`), run on the input mesh between
+/// the barriers.
+pub trait SimplifyStep {
+    /// Simplifies `mesh` in place.
+    fn run(
+        &self,
+        mesh: &mut HalfEdgeMesh,
+        input: &StepInput<'_>,
+        progress: &mut dyn Progress,
+    ) -> Result<StepOutcome, SimplifyError>;
+}
+
+/// The local algorithm of section 5.2 as a [`SimplifyStep`] (what [`simplify`] runs).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LocalStep;
+
+impl SimplifyStep for LocalStep {
+    fn run(
+        &self,
+        mesh: &mut HalfEdgeMesh,
+        input: &StepInput<'_>,
+        progress: &mut dyn Progress,
+    ) -> Result<StepOutcome, SimplifyError> {
+        let stats = run_local(mesh, input.barriers, input.options, progress)?;
+        Ok(StepOutcome {
+            stats,
+            method: "local",
+            details: Value::Null,
+        })
+    }
+}
+
+/// [`simplify`] with another simplification step in place of the local algorithm.
+pub fn simplify_with(
+    soup: &TriangleSoup,
+    options: &SimplifyOptions,
+    step: &dyn SimplifyStep,
+    progress: &mut dyn Progress,
+) -> Result<(TriangleSoup, SimplifyReport), DriverError> {
     let start = Instant::now();
     progress.stage(Stage::Check);
     let problems = input_problems(soup);
@@ -411,6 +485,7 @@ pub fn simplify(
         .into_iter()
         .map(|w| w.mesh)
         .collect();
+    let (outer, inner) = (env.outer.positions.clone(), env.inner.positions.clone());
     let barriers = Barriers::with_walls(vec![env.outer, env.inner], tubes, walls)?;
 
     let mut mesh = HalfEdgeMesh::from_soup(soup)?;
@@ -418,7 +493,14 @@ pub fn simplify(
         vertices: mesh.num_vertices(),
     });
     let t_simp = Instant::now();
-    let stats = run_local(&mut mesh, &barriers, options, progress)?;
+    let input = StepInput {
+        barriers: &barriers,
+        outer: &outer,
+        inner: &inner,
+        options,
+    };
+    let outcome = step.run(&mut mesh, &input, progress)?;
+    let stats = outcome.stats;
     let simplify_seconds = t_simp.elapsed().as_secs_f64();
     let out = mesh.to_soup();
     let topo_out = analyze(&out);
@@ -455,6 +537,8 @@ pub fn simplify(
         border_loops_out: topo_out.num_border_loops(),
         envelope,
         verify,
+        method: outcome.method,
+        method_details: outcome.details,
     };
     Ok((out, report))
 }

@@ -70,6 +70,12 @@ pub struct FillContext<'a> {
     filter: &'a dyn Filter,
     hole: &'a Hole,
     placed: Vec<[VertexId; 3]>,
+    /// Candidates already rejected during this fill, by [`Self::slot`]. A rejection is final
+    /// for the whole fill: the mesh and grid do not change while a hole is filled, the placed
+    /// triangles only grow, and a [`Filter`] must not accept what it rejected with fewer
+    /// triangles placed. Greedy re-offers a rejected triangle to every sub-hole that contains
+    /// its corners; this makes the second offer free.
+    rejected: Vec<bool>,
     /// Number of filter calls (for statistics).
     pub tests: u64,
 }
@@ -89,8 +95,15 @@ impl<'a> FillContext<'a> {
             filter,
             hole,
             placed: Vec::new(),
+            rejected: Vec::new(),
             tests: 0,
         }
+    }
+
+    /// Index of the triangle `t` (hole positions) in `rejected`.
+    fn slot(&self, t: [usize; 3]) -> usize {
+        let n = self.hole.len();
+        (t[0] * n + t[1]) * n + t[2]
     }
 
     /// The hole being filled.
@@ -133,6 +146,23 @@ impl<'a> FillContext<'a> {
 
     /// [`Self::accepts`], with `placed` hidden from the filter when `with_placed` is false.
     fn accepts_with(&mut self, t: [usize; 3], with_placed: bool) -> bool {
+        let slot = self.slot(t);
+        if self.rejected.get(slot).copied().unwrap_or(false) {
+            return false;
+        }
+        let ok = self.test(t, with_placed);
+        if !ok {
+            if self.rejected.is_empty() {
+                let n = self.hole.len();
+                self.rejected = vec![false; n * n * n];
+            }
+            self.rejected[slot] = true;
+        }
+        ok
+    }
+
+    /// Topology guards and the filter, uncached.
+    fn test(&mut self, t: [usize; 3], with_placed: bool) -> bool {
         if !self.topologically_allowed(t) {
             return false;
         }
@@ -166,6 +196,20 @@ impl<'a> FillContext<'a> {
     /// Forgets every placed triangle.
     pub fn clear(&mut self) {
         self.placed.clear();
+        // Rejections may have come from triangles that are gone now.
+        self.rejected.clear();
+    }
+
+    /// Tests `t` with one more triangle `extra` placed for the moment, without recording a
+    /// rejection (it may be due to `extra`).
+    fn accepts_with_extra(&mut self, t: [usize; 3], extra: [usize; 3]) -> bool {
+        if self.rejected.get(self.slot(t)).copied().unwrap_or(false) {
+            return false;
+        }
+        self.place(extra);
+        let ok = self.test(t, true);
+        self.placed.pop();
+        ok
     }
 }
 
@@ -267,14 +311,11 @@ impl Greedy {
         if subs.iter().all(|s| s.len() != 3) {
             return false;
         }
-        ctx.place(t);
-        let doomed = subs.iter().filter(|s| s.len() == 3).any(|s| {
+        subs.iter().filter(|s| s.len() == 3).any(|s| {
             let mut f = [s[0], s[1], s[2]];
             f.sort_unstable();
-            !ctx.accepts(f)
-        });
-        ctx.placed.pop();
-        doomed
+            !ctx.accepts_with_extra(f, t)
+        })
     }
 
     /// Fills the sub-hole `poly` (hole positions in cyclic order) recursively.
@@ -309,6 +350,28 @@ impl Greedy {
         sub_holes(poly, t)
             .iter()
             .all(|s| self.fill_sub(ranked, s, member, ctx))
+    }
+}
+
+impl Greedy {
+    /// Fills `ctx.hole()` starting with the triangle on hole positions `first` (increasing),
+    /// which must pass the context's test like any other, then the up to three sub-holes it
+    /// leaves, greedily. The global simplifier (5.3) places its chosen triangle this way.
+    pub fn fill_from(&self, ctx: &mut FillContext<'_>, first: [usize; 3]) -> bool {
+        let n = ctx.hole().len();
+        if n < 3 || first[0] >= first[1] || first[1] >= first[2] || first[2] >= n {
+            return false;
+        }
+        if !ctx.accepts(first) {
+            return false;
+        }
+        ctx.place(first);
+        let ranked = ranked_triangles(ctx);
+        let poly: Vec<usize> = (0..n).collect();
+        let mut member = vec![false; n];
+        sub_holes(&poly, first)
+            .iter()
+            .all(|s| self.fill_sub(&ranked, s, &mut member, ctx))
     }
 }
 

@@ -28,8 +28,9 @@ mod walls;
 
 pub use barriers::{BarrierError, BarrierKind, Barriers};
 pub use driver::{
-    DriverError, EnvelopeReport, Progress, SimplifyOptions, SimplifyReport, Stage, VerifyReport,
-    input_problems, peak_memory_bytes, simplify,
+    DriverError, EnvelopeReport, LocalStep, Progress, SimplifyOptions, SimplifyReport,
+    SimplifyStep, Stage, StepInput, StepOutcome, VerifyReport, input_problems, peak_memory_bytes,
+    simplify, simplify_with,
 };
 pub use fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
 pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, NoFilter};

@@ -1,0 +1,136 @@
+//! Local, global and hybrid simplification side by side (issue 8): output faces and seconds
+//! of the simplification step on corpus meshes at 1/8 % to 1 % of the diagonal, then the
+//! growth of the global step's time with mesh size on icospheres (fitted exponent).
+//!
+//! `cargo run --release -p envelope-benches --bin global_vs_local [-- --quick] [--corpus DIR]`
+//! `--quick`: a CI smoke run on small generated meshes (under a minute).
+use envelope_global::Method;
+use envelope_mesh::{TriangleSoup, generate};
+use envelope_offset::EpsilonField;
+use envelope_simplify::{SimplifyOptions, simplify_with};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+struct Row {
+    faces: usize,
+    seconds: f64,
+    ok: bool,
+}
+
+fn run(soup: &TriangleSoup, eps: f64, method: Method, verify: bool) -> Option<Row> {
+    let mut options = SimplifyOptions::new(EpsilonField::Constant(eps));
+    options.verify = verify;
+    match simplify_with(soup, &options, method.step().as_ref(), &mut ()) {
+        Ok((out, r)) => Some(Row {
+            faces: out.num_faces(),
+            seconds: r.simplify_seconds,
+            ok: r.verify.is_none_or(|v| v.violations.is_empty()),
+        }),
+        Err(e) => {
+            eprintln!("{}: {e}", method.as_str());
+            None
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let quick = args.iter().any(|a| a == "--quick");
+    let verify = args.iter().any(|a| a == "--verify");
+    let corpus = args
+        .iter()
+        .position(|a| a == "--corpus")
+        .and_then(|i| args.get(i + 1))
+        .map_or_else(|| PathBuf::from(".corpus/data/meshes"), PathBuf::from);
+    let mut meshes: Vec<(String, TriangleSoup)> = Vec::new();
+    let percents: &[(&str, f64)] = if quick {
+        meshes.push(("icosphere(3)".into(), generate::icosphere(3, 1.0)));
+        meshes.push(("torus 32x12".into(), generate::torus(1.0, 0.3, 32, 12)));
+        &[("1/8%", 0.125), ("1%", 1.0)]
+    } else {
+        for name in [
+            "fandisk.off",
+            "mech-holes-shark.off",
+            "rotor.off",
+            "couplingdown.off",
+        ] {
+            match envelope_io::read_path(corpus.join(name)) {
+                Ok((s, _)) => meshes.push((name.into(), s)),
+                Err(e) => eprintln!("skipping {name}: {e} (run scripts/corpus.sh)"),
+            }
+        }
+        &[("1/8%", 0.125), ("1/4%", 0.25), ("1/2%", 0.5), ("1%", 1.0)]
+    };
+    let methods = [Method::Local, Method::Global, Method::Hybrid];
+    println!(
+        "| mesh | faces | eps | local faces | local s | global faces | global s | hybrid faces | hybrid s | fewest |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let mut failed = false;
+    for (name, soup) in &meshes {
+        for &(label, pct) in percents {
+            let eps = pct / 100.0 * soup.diagonal();
+            let rows: Vec<Option<Row>> =
+                methods.iter().map(|&m| run(soup, eps, m, verify)).collect();
+            let cell = |r: &Option<Row>| match r {
+                Some(r) => format!(
+                    "{}{} | {:.2}",
+                    r.faces,
+                    if r.ok { "" } else { " (VIOLATED)" },
+                    r.seconds
+                ),
+                None => "error | -".into(),
+            };
+            failed |= rows.iter().any(|r| r.as_ref().is_none_or(|r| !r.ok));
+            let best = methods
+                .iter()
+                .zip(&rows)
+                .filter_map(|(m, r)| r.as_ref().map(|r| (r.faces, m.as_str())))
+                .min()
+                .map_or("-", |b| b.1);
+            println!(
+                "| {name} | {} | {label} | {} | {} | {} | {best} |",
+                soup.num_faces(),
+                cell(&rows[0]),
+                cell(&rows[1]),
+                cell(&rows[2])
+            );
+        }
+    }
+    // Growth of time with size: global step on icospheres, epsilon 1/2 % of the diagonal.
+    let levels: &[u32] = if quick { &[2, 3, 4] } else { &[3, 4, 5, 6] };
+    println!("\n| icosphere | faces | global s | local s |");
+    println!("|---|---|---|---|");
+    let mut pts = Vec::new();
+    for &k in levels {
+        let s = generate::icosphere(k, 1.0);
+        let eps = 0.005 * s.diagonal();
+        let g = run(&s, eps, Method::Global, false);
+        let l = run(&s, eps, Method::Local, false);
+        if let (Some(g), Some(l)) = (g, l) {
+            println!(
+                "| {k} | {} | {:.3} | {:.3} |",
+                s.num_faces(),
+                g.seconds,
+                l.seconds
+            );
+            pts.push(((s.num_faces() as f64).ln(), g.seconds.max(1e-6).ln()));
+        }
+    }
+    if pts.len() >= 2 {
+        let n = pts.len() as f64;
+        let (mx, my) = (
+            pts.iter().map(|p| p.0).sum::<f64>() / n,
+            pts.iter().map(|p| p.1).sum::<f64>() / n,
+        );
+        let slope = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+            / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+        println!("\nglobal time ~ faces^{slope:.2} (least squares on log-log)");
+    }
+    if failed {
+        eprintln!("some run failed or was not certified");
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}

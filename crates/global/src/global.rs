@@ -1,0 +1,390 @@
+//! The greedy selection of section 5.3: candidates ranked by decreasing cover; the best one
+//! that overlaps no accepted one cuts the hole of the current triangles it overlaps, is
+//! placed, and the sub-holes it leaves are filled recursively with valid triangles (the local
+//! algorithm's greedy filling); when a sub-hole cannot be filled, everything is rolled back
+//! and the next candidate is tried.
+//!
+//! ```text
+//! simplify_global
+//!   loop over passes                 until a pass accepts nothing (or max_passes)
+//!     seed_candidates                every dirty interior vertex, in parallel (rayon)
+//!     rank                           decreasing cover, then aspect ratio (total order)
+//!     for each candidate
+//!       overlaps_accepted?           a vertex of its region was touched since: skip
+//!       cut_region                   remove the region's faces (mesh checkpoint)
+//!       fill_from(candidate)         place it, fill the sub-holes greedily (5.1 filter)
+//!       commit, or rollback
+//! ```
+//!
+//! Choices the paper leaves open (Varshney's thesis, its ref. [24], is not available):
+//!
+//! | question | answer |
+//! |---|---|
+//! | what a candidate replaces | the faces around the vertices of the region it was generated from (a `k`-ring disk around a seed); its corners are on the region's boundary |
+//! | cover | the region's vertices whose prism edge (fiber) the candidate meets (exact); input triangles are not counted separately (a triangle is covered when its vertices are) |
+//! | overlap of two candidates | they share a removed vertex, or an accepted candidate changed a face around one of them: detected by a per-vertex stamp of the last accepted change |
+//! | ties | aspect ratio, then seed id, rings, corner ids |
+//! | sub-holes | the local algorithm's greedy filling ([`Greedy::fill_from`]), every triangle through the same [`EnvelopeFilter`] |
+//! | border vertices | never removed by the global step (no open holes, the tubes are never needed); the hybrid's local pass removes them |
+//! | passes | after the first, only seeds within `max_rings` rings of a change are generated again |
+//!
+//! Genus and orientation: a region is a disk and the hole a simple polygon filled with
+//! triangles on its vertices in its orientation, refused when an edge already exists (link
+//! condition), as in the local algorithm.
+
+use crate::candidates::{Candidate, Fibers, Generated, Reach, seed_candidates};
+use crate::region::{ball, region};
+use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
+use envelope_simplify::{
+    Barriers, EnvelopeFilter, FaceGrid, FillContext, Filter, Greedy, Hole, Progress,
+};
+use rayon::prelude::*;
+use serde_json::{Value, json};
+use thiserror::Error;
+
+/// Options of [`simplify_global`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GlobalOptions {
+    /// Largest region, in rings around its seed.
+    pub max_rings: usize,
+    /// Largest hole cycle of a region.
+    pub max_cycle: usize,
+    /// Candidates kept per region.
+    pub per_region: usize,
+    /// Passes at most.
+    pub max_passes: usize,
+    /// Run the mesh's and the grid's sanity checks after every accepted candidate (slow).
+    pub check_each_step: bool,
+}
+
+impl Default for GlobalOptions {
+    /// The global method: regions up to 3 rings and 18 boundary vertices, 3 candidates per
+    /// region, up to 32 passes.
+    fn default() -> Self {
+        GlobalOptions {
+            max_rings: 3,
+            max_cycle: 18,
+            per_region: 3,
+            max_passes: 32,
+            check_each_step: false,
+        }
+    }
+}
+
+impl GlobalOptions {
+    /// The hybrid's global stage: regions of 2 rings and 14 boundary vertices, 2 passes.
+    #[must_use]
+    pub fn bounded() -> Self {
+        GlobalOptions {
+            max_rings: 2,
+            max_cycle: 14,
+            per_region: 2,
+            max_passes: 2,
+            check_each_step: false,
+        }
+    }
+}
+
+/// Why [`simplify_global`] stopped with an error.
+#[derive(Clone, Debug, PartialEq, Eq, Error)]
+pub enum GlobalError {
+    /// The input has a vertex whose faces form several fans.
+    #[error("vertex {0} is not manifold")]
+    NonManifoldVertex(VertexId),
+    /// A structure failed its sanity check (only with [`GlobalOptions::check_each_step`]).
+    #[error("sanity check failed: {0}")]
+    SanityCheck(String),
+}
+
+/// Counts of one run of [`simplify_global`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GlobalStats {
+    /// Live vertices before.
+    pub vertices_before: usize,
+    /// Live faces before.
+    pub faces_before: usize,
+    /// Live vertices after.
+    pub vertices_after: usize,
+    /// Live faces after.
+    pub faces_after: usize,
+    /// Passes run.
+    pub passes: usize,
+    /// Candidate generation counts, summed over passes.
+    pub generated: Generated,
+    /// Candidates tried (not overlapping an accepted one).
+    pub attempts: usize,
+    /// Candidates accepted.
+    pub accepted: usize,
+    /// Candidates skipped because they overlap an accepted one.
+    pub overlapping: usize,
+    /// Candidates rejected because the candidate or a sub-hole had no valid filling.
+    pub no_valid_fill: usize,
+    /// Vertices removed.
+    pub removed: usize,
+    /// Candidate triangles given to the validity filter.
+    pub filter_tests: u64,
+}
+
+impl GlobalStats {
+    /// Stable JSON keys (the report's `method_details`).
+    #[must_use]
+    pub fn to_json(&self) -> Value {
+        json!({
+            "faces_before": self.faces_before,
+            "faces_after": self.faces_after,
+            "passes": self.passes,
+            "regions": self.generated.regions,
+            "candidate_triples": self.generated.triples,
+            "candidates_covering": self.generated.covering,
+            "candidates_ranked": self.generated.kept,
+            "attempts": self.attempts,
+            "accepted": self.accepted,
+            "overlapping": self.overlapping,
+            "no_valid_fill": self.no_valid_fill,
+            "removed_vertices": self.removed,
+            "filter_tests": self.filter_tests,
+        })
+    }
+}
+
+/// Simplifies `mesh` in place by the global algorithm (see the module docs), every placed
+/// triangle checked by the [`EnvelopeFilter`] against `barriers`. Only interior vertices are
+/// removed.
+///
+/// ```
+/// use envelope_global::{Fibers, GlobalOptions, simplify_global};
+/// use envelope_mesh::{generate, HalfEdgeMesh};
+/// use envelope_simplify::Barriers;
+/// let soup = generate::icosphere(1, 1.0);
+/// let mut m = HalfEdgeMesh::from_soup(&soup).unwrap();
+/// // Fibers along the radius (a sphere's normals), 0.3 each way, no barrier at all.
+/// let inner: Vec<_> = soup.positions.iter().map(|p| *p * 0.7).collect();
+/// let outer: Vec<_> = soup.positions.iter().map(|p| *p * 1.3).collect();
+/// let fibers = Fibers { inner: &inner, outer: &outer };
+/// let s = simplify_global(&mut m, &Barriers::none(), &fibers, &GlobalOptions::default(), &mut ())
+///     .unwrap();
+/// assert!(s.removed > 0 && m.num_faces() < 80);
+/// ```
+pub fn simplify_global(
+    mesh: &mut HalfEdgeMesh,
+    barriers: &Barriers,
+    fibers: &Fibers<'_>,
+    options: &GlobalOptions,
+    progress: &mut dyn Progress,
+) -> Result<GlobalStats, GlobalError> {
+    let filter = EnvelopeFilter::new(barriers);
+    simplify_global_with(mesh, &filter, fibers, options, progress)
+}
+
+/// [`simplify_global`] with any validity filter.
+pub fn simplify_global_with(
+    mesh: &mut HalfEdgeMesh,
+    filter: &dyn Filter,
+    fibers: &Fibers<'_>,
+    options: &GlobalOptions,
+    progress: &mut dyn Progress,
+) -> Result<GlobalStats, GlobalError> {
+    if let Some(v) = mesh.vertices().find(|&v| !mesh.is_manifold_vertex(v)) {
+        return Err(GlobalError::NonManifoldVertex(v));
+    }
+    let mut stats = GlobalStats {
+        vertices_before: mesh.num_vertices(),
+        faces_before: mesh.num_faces(),
+        ..GlobalStats::default()
+    };
+    let reach = Reach {
+        max_rings: options.max_rings,
+        max_cycle: options.max_cycle,
+        per_region: options.per_region,
+    };
+    let mut g = Global {
+        grid: FaceGrid::from_mesh(mesh),
+        mesh,
+        touched: Vec::new(),
+        epoch: 0,
+    };
+    let mut seeds: Vec<VertexId> = g.mesh.vertices().collect();
+    for _ in 0..options.max_passes {
+        if seeds.is_empty() {
+            break;
+        }
+        stats.passes += 1;
+        let start = g.epoch;
+        let mut candidates = g.rank(fibers, &seeds, &reach, &mut stats.generated);
+        let before = stats.accepted;
+        for c in candidates.drain(..) {
+            if g.overlaps_accepted(&c, start) {
+                stats.overlapping += 1;
+                continue;
+            }
+            stats.attempts += 1;
+            if stats.attempts % 64 == 0 {
+                progress.step(stats.attempts, stats.removed);
+            }
+            let (tests, placed) = g.try_candidate(&c, filter);
+            stats.filter_tests += tests;
+            if placed {
+                stats.accepted += 1;
+                stats.removed += c.inside.len();
+                if options.check_each_step {
+                    g.mesh.sanity_check().map_err(GlobalError::SanityCheck)?;
+                    g.grid
+                        .sanity_check(g.mesh)
+                        .map_err(GlobalError::SanityCheck)?;
+                }
+            } else {
+                stats.no_valid_fill += 1;
+            }
+        }
+        if stats.accepted == before {
+            break;
+        }
+        seeds = g.dirty_seeds(start, options.max_rings);
+    }
+    stats.vertices_after = g.mesh.num_vertices();
+    stats.faces_after = g.mesh.num_faces();
+    Ok(stats)
+}
+
+/// The mesh being simplified, the index of its live faces, and the change stamps.
+struct Global<'m> {
+    mesh: &'m mut HalfEdgeMesh,
+    grid: FaceGrid,
+    /// Epoch of the last accepted change around each vertex (0: never).
+    touched: Vec<u64>,
+    epoch: u64,
+}
+
+impl Global<'_> {
+    /// Candidates of every seed, ranked (rayon; the result does not depend on the threads).
+    fn rank(
+        &self,
+        fibers: &Fibers<'_>,
+        seeds: &[VertexId],
+        reach: &Reach,
+        counts: &mut Generated,
+    ) -> Vec<Candidate> {
+        let mesh: &HalfEdgeMesh = self.mesh;
+        let per_seed: Vec<(Generated, Vec<Candidate>)> = seeds
+            .par_iter()
+            .map(|&s| seed_candidates(mesh, fibers, s, reach))
+            .collect();
+        let mut all = Vec::new();
+        for (c, v) in per_seed {
+            *counts += c;
+            all.extend(v);
+        }
+        all.sort_by(Candidate::rank);
+        all
+    }
+
+    fn stamp(&self, v: VertexId) -> u64 {
+        self.touched.get(v.index()).copied().unwrap_or(0)
+    }
+
+    /// A vertex of the candidate's region is gone or changed since `start`.
+    fn overlaps_accepted(&self, c: &Candidate, start: u64) -> bool {
+        c.inside
+            .iter()
+            .any(|&v| !self.mesh.contains_vertex(v) || self.stamp(v) > start)
+            || c.triangle.iter().any(|&v| !self.mesh.contains_vertex(v))
+    }
+
+    /// Live interior vertices within `rings` rings of a vertex changed since `start`.
+    fn dirty_seeds(&self, start: u64, rings: usize) -> Vec<VertexId> {
+        let n = self
+            .mesh
+            .vertices()
+            .map(|v| v.index() + 1)
+            .max()
+            .unwrap_or(0);
+        let mut dirty = vec![false; n];
+        for v in self.mesh.vertices() {
+            if self.stamp(v) > start {
+                let mut b = ball(self.mesh, v, rings);
+                if b.is_empty() {
+                    b = self.mesh.vertex_neighbors(v).collect();
+                }
+                for w in b {
+                    if w.index() < dirty.len() {
+                        dirty[w.index()] = true;
+                    }
+                    for x in self.mesh.vertex_neighbors(w) {
+                        if x.index() < dirty.len() {
+                            dirty[x.index()] = true;
+                        }
+                    }
+                }
+            }
+        }
+        self.mesh.vertices().filter(|v| dirty[v.index()]).collect()
+    }
+
+    /// Cuts the candidate's region, places it, fills the sub-holes; keeps the result or
+    /// restores the region exactly. Returns the filter calls and whether it was placed.
+    fn try_candidate(&mut self, c: &Candidate, filter: &dyn Filter) -> (u64, bool) {
+        let Some(r) = region(self.mesh, &c.inside) else {
+            return (0, false);
+        };
+        let mut at = [0usize; 3];
+        for (k, v) in c.triangle.iter().enumerate() {
+            match r.cycle.iter().position(|x| x == v) {
+                Some(i) => at[k] = i,
+                None => return (0, false),
+            }
+        }
+        if !(at[0] < at[1] && at[1] < at[2]) {
+            return (0, false);
+        }
+        let cp = self.mesh.begin();
+        if self.mesh.remove_faces(&r.faces).is_err() {
+            self.mesh.rollback(cp);
+            return (0, false);
+        }
+        for &f in &r.faces {
+            self.grid.remove(f);
+        }
+        let hole = Hole {
+            vertices: r.cycle.clone(),
+            open: false,
+        };
+        let (ok, tests, placed) = {
+            let mut ctx = FillContext::new(self.mesh, &self.grid, filter, &hole);
+            let ok = Greedy::default().fill_from(&mut ctx, at);
+            (ok, ctx.tests, ctx.placed().to_vec())
+        };
+        let added = if ok {
+            self.mesh.add_faces(&placed).ok()
+        } else {
+            None
+        };
+        let Some(faces) = added else {
+            self.mesh.rollback(cp);
+            self.reinsert(&r.faces);
+            return (tests, false);
+        };
+        for &v in &r.inside {
+            self.mesh
+                .remove_vertex(v)
+                .expect("a region's inside vertices are isolated once its faces are gone");
+        }
+        self.mesh.commit(cp);
+        self.reinsert(&faces);
+        self.grid.rebalance();
+        self.epoch += 1;
+        for &v in r.inside.iter().chain(&r.cycle) {
+            if self.touched.len() <= v.index() {
+                self.touched.resize(v.index() + 1, 0);
+            }
+            self.touched[v.index()] = self.epoch;
+        }
+        (tests, true)
+    }
+
+    fn reinsert(&mut self, faces: &[FaceId]) {
+        for &f in faces {
+            let t = self.mesh.face_vertices(f);
+            self.grid.insert(f, t, t.map(|x| self.mesh.position(x)));
+        }
+    }
+}

@@ -1,0 +1,138 @@
+//! The three methods as steps of the `envelope-simplify` driver ([`SimplifyStep`]):
+//! `local` (5.2), `global` (5.3) and `hybrid` (5.4: "choose nearby groups of vertices to
+//! remove simultaneously": the global algorithm within bounded regions, then the local one).
+
+use crate::candidates::Fibers;
+use crate::global::{GlobalError, GlobalOptions, simplify_global};
+use envelope_mesh::HalfEdgeMesh;
+use envelope_simplify::{
+    LocalStep, Progress, SimplifyError, SimplifyStep, Stats, StepInput, StepOutcome,
+};
+use serde_json::json;
+
+/// Which simplification algorithm runs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Method {
+    /// Vertex removal one at a time (5.2).
+    #[default]
+    Local,
+    /// Greedy set cover by candidate triangles (5.3); border vertices stay.
+    Global,
+    /// Global within bounded regions, then local (5.4).
+    Hybrid,
+}
+
+impl Method {
+    /// `"local"`, `"global"` or `"hybrid"`.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Method::Local => "local",
+            Method::Global => "global",
+            Method::Hybrid => "hybrid",
+        }
+    }
+
+    /// Parses [`Method::as_str`].
+    ///
+    /// ```
+    /// use envelope_global::Method;
+    /// assert_eq!(Method::parse("hybrid"), Some(Method::Hybrid));
+    /// assert_eq!(Method::parse("fast"), None);
+    /// ```
+    #[must_use]
+    pub fn parse(s: &str) -> Option<Method> {
+        [Method::Local, Method::Global, Method::Hybrid]
+            .into_iter()
+            .find(|m| m.as_str() == s)
+    }
+
+    /// The driver step of this method (with the default options of each stage).
+    #[must_use]
+    pub fn step(self) -> Box<dyn SimplifyStep + Send + Sync> {
+        match self {
+            Method::Local => Box::new(LocalStep),
+            Method::Global => Box::new(GlobalStep {
+                options: GlobalOptions::default(),
+                then_local: false,
+            }),
+            Method::Hybrid => Box::new(GlobalStep {
+                options: GlobalOptions::bounded(),
+                then_local: true,
+            }),
+        }
+    }
+}
+
+/// The global algorithm as a driver step, optionally followed by the local one (hybrid).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GlobalStep {
+    /// Options of the global stage.
+    pub options: GlobalOptions,
+    /// Run the local algorithm afterwards (the hybrid method).
+    pub then_local: bool,
+}
+
+fn to_simplify_error(e: GlobalError) -> SimplifyError {
+    match e {
+        GlobalError::NonManifoldVertex(v) => SimplifyError::NonManifoldVertex(v),
+        GlobalError::SanityCheck(message) => SimplifyError::SanityCheck {
+            after: envelope_mesh::VertexId(u32::MAX),
+            message,
+        },
+    }
+}
+
+impl SimplifyStep for GlobalStep {
+    fn run(
+        &self,
+        mesh: &mut HalfEdgeMesh,
+        input: &StepInput<'_>,
+        progress: &mut dyn Progress,
+    ) -> Result<StepOutcome, SimplifyError> {
+        let fibers = Fibers {
+            inner: input.inner,
+            outer: input.outer,
+        };
+        let g = simplify_global(mesh, input.barriers, &fibers, &self.options, progress)
+            .map_err(to_simplify_error)?;
+        let mut stats = Stats {
+            vertices_before: g.vertices_before,
+            faces_before: g.faces_before,
+            vertices_after: g.vertices_after,
+            faces_after: g.faces_after,
+            attempts: g.attempts,
+            removed: g.removed,
+            no_valid_fill: g.no_valid_fill,
+            refused: g.overlapping,
+            candidate_tests: g.filter_tests,
+        };
+        if !self.then_local {
+            return Ok(StepOutcome {
+                stats,
+                method: "global",
+                details: g.to_json(),
+            });
+        }
+        let local = LocalStep.run(mesh, input, progress)?.stats;
+        stats.vertices_after = local.vertices_after;
+        stats.faces_after = local.faces_after;
+        stats.attempts += local.attempts;
+        stats.removed += local.removed;
+        stats.no_valid_fill += local.no_valid_fill;
+        stats.refused += local.refused;
+        stats.candidate_tests += local.candidate_tests;
+        Ok(StepOutcome {
+            stats,
+            method: "hybrid",
+            details: json!({
+                "global": g.to_json(),
+                "local": {
+                    "attempts": local.attempts,
+                    "removed_vertices": local.removed,
+                    "faces_after": local.faces_after,
+                },
+            }),
+        })
+    }
+}
