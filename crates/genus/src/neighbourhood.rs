@@ -1,0 +1,87 @@
+//! Alpha-neighbourhoods (El-Sana and Varshney 1997, section 4.2).
+//!
+//! Two triangles are *alpha-close* when their alpha-prisms intersect. Candidates come from a
+//! uniform grid of cell side `2 alpha` (the paper's choice): every face is registered in the
+//! cells its prism's bounding box overlaps (f64 cell indices, widened by one cell on each side
+//! so that rounding in the index computation can only add candidates, never lose one), and
+//! every candidate pair is then decided exactly by [`AlphaPrism::intersects`].
+
+use std::collections::HashMap;
+
+use envelope_mesh::{FaceId, TriangleSoup};
+use rayon::prelude::*;
+
+use crate::{AlphaPrism, GenusError};
+
+/// The alpha-close pairs `(f, g)`, `f < g`, among `faces` of `soup` (all faces when `None`),
+/// sorted.
+///
+/// # Errors
+/// [`GenusError::InvalidAlpha`] for a non-positive or non-finite `alpha`;
+/// [`GenusError::NonFiniteCoordinate`] for a non-finite vertex.
+///
+/// ```
+/// use envelope_genus::alpha_close_pairs;
+/// use envelope_mesh::TriangleSoup;
+/// // Two parallel triangles 1.0 apart: close for alpha = 0.5 (cubes touch), not for 0.49.
+/// let s = TriangleSoup::from_raw(
+///     &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0],
+///       [0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]],
+///     &[[0, 1, 2], [3, 4, 5]],
+/// );
+/// assert_eq!(alpha_close_pairs(&s, 0.5, None).unwrap().len(), 1);
+/// assert!(alpha_close_pairs(&s, 0.49, None).unwrap().is_empty());
+/// ```
+pub fn alpha_close_pairs(
+    soup: &TriangleSoup,
+    alpha: f64,
+    faces: Option<&[FaceId]>,
+) -> Result<Vec<(FaceId, FaceId)>, GenusError> {
+    if !(alpha.is_finite() && alpha > 0.0) {
+        return Err(GenusError::InvalidAlpha(alpha));
+    }
+    let ids: Vec<FaceId> = match faces {
+        Some(f) => f.to_vec(),
+        None => soup.face_ids().collect(),
+    };
+    let prisms: Vec<AlphaPrism> = ids
+        .par_iter()
+        .map(|&f| AlphaPrism::new(soup.triangle(f), alpha))
+        .collect::<Result<_, _>>()?;
+    let cell = 2.0 * alpha;
+    let index = |x: f64| (x / cell).floor() as i64;
+    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for (k, p) in prisms.iter().enumerate() {
+        let (lo, hi) = p.bbox;
+        let l = [index(lo.x) - 1, index(lo.y) - 1, index(lo.z) - 1];
+        let h = [index(hi.x) + 1, index(hi.y) + 1, index(hi.z) + 1];
+        for i in l[0]..=h[0] {
+            for j in l[1]..=h[1] {
+                for m in l[2]..=h[2] {
+                    grid.entry([i, j, m]).or_default().push(k);
+                }
+            }
+        }
+    }
+    let mut candidates: Vec<(usize, usize)> = grid
+        .values()
+        .flat_map(|v| {
+            v.iter()
+                .enumerate()
+                .flat_map(move |(n, &a)| v[n + 1..].iter().map(move |&b| (a.min(b), a.max(b))))
+        })
+        .collect();
+    candidates.sort_unstable();
+    candidates.dedup();
+    let mut pairs: Vec<(FaceId, FaceId)> = candidates
+        .par_iter()
+        .filter(|&&(a, b)| prisms[a].intersects(&prisms[b]))
+        .map(|&(a, b)| {
+            let (f, g) = (ids[a], ids[b]);
+            (f.min(g), f.max(g))
+        })
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    Ok(pairs)
+}

@@ -1,0 +1,604 @@
+//! The genus-reducing step (El-Sana and Varshney 1997, sections 3.2-3.4), driven like the
+//! paper: [`reduce_genus`] checks the input, finds the tessellation edges and chains
+//! ([`crate::tessellation`]), turns the candidate rims into caps ([`crate::triangulate`]),
+//! keeps the caps the alpha test accepts, removes the triangles that became interior by
+//! breadth-first spreading, and validates the result.
+//!
+//! **Acceptance of a cap (our exact reading of "the L-infinity cube cannot pass").** Every
+//! cap edge that is not a loop edge must be a diagonal in the paper's sense: a cube of side
+//! `2 alpha` holds both endpoints (`|p - q|_inf <= 2 alpha`, exact). Every cap triangle must
+//! lie in the union of the alpha-cubes of its three corners
+//! ([`crate::details::covered_by_corner_cubes`], exact); since a corner is an input vertex,
+//! its cube lies in the alpha-prism of every input face at that vertex, so every added
+//! triangle lies inside the union of alpha-prisms. A hole wider than `2 alpha` fails this
+//! (its middle is farther than `alpha` from every rim vertex).
+//!
+//! **Interior triangles (3.4).** From each accepted rim, faces on the side away from the
+//! kept patch are spread over breadth-first, never crossing an accepted rim. If the spread
+//! reaches the kept side of any accepted rim, the region is not enclosed (a hole that widens,
+//! a rim whose other side is the rest of the part): that rim is refused and the selection is
+//! recomputed until stable. Refusing can only keep the input as it was.
+//!
+//! **Validation.** The output is checked with `envelope-check`; caps involved in a new
+//! intersecting, coincident, duplicate or non-manifold finding are refused and the selection
+//! is redone (at worst the input comes back unchanged).
+
+use std::collections::{BTreeSet, HashMap, HashSet, VecDeque};
+use std::time::Instant;
+
+use envelope_check::{CheckOptions, DegeneracyClass, Element, check};
+use envelope_mesh::{FaceId, TriangleSoup, VertexId, analyze};
+
+use crate::GenusError;
+use crate::exact::{covered_by_corner_cubes, linf_close};
+use crate::tessellation::{
+    EdgeMap, face_normals, link_chains, normal_variation, patches, tessellation_edges,
+};
+use crate::triangulate::triangulate_loop;
+
+/// Options of [`reduce_genus`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct GenusOptions {
+    /// The L-infinity radius: holes and tunnels a cube of side `2 alpha` cannot pass are
+    /// filled (absolute length).
+    pub alpha: f64,
+    /// Sharp-edge threshold in degrees (angle between face normals), default 70.
+    pub beta_degrees: f64,
+}
+
+impl GenusOptions {
+    /// Options with the paper's `beta = 70` degrees.
+    #[must_use]
+    pub fn new(alpha: f64) -> Self {
+        GenusOptions {
+            alpha,
+            beta_degrees: 70.0,
+        }
+    }
+}
+
+/// What [`reduce_genus`] did.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GenusReport {
+    /// Input faces.
+    pub faces_in: usize,
+    /// Output faces.
+    pub faces_out: usize,
+    /// Genus of the input (`None` if undefined).
+    pub genus_in: Option<u32>,
+    /// Genus of the output.
+    pub genus_out: Option<u32>,
+    /// Border loops of the input.
+    pub border_loops_in: usize,
+    /// Border loops of the output.
+    pub border_loops_out: usize,
+    /// Tessellation edges (sharp or border).
+    pub tessellation_edges: usize,
+    /// Open tessellation chains.
+    pub open_chains: usize,
+    /// Closed tessellation chains.
+    pub closed_chains: usize,
+    /// Candidate rims (patch loops of patches with two or more loops).
+    pub candidates: usize,
+    /// Rims capped (a through hole has two).
+    pub holes_filled: usize,
+    /// Triangles added by the caps.
+    pub triangles_added: usize,
+    /// Input triangles removed as interior.
+    pub triangles_removed: usize,
+    /// Alpha-close face pairs among the faces at the accepted rims (section 4.2).
+    pub alpha_close_pairs: usize,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+    /// The added triangles, as face ids of the output.
+    pub added_faces: Vec<FaceId>,
+}
+
+impl GenusReport {
+    /// The report as JSON (stable field names, the fields above without `added_faces`).
+    #[must_use]
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "faces_in": self.faces_in,
+            "faces_out": self.faces_out,
+            "genus_in": self.genus_in,
+            "genus_out": self.genus_out,
+            "border_loops_in": self.border_loops_in,
+            "border_loops_out": self.border_loops_out,
+            "tessellation_edges": self.tessellation_edges,
+            "open_chains": self.open_chains,
+            "closed_chains": self.closed_chains,
+            "candidates": self.candidates,
+            "holes_filled": self.holes_filled,
+            "triangles_added": self.triangles_added,
+            "triangles_removed": self.triangles_removed,
+            "alpha_close_pairs": self.alpha_close_pairs,
+            "seconds": self.seconds,
+        })
+    }
+}
+
+/// A candidate rim and its cap.
+#[derive(Clone, Debug)]
+struct Candidate {
+    /// Loop vertices, run as the kept patch runs them.
+    vertices: Vec<VertexId>,
+    /// The kept patch's face on each loop edge.
+    keep: Vec<FaceId>,
+    /// Key of the undirected edge cycle (for the two-sided ambiguity).
+    key: Vec<(VertexId, VertexId)>,
+    /// Normal variation of the kept patch.
+    variation: f64,
+    /// The cap.
+    cap: Vec<[VertexId; 3]>,
+}
+
+/// Classes of the input that the paper cannot handle (section 6) and we refuse.
+const REFUSED: [DegeneracyClass; 5] = [
+    DegeneracyClass::CoincidentTriangles,
+    DegeneracyClass::DuplicateTriangles,
+    DegeneracyClass::IntersectingTriangles,
+    DegeneracyClass::NonManifoldEdges,
+    DegeneracyClass::InconsistentOrientation,
+];
+
+/// Reduces the genus of `soup`: fills the holes, tunnels and cavities an axis-aligned cube of
+/// side `2 alpha` cannot pass at rims of sharp or border edges (see the module docs). The
+/// output has compacted vertex ids (a subset of the input's, in input order); no vertex is
+/// created.
+///
+/// # Errors
+/// [`GenusError::InvalidAlpha`], [`GenusError::InvalidBeta`],
+/// [`GenusError::NonFiniteCoordinate`], [`GenusError::IndexOutOfRange`] and
+/// [`GenusError::Unacceptable`] (coincident, duplicate or intersecting triangles,
+/// non-manifold edges, inconsistent orientation) naming an offending element.
+///
+/// ```
+/// use envelope_genus::{reduce_genus, GenusOptions};
+/// use envelope_mesh::{analyze, generate};
+/// let plate = generate::plate_with_holes(2); // genus 2, unit square holes
+/// let (out, report) = reduce_genus(&plate, &GenusOptions::new(0.6)).unwrap();
+/// assert_eq!((report.genus_in, report.genus_out), (Some(2), Some(0)));
+/// assert_eq!(analyze(&out).genus, Some(0));
+/// let (_, kept) = reduce_genus(&plate, &GenusOptions::new(0.4)).unwrap();
+/// assert_eq!(kept.genus_out, Some(2));
+/// ```
+pub fn reduce_genus(
+    soup: &TriangleSoup,
+    options: &GenusOptions,
+) -> Result<(TriangleSoup, GenusReport), GenusError> {
+    let start = Instant::now();
+    let alpha = options.alpha;
+    if !(alpha.is_finite() && alpha > 0.0) {
+        return Err(GenusError::InvalidAlpha(alpha));
+    }
+    let beta = options.beta_degrees;
+    if !(beta.is_finite() && beta > 0.0 && beta < 180.0) {
+        return Err(GenusError::InvalidBeta(beta));
+    }
+    check_input(soup)?;
+    let topo_in = analyze(soup);
+
+    let edges = EdgeMap::new(soup);
+    let normals = face_normals(soup);
+    let tess = tessellation_edges(&edges, &normals, beta);
+    let chains = link_chains(&tess);
+    let tess_set: HashSet<(VertexId, VertexId)> = tess.iter().copied().collect();
+    let pat = patches(soup, &edges, &tess_set);
+
+    // Candidates: loops of patches with at least two loops.
+    let mut patch_faces: Vec<Vec<FaceId>> = vec![Vec::new(); pat.count];
+    for f in soup.face_ids() {
+        if let Some(p) = pat.of_face.get(f.index()).filter(|&&p| p != usize::MAX) {
+            patch_faces[*p].push(f);
+        }
+    }
+    let variation: Vec<f64> = patch_faces
+        .iter()
+        .map(|fs| normal_variation(soup, fs.iter().copied()))
+        .collect();
+    let mut candidates: Vec<Candidate> = Vec::new();
+    for (p, loops) in pat.loops.iter().enumerate() {
+        if loops.len() < 2 {
+            continue;
+        }
+        for lp in loops {
+            let mut key: Vec<(VertexId, VertexId)> = (0..lp.vertices.len())
+                .map(|i| {
+                    let (a, b) = (lp.vertices[i], lp.vertices[(i + 1) % lp.vertices.len()]);
+                    (a.min(b), a.max(b))
+                })
+                .collect();
+            key.sort_unstable();
+            candidates.push(Candidate {
+                vertices: lp.vertices.clone(),
+                keep: lp.faces.clone(),
+                key,
+                variation: variation[p],
+                cap: Vec::new(),
+            });
+        }
+    }
+    let num_candidates = candidates.len();
+    // Caps accepted by the alpha test.
+    candidates.retain_mut(|c| {
+        let distinct: BTreeSet<VertexId> = c.vertices.iter().copied().collect();
+        if distinct.len() != c.vertices.len() {
+            return false;
+        }
+        let Some(cap) = triangulate_loop(soup, &c.vertices) else {
+            return false;
+        };
+        let loop_edges: HashSet<(VertexId, VertexId)> = c.key.iter().copied().collect();
+        let ok = cap.iter().all(|t| {
+            (0..3).all(|k| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                loop_edges.contains(&(a.min(b), a.max(b)))
+                    || linf_close(soup.position(a), soup.position(b), alpha)
+            }) && covered_by_corner_cubes(t.map(|v| soup.position(v)), alpha)
+        });
+        c.cap = cap;
+        ok
+    });
+    // Two-sided ambiguity: the kept side is the one with less normal variation; ties keep
+    // both orders (the interior test decides).
+    candidates.sort_by(|a, b| a.key.cmp(&b.key).then(a.variation.total_cmp(&b.variation)));
+
+    let mut refused: HashSet<usize> = HashSet::new();
+    let mut baseline: Option<HashMap<DegeneracyClass, usize>> = None;
+    let (out, added, removed, active) = loop {
+        let active = select(soup, &edges, &candidates, &mut refused);
+        let (out, added, removed, cap_of_face) = assemble(soup, &candidates, &active);
+        if cap_of_face.is_empty() {
+            break (out, added, removed, active);
+        }
+        let base = baseline.get_or_insert_with(|| class_counts(soup));
+        let implicated = validate(&out, &cap_of_face, base);
+        match implicated {
+            None => break (out, added, removed, active),
+            Some(bad) if bad.is_empty() => {
+                // Nothing to blame precisely: refuse every active cap.
+                refused.extend(active.iter().copied());
+            }
+            Some(bad) => refused.extend(bad),
+        }
+    };
+    // Alpha-neighbourhoods of the faces at the accepted rims (report only).
+    let mut rim_faces: Vec<FaceId> = active
+        .iter()
+        .flat_map(|&i| candidates[i].keep.iter().copied())
+        .collect();
+    rim_faces.sort_unstable();
+    rim_faces.dedup();
+    let alpha_close = if rim_faces.is_empty() {
+        0
+    } else {
+        crate::alpha_close_pairs(soup, alpha, Some(&rim_faces))?.len()
+    };
+    let (out, added_faces) = compact(&out, added);
+    let topo_out = analyze(&out);
+    let report = GenusReport {
+        faces_in: soup.num_faces(),
+        faces_out: out.num_faces(),
+        genus_in: topo_in.genus,
+        genus_out: topo_out.genus,
+        border_loops_in: topo_in.num_border_loops(),
+        border_loops_out: topo_out.num_border_loops(),
+        tessellation_edges: tess.len(),
+        open_chains: chains.iter().filter(|c| !c.closed).count(),
+        closed_chains: chains.iter().filter(|c| c.closed).count(),
+        candidates: num_candidates,
+        holes_filled: active.len(),
+        triangles_added: added_faces.len(),
+        triangles_removed: removed,
+        alpha_close_pairs: alpha_close,
+        seconds: start.elapsed().as_secs_f64(),
+        added_faces,
+    };
+    Ok((out, report))
+}
+
+fn check_input(soup: &TriangleSoup) -> Result<(), GenusError> {
+    for (i, p) in soup.positions.iter().enumerate() {
+        if !p.is_finite() {
+            return Err(GenusError::NonFiniteCoordinate {
+                vertex: Some(VertexId::from_index(i)),
+            });
+        }
+    }
+    for f in soup.face_ids() {
+        if soup.faces[f.index()]
+            .iter()
+            .any(|v| v.index() >= soup.num_vertices())
+        {
+            return Err(GenusError::IndexOutOfRange { face: f });
+        }
+    }
+    let report = check(
+        soup,
+        &CheckOptions {
+            max_examples: usize::MAX,
+            ..CheckOptions::default()
+        },
+    );
+    // T-junctions (Fig. 2) are accepted; the exact intersection test reports the faces
+    // touching at a T-junction vertex as intersecting, so pairs explained by a T-junction
+    // (one face has the T vertex, the other the edge it lies on) are tolerated.
+    let mut t_contacts: HashSet<(VertexId, (VertexId, VertexId))> = HashSet::new();
+    for e in &report.finding(DegeneracyClass::TJunctions).examples {
+        if let Element::VertexOnEdge { vertex, edge, .. } = e {
+            t_contacts.insert((*vertex, (edge[0].min(edge[1]), edge[0].max(edge[1]))));
+        }
+    }
+    let explained = |f: FaceId, g: FaceId| {
+        let (tf, tg) = (soup.faces[f.index()], soup.faces[g.index()]);
+        let by = |t: [VertexId; 3], u: [VertexId; 3]| {
+            t.iter().any(|&v| {
+                (0..3).any(|k| {
+                    let (a, b) = (u[k], u[(k + 1) % 3]);
+                    t_contacts.contains(&(v, (a.min(b), a.max(b))))
+                })
+            })
+        };
+        by(tf, tg) || by(tg, tf)
+    };
+    for class in REFUSED {
+        let finding = report.finding(class);
+        let offending: Vec<&Element> = finding
+            .examples
+            .iter()
+            .filter(|e| match e {
+                Element::FacePair { faces } if class == DegeneracyClass::IntersectingTriangles => {
+                    !explained(faces[0], faces[1])
+                }
+                _ => true,
+            })
+            .collect();
+        if let Some(first) = offending.first() {
+            return Err(GenusError::Unacceptable {
+                class,
+                count: offending.len(),
+                example: describe(first),
+            });
+        }
+    }
+    Ok(())
+}
+
+fn describe(e: &Element) -> String {
+    match e {
+        Element::Vertex { vertex, position } => format!("vertex {} at {position}", vertex.0),
+        Element::VertexGroup { vertices, .. } => format!("vertices {vertices:?}"),
+        Element::Face { face, .. } => format!("face {}", face.0),
+        Element::FacePair { faces } => format!("faces {} and {}", faces[0].0, faces[1].0),
+        Element::Edge { edge, .. } => format!("edge {}-{}", edge[0].0, edge[1].0),
+        Element::VertexOnEdge { vertex, edge, .. } => {
+            format!("vertex {} on edge {}-{}", vertex.0, edge[0].0, edge[1].0)
+        }
+    }
+}
+
+/// The stable selection: accepted caps whose interior spread stays enclosed. Among
+/// candidates with the same edge cycle, only the first not refused is active.
+fn select(
+    soup: &TriangleSoup,
+    edges: &EdgeMap,
+    cands: &[Candidate],
+    refused: &mut HashSet<usize>,
+) -> Vec<usize> {
+    loop {
+        let mut active: Vec<usize> = Vec::new();
+        let mut seen_keys: HashSet<&[(VertexId, VertexId)]> = HashSet::new();
+        for (i, c) in cands.iter().enumerate() {
+            if !refused.contains(&i) && seen_keys.insert(c.key.as_slice()) {
+                active.push(i);
+            }
+        }
+        let barrier: HashSet<(VertexId, VertexId)> = active
+            .iter()
+            .flat_map(|&i| cands[i].key.iter().copied())
+            .collect();
+        let kept: HashSet<FaceId> = active
+            .iter()
+            .flat_map(|&i| cands[i].keep.iter().copied())
+            .collect();
+        let mut bad = None;
+        for &i in &active {
+            if interior_region(soup, edges, &cands[i], &barrier, &kept).is_none() {
+                bad = Some(i);
+                break;
+            }
+        }
+        match bad {
+            Some(i) => {
+                refused.insert(i);
+            }
+            None => return active,
+        }
+    }
+}
+
+/// Faces spread over from the non-kept side of `c`'s rim, not crossing `barrier`; `None`
+/// when the spread reaches a kept face.
+fn interior_region(
+    soup: &TriangleSoup,
+    edges: &EdgeMap,
+    c: &Candidate,
+    barrier: &HashSet<(VertexId, VertexId)>,
+    kept: &HashSet<FaceId>,
+) -> Option<HashSet<FaceId>> {
+    let n = c.vertices.len();
+    let mut region: HashSet<FaceId> = HashSet::new();
+    let mut queue = VecDeque::new();
+    for i in 0..n {
+        let (a, b) = (c.vertices[i], c.vertices[(i + 1) % n]);
+        if let Some(g) = edges.across(c.keep[i], a, b) {
+            if region.insert(g) {
+                queue.push_back(g);
+            }
+        }
+    }
+    while let Some(f) = queue.pop_front() {
+        if kept.contains(&f) {
+            return None;
+        }
+        let t = soup.faces[f.index()];
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if barrier.contains(&(a.min(b), a.max(b))) {
+                continue;
+            }
+            if let Some(g) = edges.across(f, a, b) {
+                if region.insert(g) {
+                    queue.push_back(g);
+                }
+            }
+        }
+    }
+    Some(region)
+}
+
+/// Output faces (input ids), the indices of the added faces in it, the number of removed
+/// input faces, and the candidate of each added face.
+fn assemble(
+    soup: &TriangleSoup,
+    cands: &[Candidate],
+    active: &[usize],
+) -> (TriangleSoup, Vec<usize>, usize, HashMap<usize, usize>) {
+    let edges = EdgeMap::new(soup);
+    let barrier: HashSet<(VertexId, VertexId)> = active
+        .iter()
+        .flat_map(|&i| cands[i].key.iter().copied())
+        .collect();
+    let kept: HashSet<FaceId> = active
+        .iter()
+        .flat_map(|&i| cands[i].keep.iter().copied())
+        .collect();
+    let mut removed: HashSet<FaceId> = HashSet::new();
+    for &i in active {
+        if let Some(r) = interior_region(soup, &edges, &cands[i], &barrier, &kept) {
+            removed.extend(r);
+        }
+    }
+    let mut faces: Vec<[VertexId; 3]> = soup
+        .face_ids()
+        .filter(|f| !removed.contains(f))
+        .map(|f| soup.faces[f.index()])
+        .collect();
+    let mut added = Vec::new();
+    let mut cap_of_face = HashMap::new();
+    for &i in active {
+        for t in &cands[i].cap {
+            added.push(faces.len());
+            cap_of_face.insert(faces.len(), i);
+            faces.push(*t);
+        }
+    }
+    (
+        TriangleSoup::new(soup.positions.clone(), faces),
+        added,
+        removed.len(),
+        cap_of_face,
+    )
+}
+
+/// Classes the output must not have more of than the input.
+const VALIDATED: [DegeneracyClass; 7] = [
+    DegeneracyClass::CoincidentTriangles,
+    DegeneracyClass::DuplicateTriangles,
+    DegeneracyClass::IntersectingTriangles,
+    DegeneracyClass::NonManifoldEdges,
+    DegeneracyClass::NonManifoldVertices,
+    DegeneracyClass::InconsistentOrientation,
+    DegeneracyClass::ZeroAreaTriangles,
+];
+
+fn class_counts(soup: &TriangleSoup) -> HashMap<DegeneracyClass, usize> {
+    let report = check(
+        soup,
+        &CheckOptions {
+            max_examples: 0,
+            ..CheckOptions::default()
+        },
+    );
+    VALIDATED
+        .iter()
+        .map(|&c| (c, report.finding(c).count))
+        .collect()
+}
+
+/// `None` when the output is clean; otherwise the candidates implicated (possibly none).
+fn validate(
+    out: &TriangleSoup,
+    cap_of_face: &HashMap<usize, usize>,
+    baseline: &HashMap<DegeneracyClass, usize>,
+) -> Option<Vec<usize>> {
+    let report = check(
+        out,
+        &CheckOptions {
+            max_examples: usize::MAX,
+            ..CheckOptions::default()
+        },
+    );
+    let mut bad: BTreeSet<usize> = BTreeSet::new();
+    let mut any = false;
+    let mut cap_vertices: HashMap<VertexId, Vec<usize>> = HashMap::new();
+    for (&f, &c) in cap_of_face {
+        for v in out.faces[f] {
+            cap_vertices.entry(v).or_default().push(c);
+        }
+    }
+    for class in VALIDATED {
+        let finding = report.finding(class);
+        let before = baseline.get(&class).copied().unwrap_or(0);
+        if finding.count <= before {
+            continue;
+        }
+        any = true;
+        for e in &finding.examples {
+            let faces: Vec<FaceId> = match e {
+                Element::Face { face, .. } => vec![*face],
+                Element::FacePair { faces } => faces.to_vec(),
+                Element::Edge { faces, .. } => faces.clone(),
+                Element::Vertex { vertex, .. } => {
+                    bad.extend(cap_vertices.get(vertex).into_iter().flatten());
+                    Vec::new()
+                }
+                _ => Vec::new(),
+            };
+            for f in faces {
+                if let Some(&c) = cap_of_face.get(&f.index()) {
+                    bad.insert(c);
+                }
+            }
+        }
+    }
+    any.then(|| bad.into_iter().collect())
+}
+
+/// Drops unreferenced vertices; maps the added face indices (face order is kept).
+fn compact(s: &TriangleSoup, added: Vec<usize>) -> (TriangleSoup, Vec<FaceId>) {
+    let mut map = vec![u32::MAX; s.num_vertices()];
+    let mut used = vec![false; s.num_vertices()];
+    for t in &s.faces {
+        for v in t {
+            used[v.index()] = true;
+        }
+    }
+    let mut positions = Vec::new();
+    for (i, u) in used.iter().enumerate() {
+        if *u {
+            map[i] = positions.len() as u32;
+            positions.push(s.positions[i]);
+        }
+    }
+    let faces = s
+        .faces
+        .iter()
+        .map(|t| t.map(|v| VertexId(map[v.index()])))
+        .collect();
+    (
+        TriangleSoup::new(positions, faces),
+        added.into_iter().map(FaceId::from_index).collect(),
+    )
+}
