@@ -60,6 +60,11 @@ pub enum BarrierError {
 #[derive(Clone, Debug, Default)]
 pub struct Barriers {
     triangles: Vec<[DVec3; 3]>,
+    /// Each triangle's box (checked before any plane test).
+    boxes: Vec<Aabb>,
+    /// Each triangle's own [`SlabFilter`] (prunes candidates whose corners all lie clearly on
+    /// one side of its plane).
+    slabs: Vec<SlabFilter>,
     kinds: Vec<BarrierKind>,
     bvh: Option<Bvh>,
     has_tubes: bool,
@@ -121,8 +126,11 @@ impl Barriers {
         }
         let boxes: Vec<Aabb> = triangles.iter().map(|&t| Aabb::from_triangle(t)).collect();
         let bvh = (!boxes.is_empty()).then(|| Bvh::new(&boxes));
+        let slabs = triangles.iter().map(|&t| SlabFilter::new(t)).collect();
         Ok(Self {
             triangles,
+            boxes,
+            slabs,
             kinds,
             bvh,
             has_tubes,
@@ -160,82 +168,169 @@ impl Barriers {
         };
         let query = Aabb::from_triangle(t);
         let plane = SlabFilter::new(t);
-        let mut stack = vec![root];
-        while let Some(n) = stack.pop() {
+        // Depth-first with a fixed stack: the tree's depth is at most 64 (median splits).
+        let mut stack = [root; 64];
+        let mut len = 1;
+        while len > 0 {
+            len -= 1;
+            let n = stack[len];
             let bounds = bvh.bounds(n);
             if !bounds.overlaps(&query) || plane.separates(&bounds) {
                 continue;
             }
             match bvh.kind(n) {
+                NodeKind::Interior(a, b) if len + 2 <= stack.len() => {
+                    stack[len] = b;
+                    stack[len + 1] = a;
+                    len += 2;
+                }
                 NodeKind::Interior(a, b) => {
-                    stack.push(b);
-                    stack.push(a);
+                    // Deeper than any median-split tree gets: finish these subtrees apart.
+                    if [a, b]
+                        .into_iter()
+                        .any(|c| self.blocks_below(bvh, c, t, border_edges))
+                    {
+                        return true;
+                    }
                 }
                 NodeKind::Leaf(items) => {
-                    for &i in items {
-                        let b = self.triangles[i as usize];
-                        let hit = match self.kinds[i as usize] {
-                            BarrierKind::Envelope | BarrierKind::Wall => {
-                                !plane.separates(&Aabb::from_triangle(b))
-                                    && triangles_intersect(t, b)
-                            }
-                            BarrierKind::Tube => (0..3).any(|k| {
-                                border_edges[k]
-                                    && segment_triangle(t[k], t[(k + 1) % 3], b)
-                                        != SegmentTriangle::Disjoint
-                            }),
-                        };
-                        if hit {
-                            return true;
-                        }
+                    if items
+                        .iter()
+                        .any(|&i| self.item_blocks(i as usize, &query, &plane, t, border_edges))
+                    {
+                        return true;
                     }
                 }
             }
         }
         false
     }
+
+    /// [`Self::blocks`] restricted to the subtree under `node` (recursive; a fallback).
+    fn blocks_below(
+        &self,
+        bvh: &Bvh,
+        node: envelope_predicates::bvh::NodeId,
+        t: [DVec3; 3],
+        border_edges: [bool; 3],
+    ) -> bool {
+        let query = Aabb::from_triangle(t);
+        let plane = SlabFilter::new(t);
+        let bounds = bvh.bounds(node);
+        if !bounds.overlaps(&query) || plane.separates(&bounds) {
+            return false;
+        }
+        match bvh.kind(node) {
+            NodeKind::Interior(a, b) => [a, b]
+                .into_iter()
+                .any(|c| self.blocks_below(bvh, c, t, border_edges)),
+            NodeKind::Leaf(items) => items
+                .iter()
+                .any(|&i| self.item_blocks(i as usize, &query, &plane, t, border_edges)),
+        }
+    }
+
+    /// Whether barrier triangle `i` blocks the candidate `t` (box `query`, filter `plane`).
+    fn item_blocks(
+        &self,
+        i: usize,
+        query: &Aabb,
+        plane: &SlabFilter,
+        t: [DVec3; 3],
+        border_edges: [bool; 3],
+    ) -> bool {
+        if !self.boxes[i].overlaps(query) {
+            return false;
+        }
+        let b = self.triangles[i];
+        match self.kinds[i] {
+            BarrierKind::Envelope | BarrierKind::Wall => {
+                !plane.separates_points(b)
+                    && !self.slabs[i].separates_points(t)
+                    && triangles_intersect(t, b)
+            }
+            BarrierKind::Tube => (0..3).any(|k| {
+                border_edges[k]
+                    && segment_triangle(t[k], t[(k + 1) % 3], b) != SegmentTriangle::Disjoint
+            }),
+        }
+    }
 }
 
-/// A conservative f64 separation test along the normal of a triangle `t`: `separates(box)`
-/// is true only when the exact values of `n . x` over the box and over `t` do not overlap
-/// (so the box cannot meet `t`). `n` is the f64 cross product, any vector would do: the
-/// test is a separating-axis test on that axis, with every dot product's rounding error
-/// (at most `3u sum |n_i x_i|`, bounded by `1e-15 |n|_1 max|x|` plus an underflow term)
-/// added on both sides. It only prunes work; the decisions are the exact predicates'.
+/// A conservative f64 separating-axis test for one triangle `t`.
+///
+/// `separates(box)` is true only when the exact values of `n . x` over the box and over `t`
+/// do not overlap, `n` the f64 cross product of `t`'s edges; `separates_points(q)` the same
+/// for the corners of a triangle `q` on `n` and on the three in-plane edge normals
+/// `n x (t[k+1] - t[k])` (four of the eleven axes of the triangle/triangle separating-axis
+/// theorem). The axes are whatever f64 vectors the products round to: any axis separates
+/// when the projections are disjoint. Every dot product's rounding error (at most
+/// `3u sum |a_i x_i|`, bounded by `1e-15 |a|_1 max|x|` plus an underflow term) is added on
+/// both sides, so a pair is only declared apart when it is. It only prunes work; the
+/// decisions are the exact predicates'.
+#[derive(Clone, Copy, Debug, Default)]
 struct SlabFilter {
-    n: DVec3,
-    n1: f64,
-    t_min: f64,
-    t_max: f64,
+    /// The normal, then the three in-plane edge normals.
+    axes: [DVec3; 4],
+    /// `|axis|_1`.
+    norm1: [f64; 4],
+    /// `t`'s projection on each axis, as computed.
+    lo: [f64; 4],
+    hi: [f64; 4],
     t_mag: f64,
 }
 
 impl SlabFilter {
     fn new(t: [DVec3; 3]) -> Self {
         let n = (t[1] - t[0]).cross(t[2] - t[0]);
-        let d = t.map(|p| n.dot(p));
-        let t_mag = t.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
-        Self {
+        let axes = [
             n,
-            n1: n.abs().element_sum(),
-            t_min: d[0].min(d[1]).min(d[2]),
-            t_max: d[0].max(d[1]).max(d[2]),
-            t_mag,
+            n.cross(t[1] - t[0]),
+            n.cross(t[2] - t[1]),
+            n.cross(t[0] - t[2]),
+        ];
+        let mut f = Self {
+            axes,
+            norm1: axes.map(|a| a.abs().element_sum()),
+            lo: [0.0; 4],
+            hi: [0.0; 4],
+            t_mag: t.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max),
+        };
+        for k in 0..4 {
+            let d = t.map(|p| axes[k].dot(p));
+            f.lo[k] = d[0].min(d[1]).min(d[2]);
+            f.hi[k] = d[0].max(d[1]).max(d[2]);
         }
+        f
+    }
+
+    /// Rounding slack for axis `k` with coordinates up to `mag` on the other side.
+    fn slack(&self, k: usize, mag: f64) -> Option<f64> {
+        let n1 = self.norm1[k];
+        (n1.is_finite() && n1 != 0.0).then(|| 2.0 * (1e-15 * n1 * mag.max(self.t_mag) + 1e-300))
     }
 
     fn separates(&self, b: &Aabb) -> bool {
-        if !self.n1.is_finite() || self.n1 == 0.0 {
+        let n = self.axes[0];
+        let mag = b.min.abs().max_element().max(b.max.abs().max_element());
+        let Some(slack) = self.slack(0, mag) else {
             return false;
-        }
-        let lo = DVec3::select(self.n.cmpge(DVec3::ZERO), b.min, b.max);
-        let hi = DVec3::select(self.n.cmpge(DVec3::ZERO), b.max, b.min);
-        let (b_min, b_max) = (self.n.dot(lo), self.n.dot(hi));
-        let mag = self
-            .t_mag
-            .max(b.min.abs().max_element())
-            .max(b.max.abs().max_element());
-        let slack = 2.0 * (1e-15 * self.n1 * mag + 1e-300);
-        b_min > self.t_max + slack || b_max < self.t_min - slack
+        };
+        let lo = DVec3::select(n.cmpge(DVec3::ZERO), b.min, b.max);
+        let hi = DVec3::select(n.cmpge(DVec3::ZERO), b.max, b.min);
+        n.dot(lo) > self.hi[0] + slack || n.dot(hi) < self.lo[0] - slack
+    }
+
+    /// The test for the three corners of a triangle `q` on all four axes.
+    fn separates_points(&self, q: [DVec3; 3]) -> bool {
+        let mag = q.iter().fold(0.0, |m: f64, p| m.max(p.abs().max_element()));
+        (0..4).any(|k| {
+            let Some(slack) = self.slack(k, mag) else {
+                return false;
+            };
+            let d = q.map(|p| self.axes[k].dot(p));
+            d[0].min(d[1]).min(d[2]) > self.hi[k] + slack
+                || d[0].max(d[1]).max(d[2]) < self.lo[k] - slack
+        })
     }
 }

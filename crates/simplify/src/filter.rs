@@ -104,6 +104,11 @@ pub struct CandidateProfile<'a> {
 }
 
 /// A constraint on candidate triangles: yes or no, never a score.
+///
+/// Contract: monotone in the approximation. While one hole is filled the mesh does not
+/// change and the placed triangles only grow; a candidate rejected with some triangles placed
+/// must be rejected with more placed (every validity test of 5.1 is of this kind: more
+/// triangles can only block more). The hole fillers cache rejections on this basis.
 pub trait Filter {
     /// Whether the candidate may be placed.
     fn accepts(&self, profile: &CandidateProfile<'_>) -> bool;
@@ -163,7 +168,7 @@ impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
         let [a, b, c] = p.corners;
         self.base.accepts(p)
             && !collinear(a, b, c)
-            && !p.approximation.intersects(p.triangle, p.corners)
             && !self.barriers.blocks(p.corners, p.border_edges)
+            && !p.approximation.intersects(p.triangle, p.corners)
     }
 }
