@@ -11,7 +11,9 @@
 
 mod check;
 mod envelopes;
+mod genus;
 mod lod;
+mod pipeline;
 mod simplify;
 mod verify;
 
@@ -62,6 +64,12 @@ enum Command {
     ///
     /// Writes OUTDIR/level-0.off (the input), level-1.off, ... and summary.json.
     Lod(lod::Args),
+    /// Fill the holes and tunnels an L-infinity cube of side 2*alpha cannot pass (El-Sana and
+    /// Varshney 1997) and write OUT atomically.
+    Genus(genus::Args),
+    /// Alternate genus-preserving (eX) and genus-reducing (aX) steps; writes
+    /// OUTDIR/stage-0.off (the input), stage-1.off, ... and summary.json.
+    Pipeline(pipeline::Args),
     /// Run the main job on a built-in model (a cup: curved wall, sharp bottom crease, open
     /// rim): its chain of levels of detail at 1/64% ... 1%, certified, into ./envelope-demo/.
     Demo {
@@ -83,6 +91,8 @@ fn main() -> ExitCode {
         Command::Verify(args) => verify::run(&args),
         Command::Simplify(args) => simplify::run(&args),
         Command::Lod(args) => lod::run(&args),
+        Command::Genus(args) => genus::run(&args),
+        Command::Pipeline(args) => pipeline::run(&args),
         Command::Demo { out_dir } => run_demo(&out_dir),
     };
     match result {

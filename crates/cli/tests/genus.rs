@@ -1,0 +1,164 @@
+//! End-to-end tests of `envelope genus` and `envelope pipeline`.
+
+use std::process::Command;
+
+use envelope_io::{Format, read_path, write_path};
+use envelope_mesh::{analyze, generate};
+
+fn envelope() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_envelope"))
+}
+
+#[test]
+fn genus_fills_narrow_holes_and_reports() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("plate.off");
+    write_path(&input, &generate::plate_with_holes(2), Format::Off).unwrap();
+    let output = dir.path().join("out.obj");
+    let report = dir.path().join("r.json");
+    // Diagonal of the 5 x 3 x 1 plate is sqrt(35) = 5.92; 10% = 0.59 > 0.5 fills unit holes.
+    let out = envelope()
+        .args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
+        .args(["--alpha", "10%", "--report", report.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (soup, _) = read_path(&output).unwrap();
+    assert_eq!(analyze(&soup).genus, Some(0));
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(r["genus_in"], 2);
+    assert_eq!(r["genus_out"], 0);
+    assert_eq!(r["holes_filled"], 4);
+    assert!(r["triangles_added"].as_u64().unwrap() > 0);
+    assert!(r["triangles_removed"].as_u64().unwrap() > 0);
+    assert!(r["seconds"].as_f64().unwrap() >= 0.0);
+
+    // Absolute alpha too small: genus kept.
+    let out = envelope()
+        .args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
+        .args(["--alpha", "0.25", "--beta", "60"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(analyze(&read_path(&output).unwrap().0).genus, Some(2));
+}
+
+#[test]
+fn genus_bad_arguments_and_input_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("box.off");
+    write_path(&input, &generate::box_with_tunnel(), Format::Off).unwrap();
+    let output = dir.path().join("out.off");
+    for alpha in ["-1", "abc", "0", "0%"] {
+        let out = envelope()
+            .args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
+            .args(["--alpha", alpha])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "alpha {alpha}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("error"));
+    }
+    let out = envelope()
+        .args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
+        .args(["--alpha", "1", "--beta", "200"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("beta"));
+    // A self-intersecting input: a typed, clear refusal.
+    let mut two = generate::icosphere(1, 1.0);
+    let other = generate::icosphere(1, 1.0);
+    let off = two.positions.len() as u32;
+    two.positions.extend(
+        other
+            .positions
+            .iter()
+            .map(|p| *p + glam::DVec3::new(0.5, 0.1, 0.05)),
+    );
+    two.faces.extend(
+        other
+            .faces
+            .iter()
+            .map(|t| t.map(|v| envelope_mesh::VertexId(v.0 + off))),
+    );
+    let bad = dir.path().join("bad.off");
+    write_path(&bad, &two, Format::Off).unwrap();
+    let out = envelope()
+        .args([
+            "genus",
+            bad.to_str().unwrap(),
+            output.to_str().unwrap(),
+            "--alpha",
+            "1%",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("intersecting"));
+    assert!(!output.exists());
+    // Missing input file.
+    let out = envelope()
+        .args([
+            "genus",
+            "/nonexistent/x.off",
+            output.to_str().unwrap(),
+            "--alpha",
+            "1",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn pipeline_writes_every_stage_and_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("plate.off");
+    write_path(&input, &generate::plate_with_holes(2), Format::Off).unwrap();
+    let out_dir = dir.path().join("stages");
+    let out = envelope()
+        .args([
+            "pipeline",
+            input.to_str().unwrap(),
+            out_dir.to_str().unwrap(),
+        ])
+        .args(["--steps", "e1%,a10%,e2%"])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+            .unwrap();
+    let stages = s["stages"].as_array().unwrap();
+    assert_eq!(stages.len(), 4);
+    for (k, st) in stages.iter().enumerate() {
+        let (soup, _) = read_path(out_dir.join(format!("stage-{k}.off"))).unwrap();
+        assert_eq!(st["faces"].as_u64().unwrap() as usize, soup.num_faces());
+        assert_eq!(st["genus"], serde_json::json!(analyze(&soup).genus));
+    }
+    assert_eq!(stages[1]["genus"], 2);
+    assert_eq!(stages[2]["genus"], 0);
+    assert_eq!(stages[3]["genus"], 0);
+    // Bad step syntax exits 2.
+    let out = envelope()
+        .args([
+            "pipeline",
+            input.to_str().unwrap(),
+            out_dir.to_str().unwrap(),
+        ])
+        .args(["--steps", "e1%,z2"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}
