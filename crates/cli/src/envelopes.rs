@@ -20,6 +20,8 @@ enum MethodArg {
     Analytical,
     /// Iterative growth with exact checks (4.2).
     Numerical,
+    /// Analytical, and numerical too when analytical falls short; the better one.
+    Auto,
 }
 
 /// Output mesh format.
@@ -84,6 +86,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     options.method = match args.method {
         MethodArg::Analytical => Method::Analytical,
         MethodArg::Numerical => Method::Numerical,
+        MethodArg::Auto => Method::Auto,
     };
     options.tube_segments = (args.tube_segments > 0).then_some(args.tube_segments);
     let start = Instant::now();

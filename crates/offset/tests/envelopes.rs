@@ -199,3 +199,39 @@ proptest! {
         check(&s, &env);
     }
 }
+
+/// `Method::Auto` keeps the analytical offsets when they reach epsilon everywhere, and
+/// otherwise the better of the two methods (proved, larger total offset); its envelopes pass
+/// the same independent check.
+#[test]
+fn auto_keeps_the_better_method() {
+    let total = |e: &Envelopes| e.eps_plus.iter().chain(&e.eps_minus).sum::<f64>();
+    // Small epsilon on a sphere: analytical reaches it everywhere.
+    let sphere = generate::icosphere(2, 1.0);
+    let auto = build(&sphere, 0.01, Method::Auto);
+    check(&sphere, &auto);
+    assert_eq!(auto.method, Method::Analytical);
+    assert!(auto.eps_plus.iter().all(|&e| e == 0.01));
+    // Epsilon larger than a torus's tube radius: both fall short; auto keeps the larger.
+    for (mesh, eps) in [
+        (generate::torus(1.0, 0.2, 24, 12), 0.3),
+        (generate::box_with_tunnel(), 0.4),
+    ] {
+        let auto = build(&mesh, eps, Method::Auto);
+        check(&mesh, &auto);
+        let a = build(&mesh, eps, Method::Analytical);
+        let n = build(&mesh, eps, Method::Numerical);
+        let kept = if auto.method == Method::Numerical {
+            &n
+        } else {
+            &a
+        };
+        assert_eq!(auto.eps_plus, kept.eps_plus);
+        assert_eq!(auto.eps_minus, kept.eps_minus);
+        for other in [&a, &n] {
+            if other.proof.holds() {
+                assert!(total(&auto) >= total(other));
+            }
+        }
+    }
+}

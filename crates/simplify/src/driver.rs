@@ -39,9 +39,9 @@ pub struct SimplifyOptions {
     /// The requested epsilon (absolute lengths; resolve percentages with the input's diagonal
     /// first, `envelope_offset::EpsilonSpec::resolve`).
     pub epsilon: EpsilonField,
-    /// How the envelopes find their per-vertex offsets. Default [`Method::Analytical`]: on
-    /// the bunny (75k faces) it builds in ~7 s against ~37 s for the numerical method, and
-    /// gives a similar face count (see the crate README).
+    /// How the envelopes find their per-vertex offsets. Default [`Method::Auto`]: the
+    /// analytical method (fast), and the numerical one too where the analytical one falls
+    /// short of epsilon (large epsilons; see the crate README).
     pub method: Method,
     /// Hole filling (default: greedy with look-ahead).
     pub hole_filling: HoleFilling,
@@ -62,7 +62,7 @@ impl SimplifyOptions {
     pub fn new(epsilon: EpsilonField) -> Self {
         SimplifyOptions {
             epsilon,
-            method: Method::Analytical,
+            method: Method::Auto,
             hole_filling: HoleFilling::default(),
             order: Order::default(),
             tube_segments: Some(8),
@@ -460,6 +460,10 @@ pub fn simplify_with(
         method: match options.method {
             Method::Analytical => "analytical",
             Method::Numerical => "numerical",
+            Method::Auto => match env.method {
+                Method::Numerical => "auto: numerical",
+                _ => "auto: analytical",
+            },
         },
         achieved_median: quantile(&fractions, 0.5),
         achieved_p5: quantile(&fractions, 0.05),

@@ -90,13 +90,13 @@ pub struct LodOptions {
 }
 
 impl LodOptions {
-    /// Defaults for a list of epsilons (cumulative rule, analytical, greedy, tubes, verify).
+    /// Defaults for a list of epsilons (cumulative rule, auto envelopes, greedy, tubes, verify).
     #[must_use]
     pub fn new(epsilons: Vec<f64>) -> Self {
         LodOptions {
             epsilons,
             rule: LodRule::default(),
-            method: Method::Analytical,
+            method: Method::Auto,
             hole_filling: HoleFilling::default(),
             tube_segments: Some(8),
             verify: true,
