@@ -1,0 +1,81 @@
+//! Genus reduction on random small parts (voxel blocks from a random 4x4x3 occupancy, flat
+//! grids with random holes) at random alphas. Checks: inputs the reduction accepts give an
+//! output whose half-edge structure passes `sanity_check()`, with no new intersecting,
+//! coincident or non-manifold element (exact `envelope-check`), and every added triangle lies
+//! in the union of alpha-prisms: it is covered by its corners' alpha-cubes (exact) and each
+//! corner's cube lies in the alpha-prism of an input face at that corner (exact containment).
+#![no_main]
+
+use envelope_check::{CheckOptions, DegeneracyClass, check};
+use envelope_genus::details::{covered_by_corner_cubes, cube_corners};
+use envelope_genus::testmeshes::disk_with_square_holes;
+use envelope_genus::{AlphaPrism, GenusOptions, reduce_genus};
+use envelope_mesh::{HalfEdgeMesh, generate};
+use glam::DVec3;
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| {
+    if data.len() < 6 {
+        return;
+    }
+    let alpha = f64::from(data[0] % 64 + 1) / 16.0; // 1/16 .. 4
+    let beta = 30.0 + f64::from(data[1] % 120);
+    let cell = [1.0, 0.5, 0.75, 1.25][usize::from(data[2] % 4)];
+    let soup = if data[3] % 4 == 0 {
+        let widths: Vec<u32> = data[4..].iter().take(4).map(|b| u32::from(b % 4) + 1).collect();
+        disk_with_square_holes(&widths, cell)
+    } else {
+        let bits: Vec<bool> = (0..48)
+            .map(|i| data.get(4 + i / 8).is_none_or(|b| b >> (i % 8) & 1 == 1))
+            .collect();
+        generate::voxel_surface(
+            4,
+            4,
+            3,
+            |i, j, k| bits[(i + 4 * (j + 4 * k)) as usize],
+            DVec3::splat(cell),
+        )
+    };
+    if soup.num_faces() == 0 {
+        return;
+    }
+    let options = GenusOptions {
+        alpha,
+        beta_degrees: beta,
+    };
+    let Ok((out, report)) = reduce_genus(&soup, &options) else {
+        return;
+    };
+    if out.num_faces() > 0 {
+        let mesh = HalfEdgeMesh::from_soup(&out).expect("output builds a half-edge mesh");
+        mesh.sanity_check().expect("sanity_check");
+    }
+    let before = check(&soup, &CheckOptions::default());
+    let after = check(&out, &CheckOptions::default());
+    for class in [
+        DegeneracyClass::IntersectingTriangles,
+        DegeneracyClass::CoincidentTriangles,
+        DegeneracyClass::DuplicateTriangles,
+        DegeneracyClass::NonManifoldEdges,
+        DegeneracyClass::InconsistentOrientation,
+        DegeneracyClass::ZeroAreaTriangles,
+    ] {
+        assert!(
+            after.finding(class).count <= before.finding(class).count,
+            "{class:?} added"
+        );
+    }
+    for &f in &report.added_faces {
+        let t = out.triangle(f);
+        assert!(covered_by_corner_cubes(t, alpha), "added face not covered");
+        for p in t {
+            let v = soup.positions.iter().position(|&q| q == p).expect("input vertex");
+            let face = soup
+                .faces
+                .iter()
+                .find(|t| t.iter().any(|w| w.index() == v))
+                .expect("vertex on a face");
+            let prism = AlphaPrism::new(face.map(|w| soup.position(w)), alpha).unwrap();
+            assert!(cube_corners(p, alpha).iter().all(|&c| prism.contains(c)));
+        }
+    }
+});
