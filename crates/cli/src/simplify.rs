@@ -1,5 +1,6 @@
 //! `envelope simplify IN OUT`: the local algorithm between simplification envelopes (Cohen et
-//! al. 5.1, 5.2, 6.1-6.3), then a certificate of the output (`envelope-verify`).
+//! al. 5.1, 5.2, 6.1-6.3), or the global / hybrid one (5.3, 5.4, `envelope-global`) with
+//! `--method`, then a certificate of the output (`envelope-verify`).
 //!
 //! Exit codes: 0 written and certified (or certification skipped), 1 the certificate found a
 //! violation (OUT is left as it was; the output goes to `OUT.failed.EXT` for inspection), 2 bad
@@ -13,7 +14,9 @@ use std::process::ExitCode;
 use envelope_io::{Format, read_path, write_path};
 use envelope_mesh::TriangleSoup;
 use envelope_offset::{EpsilonField, Method, parse_epsilon, read_epsilon_file};
-use envelope_simplify::{HoleFilling, Progress, SimplifyOptions, SimplifyReport, Stage, simplify};
+use envelope_simplify::{
+    HoleFilling, Progress, SimplifyOptions, SimplifyReport, Stage, simplify_with,
+};
 use envelope_verify::Verdict;
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -21,10 +24,13 @@ use indicatif::{ProgressBar, ProgressStyle};
 /// Which epsilon method.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
 pub(crate) enum MethodArg {
-    /// Prism clipping (4.1), exact proof and repair (default: fastest, as good a face count).
+    /// Prism clipping (4.1), exact proof and repair (fastest; falls short of large epsilons).
     Analytical,
     /// Iterative growth with exact checks (4.2).
     Numerical,
+    /// Analytical, and numerical too where analytical falls short of epsilon; the better one
+    /// (default).
+    Auto,
 }
 
 impl MethodArg {
@@ -32,6 +38,28 @@ impl MethodArg {
         match self {
             MethodArg::Analytical => Method::Analytical,
             MethodArg::Numerical => Method::Numerical,
+            MethodArg::Auto => Method::Auto,
+        }
+    }
+}
+
+/// Which simplification algorithm.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub(crate) enum AlgorithmArg {
+    /// One vertex at a time (5.2; default).
+    Local,
+    /// Greedy set cover by candidate triangles (5.3); border vertices are kept.
+    Global,
+    /// Local, then global within bounded regions where local is stuck, then local (5.4).
+    Hybrid,
+}
+
+impl AlgorithmArg {
+    fn method(self) -> envelope_global::Method {
+        match self {
+            AlgorithmArg::Local => envelope_global::Method::Local,
+            AlgorithmArg::Global => envelope_global::Method::Global,
+            AlgorithmArg::Hybrid => envelope_global::Method::Hybrid,
         }
     }
 }
@@ -77,11 +105,15 @@ pub(crate) struct Args {
     #[arg(long, requires = "viewpoint")]
     epsilon_far: Option<String>,
     /// Envelope method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Analytical)]
+    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
     envelope: MethodArg,
     /// Hole filling.
     #[arg(long, value_enum, default_value_t = FillArg::Greedy)]
     hole_filling: FillArg,
+    /// Simplification algorithm (the report's `method` and `method_details` say what ran and
+    /// the candidate counts).
+    #[arg(long, value_enum, default_value_t = AlgorithmArg::Local)]
+    method: AlgorithmArg,
     /// Write the report as JSON to this file.
     #[arg(long)]
     report: Option<PathBuf>,
@@ -229,14 +261,15 @@ fn failed_path(out: &Path) -> PathBuf {
 
 fn print_summary(args: &Args, r: &SimplifyReport) {
     println!(
-        "{} -> {}: {} -> {} faces ({} -> {} vertices) in {:.2} s",
+        "{} -> {}: {} -> {} faces ({} -> {} vertices) in {:.2} s ({})",
         args.input.display(),
         args.output.display(),
         r.input_faces,
         r.output_faces,
         r.input_vertices,
         r.output_vertices,
-        r.seconds
+        r.seconds,
+        r.method
     );
     let g = |x: Option<u32>| x.map_or("undefined".to_string(), |g| g.to_string());
     println!(
@@ -293,7 +326,8 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         ..SimplifyOptions::new(field(args, &soup)?)
     };
     let mut bar = Bar::new(args.quiet, "");
-    let result = simplify(&soup, &options, &mut bar);
+    let step = args.method.method().step();
+    let result = simplify_with(&soup, &options, step.as_ref(), &mut bar);
     bar.finish();
     let (out, report) = result.map_err(|e| format!("{}: {e}", args.input.display()))?;
     let verdict = report.verify.as_ref().map(|v| v.verdict);

@@ -12,14 +12,18 @@
 //!
 //! *Where candidates come from (the pruning).* All triples of input vertices is cubic. A
 //! candidate is generated only on the boundary cycle of a [`Region`](crate::Region): the
-//! interior vertices within `k - 1` edges of a seed (`k <= max_rings` rings of faces) whose faces
+//! interior vertices within `k - 1` edges of a seed (`k <= max_rings` rings of faces), or a
+//! chain of three vertices through the seed ([`seed_candidates`]), whose faces
 //! form a disk with a cycle of at most `max_cycle` vertices; every triple on that cycle is
 //! enumerated, and kept only when it covers the seed (the seed's fiber crosses it). Of those,
-//! the best `per_region` by cover then aspect ratio are kept.
+//! the best `per_region` by cover then aspect ratio are kept. A region none of whose triples
+//! covers its seed (the seed's fiber crosses the approximation outside the region, as near
+//! creases where fibers lean) and which removes the seed alone keeps its best-shaped triples with cover 0, ranked after every
+//! covering candidate: they remove one vertex like the local algorithm.
 //!
 //! What the pruning can miss: valid triangles whose corners are not all on one such cycle
-//! (corners more than `max_rings` rings apart, around border vertices, or around a region
-//! that is not a disk), and triangles that do not pass through the prism of the seed of a
+//! (corners more than `max_rings` rings apart, regions of other shapes, around border
+//! vertices, or around a region that is not a disk), and triangles that do not pass through the prism of the seed of a
 //! region they bound. What it cannot do: accept anything. Pruning only removes candidates;
 //! every candidate that is placed passes the exact validity filter of 5.1 against the
 //! barriers and the current approximation, so the guarantee never rests on the pruning.
@@ -75,8 +79,8 @@ impl Candidate {
     pub fn rank(&self, o: &Self) -> std::cmp::Ordering {
         o.cover
             .cmp(&self.cover)
-            .then(o.aspect.total_cmp(&self.aspect))
             .then(self.seed.cmp(&o.seed))
+            .then(o.aspect.total_cmp(&self.aspect))
             .then(self.rings.cmp(&o.rings))
             .then(self.triangle.cmp(&o.triangle))
     }
@@ -115,9 +119,16 @@ impl std::ops::AddAssign for Generated {
     }
 }
 
-/// The candidates of every region seeded at `seed`: the region of `k` rings removes the
-/// interior vertices within `k - 1` edges of the seed (1 ring: the seed alone, its fan),
-/// for `k` from 1 to `max_rings`.
+/// The candidates of every region seeded at `seed`:
+///
+/// * balls: the interior vertices within `k - 1` edges of the seed, `k` from 1 to
+///   `max_rings` (1: the seed alone, its fan), while the cycle has at most `max_cycle`
+///   vertices;
+/// * paths (with `max_rings >= 2`): the seed and two of its interior neighbours `u`, `w`,
+///   `w` the neighbour farthest from `u` in angle around the seed (a short chain through the
+///   seed, as along a ridge: figure 8).
+///
+/// `rings` of a candidate is `k` for a ball and 0 for a path.
 #[must_use]
 pub fn seed_candidates(
     mesh: &HalfEdgeMesh,
@@ -127,21 +138,15 @@ pub fn seed_candidates(
 ) -> (Generated, Vec<Candidate>) {
     let mut counts = Generated::default();
     let mut out = Vec::new();
-    let mut last_len = 0;
-    for rings in 1..=reach.max_rings {
-        let inside = ball(mesh, seed, rings - 1);
-        if inside.len() == last_len {
-            break; // the ball stopped growing
-        }
-        last_len = inside.len();
-        let Some(r) = region(mesh, &inside) else {
-            continue;
+    let mut add = |inside: &[VertexId], rings: u8, counts: &mut Generated| -> bool {
+        let Some(r) = region(mesh, inside) else {
+            return true;
         };
         if r.cycle.len() > reach.max_cycle {
-            break;
+            return false;
         }
         counts.regions += 1;
-        let mut kept = region_candidates(mesh, fibers, &r, rings as u8, &mut counts);
+        let mut kept = region_candidates(mesh, fibers, &r, rings, counts);
         kept.sort_by(Candidate::rank);
         kept.truncate(reach.per_region);
         for k in &mut kept {
@@ -149,8 +154,55 @@ pub fn seed_candidates(
         }
         counts.kept += kept.len() as u64;
         out.extend(kept);
+        true
+    };
+    let mut last_len = 0;
+    for rings in 1..=reach.max_rings {
+        let inside = ball(mesh, seed, rings - 1);
+        if inside.len() == last_len {
+            break; // the ball stopped growing
+        }
+        last_len = inside.len();
+        if !add(&inside, rings as u8, &mut counts) {
+            break;
+        }
+    }
+    if reach.max_rings >= 2 && !inside_is_empty(mesh, seed) {
+        for [u, w] in opposite_pairs(mesh, seed) {
+            add(&[seed, u, w], 0, &mut counts);
+        }
     }
     (counts, out)
+}
+
+fn inside_is_empty(mesh: &HalfEdgeMesh, seed: VertexId) -> bool {
+    ball(mesh, seed, 0).is_empty()
+}
+
+/// For each interior neighbour `u` of `seed`, the interior neighbour `w` with the largest
+/// angle `u seed w` (f64, a choice of regions only); each pair once.
+fn opposite_pairs(mesh: &HalfEdgeMesh, seed: VertexId) -> Vec<[VertexId; 2]> {
+    let p = mesh.position(seed);
+    let ring: Vec<VertexId> = mesh
+        .vertex_neighbors(seed)
+        .filter(|&v| !mesh.is_border_vertex(v))
+        .collect();
+    let mut pairs = Vec::new();
+    for &u in &ring {
+        let du = (mesh.position(u) - p).normalize_or_zero();
+        let far = ring.iter().filter(|&&w| w != u).min_by(|&&a, &&b| {
+            let ca = du.dot((mesh.position(a) - p).normalize_or_zero());
+            let cb = du.dot((mesh.position(b) - p).normalize_or_zero());
+            ca.total_cmp(&cb).then(a.cmp(&b))
+        });
+        if let Some(&w) = far {
+            let pair = if u < w { [u, w] } else { [w, u] };
+            if !pairs.contains(&pair) {
+                pairs.push(pair);
+            }
+        }
+    }
+    pairs
 }
 
 fn region_candidates(
@@ -170,11 +222,12 @@ fn region_candidates(
                 counts.triples += 1;
                 let triangle = [c[a], c[b], c[d]];
                 let p = triangle.map(|v| mesh.position(v));
-                if !covers(fibers, seed, p) {
-                    continue;
-                }
-                counts.covering += 1;
-                let cover = r.inside.iter().filter(|&&v| covers(fibers, v, p)).count() as u32;
+                let cover = if covers(fibers, seed, p) {
+                    counts.covering += 1;
+                    r.inside.iter().filter(|&&v| covers(fibers, v, p)).count() as u32
+                } else {
+                    0
+                };
                 out.push(Candidate {
                     triangle,
                     cover,
@@ -185,6 +238,11 @@ fn region_candidates(
                 });
             }
         }
+    }
+    // Only where no triple covers the seed (its fiber leaves through a face outside the
+    // region), the region keeps its best-shaped triples with cover 0, ranked last.
+    if r.inside.len() > 1 || out.iter().any(|c| c.cover > 0) {
+        out.retain(|c| c.cover > 0);
     }
     out
 }

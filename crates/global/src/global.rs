@@ -23,7 +23,8 @@
 //! | what a candidate replaces | the faces around the vertices of the region it was generated from (a `k`-ring disk around a seed); its corners are on the region's boundary |
 //! | cover | the region's vertices whose prism edge (fiber) the candidate meets (exact); input triangles are not counted separately (a triangle is covered when its vertices are) |
 //! | overlap of two candidates | they share a removed vertex, or an accepted candidate changed a face around one of them: detected by a per-vertex stamp of the last accepted change |
-//! | ties | aspect ratio, then seed id, rings, corner ids |
+//! | ties | seed id (first in id order, as the local algorithm's queue), then aspect ratio, rings, corner ids |
+//! | when a patch stands for its region | every triangle valid (5.1), and, for a region of several vertices, the fiber of every removed vertex meets the patch (exact; the generalized projection of the region onto the patch). Without this, a large region filled across its short boundary collapses the surface between the envelopes (seen on the figure 8 bar: a 4-face output) |
 //! | sub-holes | the local algorithm's greedy filling ([`Greedy::fill_from`]), every triangle through the same [`EnvelopeFilter`] |
 //! | border vertices | never removed by the global step (no open holes, the tubes are never needed); the hybrid's local pass removes them |
 //! | passes | after the first, only seeds within `max_rings` rings of a change are generated again |
@@ -32,7 +33,7 @@
 //! triangles on its vertices in its orientation, refused when an edge already exists (link
 //! condition), as in the local algorithm.
 
-use crate::candidates::{Candidate, Fibers, Generated, Reach, seed_candidates};
+use crate::candidates::{Candidate, Fibers, Generated, Reach, covers, seed_candidates};
 use crate::region::{ball, region};
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_simplify::{
@@ -58,13 +59,13 @@ pub struct GlobalOptions {
 }
 
 impl Default for GlobalOptions {
-    /// The global method: regions up to 3 rings and 18 boundary vertices, 3 candidates per
+    /// The global method: regions up to 3 rings and 18 boundary vertices, 8 candidates per
     /// region, up to 32 passes.
     fn default() -> Self {
         GlobalOptions {
             max_rings: 3,
             max_cycle: 18,
-            per_region: 3,
+            per_region: 8,
             max_passes: 32,
             check_each_step: false,
         }
@@ -72,14 +73,14 @@ impl Default for GlobalOptions {
 }
 
 impl GlobalOptions {
-    /// The hybrid's global stage: regions of 2 rings and 14 boundary vertices, 2 passes.
+    /// The hybrid's global stage: regions up to 3 rings and 16 boundary vertices, 4 passes.
     #[must_use]
     pub fn bounded() -> Self {
         GlobalOptions {
-            max_rings: 2,
-            max_cycle: 14,
-            per_region: 2,
-            max_passes: 2,
+            max_rings: 3,
+            max_cycle: 16,
+            per_region: 3,
+            max_passes: 4,
             check_each_step: false,
         }
     }
@@ -221,7 +222,7 @@ pub fn simplify_global_with(
             if stats.attempts % 64 == 0 {
                 progress.step(stats.attempts, stats.removed);
             }
-            let (tests, placed) = g.try_candidate(&c, filter);
+            let (tests, placed) = g.try_candidate(&c, filter, fibers);
             stats.filter_tests += tests;
             if placed {
                 stats.accepted += 1;
@@ -322,7 +323,12 @@ impl Global<'_> {
 
     /// Cuts the candidate's region, places it, fills the sub-holes; keeps the result or
     /// restores the region exactly. Returns the filter calls and whether it was placed.
-    fn try_candidate(&mut self, c: &Candidate, filter: &dyn Filter) -> (u64, bool) {
+    fn try_candidate(
+        &mut self,
+        c: &Candidate,
+        filter: &dyn Filter,
+        fibers: &Fibers<'_>,
+    ) -> (u64, bool) {
         let Some(r) = region(self.mesh, &c.inside) else {
             return (0, false);
         };
@@ -353,7 +359,8 @@ impl Global<'_> {
             let ok = Greedy::default().fill_from(&mut ctx, at);
             (ok, ctx.tests, ctx.placed().to_vec())
         };
-        let added = if ok {
+        let cov = ok && covers_removed(self.mesh, fibers, &r.inside, &placed);
+        let added = if cov {
             self.mesh.add_faces(&placed).ok()
         } else {
             None
@@ -387,4 +394,24 @@ impl Global<'_> {
             self.grid.insert(f, t, t.map(|x| self.mesh.position(x)));
         }
     }
+}
+
+/// The projection condition of a multi-vertex removal: the fiber of every removed vertex
+/// meets a triangle of the new patch (exact). Without it, a patch can stay between the
+/// envelopes and still not stand for the region it replaces (a large region filled across
+/// its short boundary collapses the surface; every triangle valid, the input far from the
+/// output). A single-vertex region is the local algorithm's removal and is accepted on the
+/// same terms as there.
+fn covers_removed(
+    mesh: &HalfEdgeMesh,
+    fibers: &Fibers<'_>,
+    inside: &[VertexId],
+    placed: &[[VertexId; 3]],
+) -> bool {
+    inside.len() == 1
+        || inside.iter().all(|&v| {
+            placed
+                .iter()
+                .any(|t| covers(fibers, v, t.map(|x| mesh.position(x))))
+        })
 }

@@ -1,9 +1,10 @@
 //! The three methods as steps of the `envelope-simplify` driver ([`SimplifyStep`]):
 //! `local` (5.2), `global` (5.3) and `hybrid` (5.4: "choose nearby groups of vertices to
-//! remove simultaneously": the global algorithm within bounded regions, then the local one).
+//! remove simultaneously": the global algorithm within bounded regions where the local one is
+//! stuck, see [`HybridStep`]).
 
 use crate::candidates::Fibers;
-use crate::global::{GlobalError, GlobalOptions, simplify_global};
+use crate::global::{GlobalError, GlobalOptions, GlobalStats, simplify_global};
 use envelope_mesh::HalfEdgeMesh;
 use envelope_simplify::{
     LocalStep, Progress, SimplifyError, SimplifyStep, Stats, StepInput, StepOutcome,
@@ -18,7 +19,7 @@ pub enum Method {
     Local,
     /// Greedy set cover by candidate triangles (5.3); border vertices stay.
     Global,
-    /// Global within bounded regions, then local (5.4).
+    /// Local, then global within bounded regions, then local again (5.4, [`HybridStep`]).
     Hybrid,
 }
 
@@ -56,9 +57,8 @@ impl Method {
                 options: GlobalOptions::default(),
                 then_local: false,
             }),
-            Method::Hybrid => Box::new(GlobalStep {
+            Method::Hybrid => Box::new(HybridStep {
                 options: GlobalOptions::bounded(),
-                then_local: true,
             }),
         }
     }
@@ -90,23 +90,8 @@ impl SimplifyStep for GlobalStep {
         input: &StepInput<'_>,
         progress: &mut dyn Progress,
     ) -> Result<StepOutcome, SimplifyError> {
-        let fibers = Fibers {
-            inner: input.inner,
-            outer: input.outer,
-        };
-        let g = simplify_global(mesh, input.barriers, &fibers, &self.options, progress)
-            .map_err(to_simplify_error)?;
-        let mut stats = Stats {
-            vertices_before: g.vertices_before,
-            faces_before: g.faces_before,
-            vertices_after: g.vertices_after,
-            faces_after: g.faces_after,
-            attempts: g.attempts,
-            removed: g.removed,
-            no_valid_fill: g.no_valid_fill,
-            refused: g.overlapping,
-            candidate_tests: g.filter_tests,
-        };
+        let g = run_global(mesh, input, &self.options, progress)?;
+        let mut stats = global_stats(&g);
         if !self.then_local {
             return Ok(StepOutcome {
                 stats,
@@ -115,24 +100,104 @@ impl SimplifyStep for GlobalStep {
             });
         }
         let local = LocalStep.run(mesh, input, progress)?.stats;
-        stats.vertices_after = local.vertices_after;
-        stats.faces_after = local.faces_after;
-        stats.attempts += local.attempts;
-        stats.removed += local.removed;
-        stats.no_valid_fill += local.no_valid_fill;
-        stats.refused += local.refused;
-        stats.candidate_tests += local.candidate_tests;
+        add_local(&mut stats, &local);
+        Ok(StepOutcome {
+            stats,
+            method: "global+local",
+            details: json!({ "global": g.to_json(), "local": local_json(&local) }),
+        })
+    }
+}
+
+/// The hybrid method (5.4): the local algorithm, then the global one within bounded regions
+/// on what local left (where single removals are stuck, groups of vertices may still go
+/// together, figure 8), then local again if global changed anything.
+///
+/// Each stage only removes vertices from a closed disk (two faces fewer per vertex), so the
+/// hybrid never ends with more faces than the local algorithm alone reaches from the same
+/// mesh in its first stage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HybridStep {
+    /// Options of the global stage.
+    pub options: GlobalOptions,
+}
+
+impl SimplifyStep for HybridStep {
+    fn run(
+        &self,
+        mesh: &mut HalfEdgeMesh,
+        input: &StepInput<'_>,
+        progress: &mut dyn Progress,
+    ) -> Result<StepOutcome, SimplifyError> {
+        let first = LocalStep.run(mesh, input, progress)?.stats;
+        let g = run_global(mesh, input, &self.options, progress)?;
+        let mut stats = first;
+        stats.candidate_tests += g.filter_tests;
+        stats.attempts += g.attempts;
+        stats.removed += g.removed;
+        stats.no_valid_fill += g.no_valid_fill;
+        stats.vertices_after = g.vertices_after;
+        stats.faces_after = g.faces_after;
+        let second = if g.removed > 0 {
+            let l = LocalStep.run(mesh, input, progress)?.stats;
+            add_local(&mut stats, &l);
+            Some(l)
+        } else {
+            None
+        };
         Ok(StepOutcome {
             stats,
             method: "hybrid",
             details: json!({
+                "local": local_json(&first),
                 "global": g.to_json(),
-                "local": {
-                    "attempts": local.attempts,
-                    "removed_vertices": local.removed,
-                    "faces_after": local.faces_after,
-                },
+                "local_again": second.as_ref().map(local_json),
             }),
         })
     }
+}
+
+fn run_global(
+    mesh: &mut HalfEdgeMesh,
+    input: &StepInput<'_>,
+    options: &GlobalOptions,
+    progress: &mut dyn Progress,
+) -> Result<GlobalStats, SimplifyError> {
+    let fibers = Fibers {
+        inner: input.inner,
+        outer: input.outer,
+    };
+    simplify_global(mesh, input.barriers, &fibers, options, progress).map_err(to_simplify_error)
+}
+
+fn global_stats(g: &GlobalStats) -> Stats {
+    Stats {
+        vertices_before: g.vertices_before,
+        faces_before: g.faces_before,
+        vertices_after: g.vertices_after,
+        faces_after: g.faces_after,
+        attempts: g.attempts,
+        removed: g.removed,
+        no_valid_fill: g.no_valid_fill,
+        refused: g.overlapping,
+        candidate_tests: g.filter_tests,
+    }
+}
+
+fn add_local(stats: &mut Stats, local: &Stats) {
+    stats.vertices_after = local.vertices_after;
+    stats.faces_after = local.faces_after;
+    stats.attempts += local.attempts;
+    stats.removed += local.removed;
+    stats.no_valid_fill += local.no_valid_fill;
+    stats.refused += local.refused;
+    stats.candidate_tests += local.candidate_tests;
+}
+
+fn local_json(l: &Stats) -> serde_json::Value {
+    json!({
+        "attempts": l.attempts,
+        "removed_vertices": l.removed,
+        "faces_after": l.faces_after,
+    })
 }

@@ -1,0 +1,202 @@
+//! The global and hybrid methods end to end through the `envelope-simplify` driver: the
+//! figure 8 situation (local stuck, global minimal), certificates (`envelope-verify`), and a
+//! property test against the local algorithm.
+
+use envelope_global::Method;
+use envelope_mesh::{TriangleSoup, VertexId, analyze, generate};
+use envelope_offset::EpsilonField;
+use envelope_simplify::{SimplifyReport, simplify_with};
+use envelope_verify::{Options, certify};
+use glam::DVec3;
+use proptest::prelude::*;
+
+fn run(soup: &TriangleSoup, eps: f64, method: Method) -> (TriangleSoup, SimplifyReport) {
+    let options = envelope_simplify::SimplifyOptions::new(EpsilonField::Constant(eps));
+    simplify_with(soup, &options, method.step().as_ref(), &mut ()).expect("simplify")
+}
+
+/// Certified within `eps` both ways, intersection-free, same topology.
+fn assert_certified(input: &TriangleSoup, out: &TriangleSoup, eps: f64) {
+    let c = certify(input, out, &Options::new(eps));
+    assert!(c.violations().is_empty(), "{:?}", c.violations());
+    assert_eq!(c.verdict, envelope_verify::Verdict::Holds);
+}
+
+/// A closed bar along x with a pentagonal section: a ridge on top, two slopes, two walls
+/// and a bottom. The ridge's inner vertices zig-zag up and down by `amplitude`; everything
+/// else is straight. `n` inner ridge vertices.
+fn zigzag_ridge(n: usize, amplitude: f64, eps: f64) -> TriangleSoup {
+    let (s, w, h) = (2.0 * eps, 2.0 * eps / 30f64.to_radians().tan(), 12.0 * eps);
+    let profile = [(0.0, 0.0), (w, -s), (w, -h), (-w, -h), (-w, -s)];
+    let m = profile.len();
+    let dx = 1.0;
+    let mut positions = Vec::new();
+    for i in 0..n + 2 {
+        for (j, &(y, z)) in profile.iter().enumerate() {
+            let zig = if j == 0 && i > 0 && i <= n {
+                if i % 2 == 1 { amplitude } else { -amplitude }
+            } else {
+                0.0
+            };
+            positions.push(DVec3::new(i as f64 * dx, y, z + zig));
+        }
+    }
+    let v = |i: usize, j: usize| VertexId((i * m + j % m) as u32);
+    let mut faces = Vec::new();
+    for i in 0..=n {
+        for j in 0..m {
+            faces.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+            faces.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+        }
+    }
+    for j in 1..m - 1 {
+        faces.push([v(0, 0), v(0, j), v(0, j + 1)]);
+        faces.push([v(n + 1, 0), v(n + 1, j + 1), v(n + 1, j)]);
+    }
+    let mut soup = TriangleSoup { positions, faces };
+    // Outward orientation: positive signed volume.
+    let vol: f64 = soup
+        .faces
+        .iter()
+        .map(|f| {
+            let [a, b, c] = f.map(|x| soup.positions[x.index()]);
+            a.dot(b.cross(c))
+        })
+        .sum();
+    if vol < 0.0 {
+        for f in &mut soup.faces {
+            f.swap(1, 2);
+        }
+    }
+    soup
+}
+
+/// Inner ridge vertices left in `out` (on the ridge line y = 0, strictly between its ends,
+/// at the top).
+fn inner_ridge_vertices(out: &TriangleSoup, n: usize) -> usize {
+    let mut used = vec![false; out.num_vertices()];
+    for f in &out.faces {
+        for v in f {
+            used[v.index()] = true;
+        }
+    }
+    out.positions
+        .iter()
+        .zip(used)
+        .filter(|(p, u)| *u && p.y == 0.0 && p.x > 0.0 && p.x < (n + 1) as f64 && p.z.abs() < 1.0)
+        .count()
+}
+
+#[test]
+fn figure_8_local_is_stuck_and_global_reaches_the_minimal_triangulation() {
+    let (n, eps) = (3, 0.05);
+    let soup = zigzag_ridge(n, 0.85 * eps, eps);
+    assert_eq!(analyze(&soup).genus, Some(0));
+    let (local, _) = run(&soup, eps, Method::Local);
+    let (global, report) = run(&soup, eps, Method::Global);
+    let (hybrid, _) = run(&soup, eps, Method::Hybrid);
+    println!(
+        "figure 8: input {} faces, local {}, global {}, hybrid {}; global details {}",
+        soup.num_faces(),
+        local.num_faces(),
+        global.num_faces(),
+        hybrid.num_faces(),
+        report.method_details
+    );
+    // Local: no single inner ridge vertex can go.
+    assert_eq!(inner_ridge_vertices(&local, n), n);
+    // Global: the ridge is straight; the bar is two pentagons and five quads (16 faces).
+    assert_eq!(inner_ridge_vertices(&global, n), 0);
+    assert_eq!(global.num_faces(), 16);
+    assert_eq!(inner_ridge_vertices(&hybrid, n), 0);
+    assert_eq!(hybrid.num_faces(), 16);
+    for out in [&local, &global, &hybrid] {
+        assert_certified(&soup, out, eps);
+    }
+}
+
+#[test]
+fn closed_and_open_meshes_are_certified() {
+    let cases: Vec<(&str, TriangleSoup, f64)> = vec![
+        ("icosphere(3)", generate::icosphere(3, 1.0), 0.02),
+        ("torus", generate::torus(1.0, 0.3, 32, 12), 0.02),
+        (
+            "box",
+            generate::box_mesh(DVec3::new(1.0, 0.6, 0.4), 4),
+            0.01,
+        ),
+        (
+            "open cylinder",
+            generate::open_cylinder(1.0, 1.0, 24, 6),
+            0.02,
+        ),
+        ("plate with holes", generate::plate_with_holes(2), 0.01),
+    ];
+    for (name, soup, eps) in cases {
+        for method in [Method::Global, Method::Hybrid] {
+            let (out, r) = run(&soup, eps, method);
+            println!(
+                "{name} {}: {} -> {} faces",
+                method.as_str(),
+                soup.num_faces(),
+                out.num_faces()
+            );
+            assert_eq!(r.method, method.as_str());
+            assert_eq!(r.genus_in, r.genus_out, "{name}");
+            assert_eq!(r.border_loops_in, r.border_loops_out, "{name}");
+            assert_certified(&soup, &out, eps);
+        }
+    }
+}
+
+#[test]
+fn global_keeps_border_vertices() {
+    let soup = generate::open_cylinder(1.0, 1.0, 24, 6);
+    let (out, _) = run(&soup, 0.05, Method::Global);
+    let border_in = analyze(&soup)
+        .border_loops
+        .iter()
+        .map(Vec::len)
+        .sum::<usize>();
+    let border_out = analyze(&out)
+        .border_loops
+        .iter()
+        .map(Vec::len)
+        .sum::<usize>();
+    assert_eq!(border_in, border_out);
+}
+
+/// A small closed random mesh: an icosphere with its vertices moved radially.
+fn bumpy_sphere(level: u32, bumps: &[f64]) -> TriangleSoup {
+    let mut s = generate::icosphere(level, 1.0);
+    for (p, b) in s.positions.iter_mut().zip(bumps.iter().cycle()) {
+        *p *= 1.0 + b;
+    }
+    s
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+    /// Global's face count is never above local's by more than 15 % (plus 4 faces).
+    #[test]
+    fn global_is_close_to_local(
+        bumps in prop::collection::vec(-0.04f64..0.04, 7..13),
+        eps_pct in 0.5f64..3.0,
+    ) {
+        let soup = bumpy_sphere(2, &bumps);
+        let eps = eps_pct / 100.0 * soup.diagonal();
+        let (local, _) = run(&soup, eps, Method::Local);
+        let (global, _) = run(&soup, eps, Method::Global);
+        let (hybrid, _) = run(&soup, eps, Method::Hybrid);
+        println!(
+            "PROPTEST faces local {} global {} hybrid {} (eps {eps_pct:.2}%)",
+            local.num_faces(), global.num_faces(), hybrid.num_faces()
+        );
+        prop_assert!(global.num_faces() <= local.num_faces() * 115 / 100 + 4);
+        prop_assert!(hybrid.num_faces() <= local.num_faces());
+        for out in [&global, &hybrid] {
+            let c = certify(&soup, out, &Options::new(eps));
+            prop_assert!(c.violations().is_empty(), "{:?}", c.violations());
+        }
+    }
+}
