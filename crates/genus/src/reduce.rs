@@ -28,6 +28,7 @@ use std::time::Instant;
 
 use envelope_check::{CheckOptions, DegeneracyClass, Element, check};
 use envelope_mesh::{FaceId, TriangleSoup, VertexId, analyze};
+use envelope_predicates::{Orientation, orient3d};
 
 use crate::GenusError;
 use crate::exact::{covered_by_corner_cubes, linf_close};
@@ -198,11 +199,15 @@ pub fn reduce_genus(
         .map(|fs| normal_variation(soup, fs.iter().copied()))
         .collect();
     let mut candidates: Vec<Candidate> = Vec::new();
+    let outward = signed_volume(soup) >= 0.0;
     for (p, loops) in pat.loops.iter().enumerate() {
         if loops.len() < 2 {
             continue;
         }
         for lp in loops {
+            if !convex_rim(soup, &edges, &lp.vertices, &lp.faces, outward) {
+                continue;
+            }
             let mut key: Vec<(VertexId, VertexId)> = (0..lp.vertices.len())
                 .map(|i| {
                     let (a, b) = (lp.vertices[i], lp.vertices[(i + 1) % lp.vertices.len()]);
@@ -296,6 +301,47 @@ pub fn reduce_genus(
         added_faces,
     };
     Ok((out, report))
+}
+
+/// Six times the signed volume (f64 heuristic): negative when the faces are oriented inward.
+fn signed_volume(soup: &TriangleSoup) -> f64 {
+    soup.face_ids()
+        .map(|f| {
+            let [a, b, c] = soup.triangle(f);
+            a.dot(b.cross(c))
+        })
+        .sum()
+}
+
+/// Whether every loop edge with a face on the other side is a convex edge of the surface
+/// (exact orient3d: the other face's far corner is strictly behind the kept face). Holes,
+/// tunnels and pockets open at convex rims; a concave rim is the foot of a protrusion, which
+/// an alpha-hull never removes.
+fn convex_rim(
+    soup: &TriangleSoup,
+    edges: &EdgeMap,
+    vertices: &[VertexId],
+    faces: &[FaceId],
+    outward: bool,
+) -> bool {
+    let n = vertices.len();
+    (0..n).all(|i| {
+        let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+        let f = faces[i];
+        let Some(g) = edges.across(f, a, b) else {
+            return true; // a border edge
+        };
+        let Some(&c) = soup.faces[g.index()].iter().find(|&&v| v != a && v != b) else {
+            return false;
+        };
+        let t = soup.triangle(f);
+        let behind = if outward {
+            Orientation::Negative
+        } else {
+            Orientation::Positive
+        };
+        orient3d(t[0], t[1], t[2], soup.position(c)) == behind
+    })
 }
 
 fn check_input(soup: &TriangleSoup) -> Result<(), GenusError> {
@@ -566,11 +612,18 @@ fn validate(
                 }
                 _ => Vec::new(),
             };
-            for f in faces {
-                if let Some(&c) = cap_of_face.get(&f.index()) {
-                    bad.insert(c);
+            let caps: Vec<usize> = faces
+                .iter()
+                .filter_map(|f| cap_of_face.get(&f.index()).copied())
+                .collect();
+            // Two caps in conflict: refusing the later one is enough.
+            if let (Element::FacePair { .. }, [c1, c2]) = (e, caps.as_slice()) {
+                if c1 != c2 {
+                    bad.insert(*c1.max(c2));
+                    continue;
                 }
             }
+            bad.extend(caps);
         }
     }
     any.then(|| bad.into_iter().collect())

@@ -233,3 +233,21 @@ fn coincident_and_self_intersecting_input_are_refused() {
         Err(GenusError::InvalidBeta(_))
     ));
 }
+
+#[test]
+fn narrow_protrusions_are_kept() {
+    // A 3 x 3 slab with a 1 x 1 pin on top: the pin's foot is a concave rim, which an
+    // alpha-hull never cuts off, however large alpha is.
+    let part = generate::voxel_surface(3, 3, 2, |i, j, k| k == 0 || (i == 1 && j == 1), DVec3::ONE);
+    assert_eq!(analyze(&part).genus, Some(0));
+    for alpha in [0.6, 1.0, 3.0] {
+        let (out, r) = run(&part, alpha);
+        assert_eq!(r.holes_filled, 0, "alpha {alpha}");
+        assert_eq!(out.num_faces(), part.num_faces());
+    }
+    // The same pin turned into a pocket (a hole in a thicker slab) does fill.
+    let pocket =
+        generate::voxel_surface(3, 3, 2, |i, j, k| k == 0 || !(i == 1 && j == 1), DVec3::ONE);
+    let (_, r) = run(&pocket, 0.6);
+    assert_eq!(r.holes_filled, 1);
+}
