@@ -1,0 +1,146 @@
+//! The comparison of Table 1 of El-Sana and Varshney (1997) on the `libcgal-demo` CAD parts.
+//!
+//! For each mesh: first the genus-preserving simplifier (`envelope_simplify::simplify`) at
+//! epsilon (the paper's starting point), then on that result
+//! (a) genus-reducing at alpha (`envelope_genus::reduce_genus`) followed by genus-preserving
+//! at epsilon, against (b) genus-preserving alone at alpha + epsilon. Printed: faces, genus and
+//! seconds per stage, and the simplification-improvement ratio faces(b) / faces(a). Tolerances
+//! are percentages of the input's bounding-box diagonal, as in the paper.
+//!
+//! `cargo run --release -p envelope-benches --bin genus_table -- [--quick] [--corpus DIR]
+//! [--eps PCT] [--alpha PCT] [--only NAME]`; `--quick` runs one small part (`couplingdown`,
+//! or a generated plate when the corpus is absent) for a CI smoke run.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use envelope_genus::{GenusOptions, reduce_genus};
+use envelope_mesh::{TriangleSoup, analyze};
+use envelope_offset::EpsilonField;
+use envelope_simplify::{SimplifyOptions, simplify};
+
+const PARTS: [&str; 9] = [
+    "mech-holes-shark",
+    "cheese",
+    "couplingdown",
+    "holes",
+    "pinion",
+    "spool",
+    "anchor",
+    "turbine",
+    "blade",
+];
+
+fn arg_value(args: &[String], flag: &str) -> Option<String> {
+    args.iter()
+        .position(|a| a == flag)
+        .and_then(|i| args.get(i + 1).cloned())
+}
+
+fn preserve(soup: &TriangleSoup, eps: f64) -> Result<(TriangleSoup, f64), String> {
+    let t = Instant::now();
+    let (out, _) = simplify(
+        soup,
+        &SimplifyOptions::new(EpsilonField::Constant(eps)),
+        &mut (),
+    )
+    .map_err(|e| e.to_string())?;
+    Ok((out, t.elapsed().as_secs_f64()))
+}
+
+fn genus(s: &TriangleSoup) -> String {
+    analyze(s)
+        .genus
+        .map_or_else(|| "-".to_string(), |g| g.to_string())
+}
+
+fn row(name: &str, soup: &TriangleSoup, eps_pct: f64, alpha_pct: f64) -> Result<String, String> {
+    let d = soup.diagonal();
+    let (eps, alpha) = (eps_pct / 100.0 * d, alpha_pct / 100.0 * d);
+    let (base, t_base) = preserve(soup, eps)?;
+    // (a) genus-reducing at alpha, then genus-preserving at epsilon.
+    let t = Instant::now();
+    let (reduced, _) = reduce_genus(&base, &GenusOptions::new(alpha)).map_err(|e| e.to_string())?;
+    let t_reduce = t.elapsed().as_secs_f64();
+    let (a, t_a) = preserve(&reduced, eps)?;
+    // (b) genus-preserving alone at alpha + epsilon.
+    let (b, t_b) = preserve(&base, alpha + eps)?;
+    let ratio = b.num_faces() as f64 / a.num_faces().max(1) as f64;
+    Ok(format!(
+        "| {name} | {} | {} | {eps_pct} | {t_base:.2} | {} | {} | {alpha_pct} | {t_reduce:.3} | {} | {} | {t_a:.2} | {} | {} | {t_b:.2} | {} | {} | {ratio:.2} |",
+        soup.num_faces(),
+        genus(soup),
+        base.num_faces(),
+        genus(&base),
+        reduced.num_faces(),
+        genus(&reduced),
+        a.num_faces(),
+        genus(&a),
+        b.num_faces(),
+        genus(&b),
+    ))
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let quick = args.iter().any(|a| a == "--quick");
+    let corpus = arg_value(&args, "--corpus")
+        .map_or_else(|| PathBuf::from(".corpus/data/meshes"), PathBuf::from);
+    let eps_pct: f64 = arg_value(&args, "--eps")
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0.5);
+    let alpha_pct: f64 = arg_value(&args, "--alpha")
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(2.0);
+    let only = arg_value(&args, "--only");
+    println!(
+        "| mesh | faces | genus | eps % | GP s | GP faces | genus | alpha % | GR s | GR faces | genus | GP(eps) s | faces (a) | genus | GP(a+e) s | faces (b) | genus | ratio b/a |"
+    );
+    println!("|{}", "---|".repeat(18));
+    let mut names: Vec<&str> = PARTS.to_vec();
+    if quick {
+        names = vec!["couplingdown"];
+    }
+    let mut failed = false;
+    for name in names {
+        if only.as_deref().is_some_and(|o| o != name) {
+            continue;
+        }
+        let path = corpus.join(format!("{name}.off"));
+        let soup = match envelope_io::read_path(&path) {
+            Ok((s, _)) => s,
+            Err(e) => {
+                eprintln!("skipping {name}: {e} (run scripts/corpus.sh)");
+                if quick {
+                    let plate =
+                        envelope_genus::testmeshes::plate_with_square_holes(&[1, 2, 4], 2, 1.0);
+                    match row("generated plate [1,2,4]", &plate, eps_pct, 10.0) {
+                        Ok(r) => println!("{r}"),
+                        Err(e) => {
+                            eprintln!("generated plate: {e}");
+                            failed = true;
+                        }
+                    }
+                }
+                continue;
+            }
+        };
+        match row(name, &soup, eps_pct, alpha_pct) {
+            Ok(r) => println!("{r}"),
+            Err(e) => {
+                eprintln!("{name}: {e}");
+                println!(
+                    "| {name} | {} | {} | error: {e} |",
+                    soup.num_faces(),
+                    genus(&soup)
+                );
+            }
+        }
+    }
+    if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}
