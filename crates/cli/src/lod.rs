@@ -54,7 +54,7 @@ pub(crate) struct Args {
     #[arg(long, default_value_t = 60.0)]
     fov: f64,
     /// Envelope method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Analytical)]
+    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
     envelope: MethodArg,
     /// Hole filling.
     #[arg(long, value_enum, default_value_t = FillArg::Greedy)]

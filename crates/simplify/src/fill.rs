@@ -21,7 +21,7 @@
 use crate::filter::{Approximation, CandidateProfile, Filter};
 use crate::grid::FaceGrid;
 use crate::policy::aspect_ratio;
-use envelope_mesh::{HalfEdgeMesh, VertexId};
+use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use std::collections::HashMap;
 
 /// The boundary of a hole left by removing a vertex's fan.
@@ -69,6 +69,8 @@ pub struct FillContext<'a> {
     grid: &'a FaceGrid,
     filter: &'a dyn Filter,
     hole: &'a Hole,
+    /// Faces of `grid` the filter must ignore ([`Self::excluding`]).
+    excluded: &'a [FaceId],
     placed: Vec<[VertexId; 3]>,
     /// Candidates already rejected during this fill, by [`Self::slot`]. A rejection is final
     /// for the whole fill: the mesh and grid do not change while a hole is filled, the placed
@@ -94,10 +96,19 @@ impl<'a> FillContext<'a> {
             grid,
             filter,
             hole,
+            excluded: &[],
             placed: Vec::new(),
             rejected: Vec::new(),
             tests: 0,
         }
+    }
+
+    /// The same context with `faces` (still in `mesh` and `grid`) treated as gone: the fan
+    /// of a vertex whose removal is planned without editing the mesh.
+    #[must_use]
+    pub fn excluding(mut self, faces: &'a [FaceId]) -> Self {
+        self.excluded = faces;
+        self
     }
 
     /// Index of the triangle `t` (hole positions) in `rejected`.
@@ -176,6 +187,7 @@ impl<'a> FillContext<'a> {
                 mesh: self.mesh,
                 grid: self.grid,
                 placed: if with_placed { &self.placed } else { &[] },
+                excluded: self.excluded,
             },
         };
         self.filter.accepts(&profile)
@@ -223,7 +235,7 @@ fn face_exists(m: &HalfEdgeMesh, [a, b, c]: [VertexId; 3]) -> bool {
 }
 
 /// A hole-filling strategy.
-pub trait HoleFiller {
+pub trait HoleFiller: Sync {
     /// Fills `ctx.hole()` with `hole.len() - 2` triangles, each accepted by the context, or
     /// returns false. On success the triangles are `ctx.placed()`.
     fn fill(&self, ctx: &mut FillContext<'_>) -> bool;

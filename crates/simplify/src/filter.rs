@@ -22,7 +22,7 @@
 
 use crate::Barriers;
 use crate::grid::FaceGrid;
-use envelope_mesh::{HalfEdgeMesh, VertexId};
+use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
 use envelope_predicates::{Shared, adjacent_triangles_intersect, collinear, triangles_intersect};
 use glam::DVec3;
@@ -37,6 +37,9 @@ pub struct Approximation<'a> {
     pub grid: &'a FaceGrid,
     /// Triangles chosen earlier in the current filling, not yet in the mesh.
     pub placed: &'a [[VertexId; 3]],
+    /// Faces of `grid` that are not part of the approximation (the fan of the vertex being
+    /// removed, while its removal is only planned).
+    pub excluded: &'a [FaceId],
 }
 
 /// How two triangles given by vertex ids share corners.
@@ -85,8 +88,9 @@ impl Approximation<'_> {
         if self.placed.iter().any(|&g| meet(t, p, g, pos(g))) {
             return true;
         }
-        self.grid
-            .any_overlapping(&Aabb::from_triangle(p), |_, g| meet(t, p, g, pos(g)))
+        self.grid.any_overlapping(&Aabb::from_triangle(p), |f, g| {
+            !self.excluded.contains(&f) && meet(t, p, g, pos(g))
+        })
     }
 }
 
@@ -109,7 +113,7 @@ pub struct CandidateProfile<'a> {
 /// change and the placed triangles only grow; a candidate rejected with some triangles placed
 /// must be rejected with more placed (every validity test of 5.1 is of this kind: more
 /// triangles can only block more). The hole fillers cache rejections on this basis.
-pub trait Filter {
+pub trait Filter: Sync {
     /// Whether the candidate may be placed.
     fn accepts(&self, profile: &CandidateProfile<'_>) -> bool;
 }
@@ -124,7 +128,7 @@ impl Filter for NoFilter {
     }
 }
 
-impl<F: Fn(&CandidateProfile<'_>) -> bool> Filter for F {
+impl<F: Fn(&CandidateProfile<'_>) -> bool + Sync> Filter for F {
     fn accepts(&self, profile: &CandidateProfile<'_>) -> bool {
         self(profile)
     }

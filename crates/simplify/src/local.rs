@@ -29,7 +29,13 @@
 //! | very large holes | vertices of valence above [`MAX_HOLE`] are kept (the candidate list is cubic in the valence) |
 //! | spatial index | a hashed uniform grid over the live faces, rebuilt coarser as faces grow ([`FaceGrid`]); barriers in a static BVH |
 //!
-//! The output is deterministic: everything runs in one thread in a fixed order.
+//! The output is deterministic and the same for any number of threads. With the
+//! first-in-first-out order the queue is taken in batches (`independent_batch`: the front
+//! vertex and the next ones whose one-ring boxes are apart from everything before them);
+//! the removals of a batch are *planned* in parallel (checks, hole, filling: read-only) and
+//! *carried out* one by one in queue order. A plan only reads the mesh inside its box, so
+//! this is the paper's FIFO except that re-queued neighbours of a batch are appended after
+//! the whole batch. Other orders take one vertex at a time.
 
 use crate::fill::{FillContext, Hole, HoleFiller};
 use crate::filter::Filter;
@@ -39,6 +45,8 @@ use crate::policy::{
 };
 use crate::{Barriers, EnvelopeFilter, Exhaustive, Greedy};
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
+use envelope_predicates::bvh::Aabb;
+use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use thiserror::Error;
@@ -223,34 +231,56 @@ pub fn simplify_local_with(
     };
     let mut queue = queue_vertices(mesh, policies.order);
     let mut local = LocalSimplifier::new(mesh, policies.keep_border);
-    while let Some(v) = queue.pop() {
-        if policies.stop.should_stop(local.mesh().num_faces()) {
+    let batched = policies.order.is_fifo() && !policies.check_each_step;
+    'run: loop {
+        let batch = if batched {
+            independent_batch(&mut queue, local.mesh())
+        } else {
+            queue.pop().into_iter().collect()
+        };
+        if batch.is_empty() {
             break;
         }
-        stats.attempts += 1;
-        visitor.on_attempt(v);
-        match local.try_remove_vertex(v, policies.filter, policies.filler) {
-            Ok(removal) => {
-                stats.removed += 1;
-                visitor.on_removed(v, &removal.faces);
-                for &w in &removal.hole.vertices {
-                    queue.push(local.mesh(), policies.order, w);
+        let plans: Vec<_> = if batch.len() == 1 {
+            vec![local.plan(batch[0], policies.filter, policies.filler)]
+        } else {
+            let local = &local;
+            batch
+                .par_iter()
+                .map(|&v| local.plan(v, policies.filter, policies.filler))
+                .collect()
+        };
+        // Commit in queue order: the same calls, in the same order, as one at a time.
+        for (&v, (plan, tests)) in batch.iter().zip(plans) {
+            if policies.stop.should_stop(local.mesh().num_faces()) {
+                break 'run;
+            }
+            stats.attempts += 1;
+            visitor.on_attempt(v);
+            local.candidate_tests += tests;
+            match plan.and_then(|p| local.apply(v, p)) {
+                Ok(removal) => {
+                    stats.removed += 1;
+                    visitor.on_removed(v, &removal.faces);
+                    for &w in &removal.hole.vertices {
+                        queue.push(local.mesh(), policies.order, w);
+                    }
+                }
+                Err(reason) => {
+                    if reason == Rejection::NoValidFill {
+                        stats.no_valid_fill += 1;
+                    } else {
+                        stats.refused += 1;
+                    }
+                    visitor.on_rejected(v, reason);
                 }
             }
-            Err(reason) => {
-                if reason == Rejection::NoValidFill {
-                    stats.no_valid_fill += 1;
-                } else {
-                    stats.refused += 1;
-                }
-                visitor.on_rejected(v, reason);
+            if policies.check_each_step {
+                let check = local
+                    .sanity_check()
+                    .and_then(|()| queue.sanity_check(local.mesh()));
+                check.map_err(|message| SimplifyError::SanityCheck { after: v, message })?;
             }
-        }
-        if policies.check_each_step {
-            let check = local
-                .sanity_check()
-                .and_then(|()| queue.sanity_check(local.mesh()));
-            check.map_err(|message| SimplifyError::SanityCheck { after: v, message })?;
         }
     }
     stats.candidate_tests = local.candidate_tests;
@@ -354,6 +384,48 @@ impl RemovalQueue {
     }
 }
 
+/// How far [`independent_batch`] looks into the queue, and how many it takes at most.
+const BATCH_WINDOW: usize = 64;
+const BATCH_LIMIT: usize = 16;
+
+/// Takes vertices off a first-in-first-out queue for one round of planning: the front
+/// vertex, then, among the next [`BATCH_WINDOW`] - 1, every vertex whose closed one-ring box
+/// is apart from the boxes of all vertices before it in the window (taken or not), up to
+/// [`BATCH_LIMIT`]. The one-ring box holds the vertex's fan and every candidate triangle of
+/// its hole, so every face a test of it looks at or its removal changes: the removals of a
+/// batch do not see each other, nor do they see the skipped vertices' removals, and carrying
+/// them out before those changes nothing but the order in which re-queued neighbours are
+/// appended. Skipped vertices keep their places. The batches depend on the queue and the
+/// mesh only, never on the number of threads, so the output does not either.
+fn independent_batch(queue: &mut RemovalQueue, mesh: &HalfEdgeMesh) -> Vec<VertexId> {
+    let mut batch = Vec::new();
+    let mut skipped = Vec::new();
+    let mut boxes: Vec<Aabb> = Vec::new();
+    while batch.len() < BATCH_LIMIT && batch.len() + skipped.len() < BATCH_WINDOW {
+        let Some(e) = queue.heap.pop() else {
+            break;
+        };
+        let v = e.v;
+        let b = mesh
+            .vertex_neighbors(v)
+            .fold(Aabb::from_points(&[mesh.position(v)]), |b, w| {
+                b.union(&Aabb::from_points(&[mesh.position(w)]))
+            });
+        let apart = !boxes.iter().any(|x| x.overlaps(&b));
+        boxes.push(b);
+        if apart {
+            queue.queued[v.index()] = false;
+            batch.push(v);
+        } else {
+            skipped.push(e);
+        }
+    }
+    for e in skipped {
+        queue.heap.push(e);
+    }
+    batch
+}
+
 /// Every live vertex, in id order, prioritised by `order` (section 5.2: "placing all
 /// vertices in a queue").
 #[must_use]
@@ -422,31 +494,59 @@ impl<'m> LocalSimplifier<'m> {
         filter: &dyn Filter,
         filler: &dyn HoleFiller,
     ) -> Result<Removal, Rejection> {
-        if !self.mesh.contains_vertex(v) || self.mesh.is_isolated(v) {
+        let (plan, tests) = self.plan(v, filter, filler);
+        self.candidate_tests += tests;
+        self.apply(v, plan?)
+    }
+
+    /// Everything [`Self::try_remove_vertex`] decides, without editing anything: the checks,
+    /// the hole (as `remove_vertex_fan` would leave it) and its filling, with the fan
+    /// excluded from the approximation instead of removed. Shared access only, so plans of
+    /// removals whose neighbourhoods are apart can be made in parallel. Also returns the
+    /// number of candidates given to the filter.
+    fn plan(
+        &self,
+        v: VertexId,
+        filter: &dyn Filter,
+        filler: &dyn HoleFiller,
+    ) -> (Result<Plan, Rejection>, u64) {
+        let mut tests = 0;
+        let plan = self.plan_counted(v, filter, filler, &mut tests);
+        (plan, tests)
+    }
+
+    fn plan_counted(
+        &self,
+        v: VertexId,
+        filter: &dyn Filter,
+        filler: &dyn HoleFiller,
+        tests: &mut u64,
+    ) -> Result<Plan, Rejection> {
+        let m = &*self.mesh;
+        if !m.contains_vertex(v) || m.is_isolated(v) {
             return Err(Rejection::NotAVertex);
         }
-        let border = self.mesh.is_border_vertex(v);
+        let border = m.is_border_vertex(v);
         if border && self.keep_border {
             return Err(Rejection::BorderWithoutTubes);
         }
-        if !self.mesh.is_manifold_vertex(v) {
+        if !m.is_manifold_vertex(v) {
             return Err(Rejection::NonManifold);
         }
-        let fan: Vec<FaceId> = self.mesh.vertex_faces(v).collect();
+        let fan: Vec<FaceId> = m.vertex_faces(v).collect();
         if border && fan.len() < 2 {
             return Err(Rejection::Ear);
         }
-        if self.mesh.valence(v) > MAX_HOLE {
+        if m.valence(v) > MAX_HOLE {
             return Err(Rejection::HoleTooLarge);
         }
-        let cp = self.mesh.begin();
-        let vertices = match self.mesh.remove_vertex_fan(v) {
-            Ok(h) => h,
-            Err(_) => {
-                self.mesh.rollback(cp);
-                return Err(Rejection::NonManifold);
-            }
-        };
+        // The ring as `remove_vertex_fan` returns it: counter-clockwise from the outgoing
+        // half-edge, starting after the border gap at a border vertex.
+        let hs: Vec<_> = m.outgoing_halfedges(v).collect();
+        let mut vertices: Vec<VertexId> = hs.iter().map(|&h| m.target(h)).collect();
+        if hs.first().is_some_and(|&h| m.is_border_halfedge(h)) {
+            vertices.rotate_left(1);
+        }
         let hole = Hole {
             vertices,
             open: border,
@@ -455,53 +555,59 @@ impl<'m> LocalSimplifier<'m> {
         sorted.sort_unstable();
         sorted.dedup();
         if sorted.len() != hole.len() {
-            self.mesh.rollback(cp);
             return Err(Rejection::RepeatedNeighbour);
         }
-        for &f in &fan {
-            self.grid.remove(f);
+        let mut ctx = FillContext::new(m, &self.grid, filter, &hole).excluding(&fan);
+        let filled = filler.fill(&mut ctx);
+        *tests = ctx.tests;
+        let placed = ctx.placed().to_vec();
+        if !filled {
+            return Err(Rejection::NoValidFill);
         }
-        let (filled, placed) = self.fill_hole(&hole, filter, filler);
-        let result = if filled {
-            debug_assert_eq!(placed.len() + 2, hole.len());
-            self.mesh.add_faces(&placed).map_err(Rejection::MeshRefused)
-        } else {
-            Err(Rejection::NoValidFill)
-        };
-        match result {
-            Ok(faces) => {
-                self.mesh
-                    .remove_vertex(v)
-                    .expect("the removed vertex is isolated");
-                self.mesh.commit(cp);
-                for &f in &faces {
-                    let t = self.mesh.face_vertices(f);
-                    self.grid.insert(f, t, t.map(|x| self.mesh.position(x)));
-                }
-                self.grid.rebalance();
-                Ok(Removal { hole, faces })
-            }
-            Err(reason) => {
-                self.mesh.rollback(cp);
-                for &f in &fan {
-                    let t = self.mesh.face_vertices(f);
-                    self.grid.insert(f, t, t.map(|x| self.mesh.position(x)));
-                }
-                Err(reason)
-            }
-        }
+        debug_assert_eq!(placed.len() + 2, hole.len());
+        Ok(Plan { hole, fan, placed })
     }
 
-    /// Fills `hole` (the fan already removed): whether it worked, and the triangles.
-    fn fill_hole(
-        &mut self,
-        hole: &Hole,
-        filter: &dyn Filter,
-        filler: &dyn HoleFiller,
-    ) -> (bool, Vec<[VertexId; 3]>) {
-        let mut ctx = FillContext::new(self.mesh, &self.grid, filter, hole);
-        let ok = filler.fill(&mut ctx);
-        self.candidate_tests += ctx.tests;
-        (ok, ctx.placed().to_vec())
+    /// Carries out a plan made by [`Self::plan`] on the mesh as it was then: removes the fan,
+    /// adds the filling (the mesh's `add_faces` is the last guard), updates the grid.
+    fn apply(&mut self, v: VertexId, plan: Plan) -> Result<Removal, Rejection> {
+        let cp = self.mesh.begin();
+        match self.mesh.remove_vertex_fan(v) {
+            Ok(ring) => debug_assert_eq!(ring, plan.hole.vertices),
+            Err(_) => {
+                self.mesh.rollback(cp);
+                return Err(Rejection::NonManifold);
+            }
+        }
+        let faces = match self.mesh.add_faces(&plan.placed) {
+            Ok(faces) => faces,
+            Err(e) => {
+                self.mesh.rollback(cp);
+                return Err(Rejection::MeshRefused(e));
+            }
+        };
+        self.mesh
+            .remove_vertex(v)
+            .expect("the removed vertex is isolated");
+        self.mesh.commit(cp);
+        for &f in &plan.fan {
+            self.grid.remove(f);
+        }
+        for &f in &faces {
+            let t = self.mesh.face_vertices(f);
+            self.grid.insert(f, t, t.map(|x| self.mesh.position(x)));
+        }
+        self.grid.rebalance();
+        Ok(Removal {
+            hole: plan.hole,
+            faces,
+        })
     }
+}
+
+/// A planned removal ([`LocalSimplifier::plan`]).
+struct Plan {
+    hole: Hole,
+    fan: Vec<FaceId>,
+    placed: Vec<[VertexId; 3]>,
 }

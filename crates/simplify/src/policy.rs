@@ -10,6 +10,13 @@ use envelope_mesh::{AddFaceError, FaceId, HalfEdgeMesh, VertexId};
 pub trait QueueOrder {
     /// Priority of `v`, computed when `v` is (re)queued.
     fn priority(&self, mesh: &HalfEdgeMesh, v: VertexId) -> f64;
+
+    /// True when every vertex gets the same priority, so the queue is first in, first out
+    /// and a vertex queued later never overtakes one queued earlier. The local algorithm
+    /// then plans independent removals in parallel (same result as one thread).
+    fn is_fifo(&self) -> bool {
+        false
+    }
 }
 
 /// The paper's queue (section 5.2): first in, first out; the initial queue in vertex id
@@ -20,6 +27,9 @@ pub struct Fifo;
 impl QueueOrder for Fifo {
     fn priority(&self, _: &HalfEdgeMesh, _: VertexId) -> f64 {
         0.0
+    }
+    fn is_fifo(&self) -> bool {
+        true
     }
 }
 
