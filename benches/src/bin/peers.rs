@@ -69,6 +69,8 @@ impl Tool {
 
 struct Args {
     meshes: Vec<String>,
+    /// With `--meshes all`: only meshes with at most this many faces.
+    max_faces: Option<usize>,
     /// (label, fraction of the bounding-box diagonal)
     epsilons: Vec<(String, f64)>,
     tools: Vec<Tool>,
@@ -103,7 +105,7 @@ fn main() -> ExitCode {
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: peers [--quick] [--meshes a,b] [--epsilons 1/64%,...,1%] \
+        "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--epsilons 1/64%,...,1%] \
          [--tools envelope,cgal,openmesh,meshopt] [--timeout S] [--json PATH] [--keep DIR] \
          [--envelope PATH]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
@@ -132,6 +134,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
         json: None,
         keep: None,
         envelope: None,
+        max_faces: None,
     };
     let mut it = argv.iter();
     let list = |v: Option<&String>| -> Option<Vec<String>> {
@@ -166,6 +169,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
             "--json" => a.json = Some(PathBuf::from(it.next()?)),
             "--keep" => a.keep = Some(PathBuf::from(it.next()?)),
             "--envelope" => a.envelope = Some(PathBuf::from(it.next()?)),
+            "--max-faces" => a.max_faces = Some(it.next()?.parse().ok()?),
             _ => return None,
         }
     }
@@ -545,7 +549,12 @@ fn run(args: &Args) -> Result<(), String> {
     fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let mut rows = Vec::new();
     let started = Instant::now();
-    for mesh in &args.meshes {
+    let meshes = if args.meshes == ["all"] {
+        every_acceptable_mesh(&corpus, args.max_faces)
+    } else {
+        args.meshes.clone()
+    };
+    for mesh in &meshes {
         let input = corpus.join(format!("{mesh}.off"));
         let (orig, _) = read_path(&input).map_err(|e| format!("{}: {e}", input.display()))?;
         let diag = orig.diagonal();
@@ -594,6 +603,43 @@ fn run(args: &Args) -> Result<(), String> {
         let _ = fs::remove_dir_all(&dir);
     }
     Ok(())
+}
+
+/// `--meshes all`: every `.off` of the corpus that reads and is acceptable input for
+/// `envelope simplify` (no degeneracy of an error class), by name; the others are listed on
+/// stderr with the reason, never dropped silently.
+fn every_acceptable_mesh(corpus: &Path, max_faces: Option<usize>) -> Vec<String> {
+    let mut names: Vec<String> = fs::read_dir(corpus)
+        .map(|d| {
+            d.filter_map(|e| {
+                let p = e.ok()?.path();
+                (p.extension()? == "off").then(|| p.file_stem()?.to_str().map(str::to_string))?
+            })
+            .collect()
+        })
+        .unwrap_or_default();
+    names.sort();
+    names.retain(|n| {
+        let path = corpus.join(format!("{n}.off"));
+        match read_path(&path) {
+            Err(e) => {
+                eprintln!("skipped {n}: unreadable ({e})");
+                false
+            }
+            Ok((soup, _)) if max_faces.is_some_and(|m| soup.num_faces() > m) => {
+                eprintln!("skipped {n}: {} faces > --max-faces", soup.num_faces());
+                false
+            }
+            Ok((soup, _)) => {
+                let problems = envelope_simplify::input_problems(&soup);
+                if !problems.is_empty() {
+                    eprintln!("skipped {n}: not acceptable input ({problems:?})");
+                }
+                problems.is_empty()
+            }
+        }
+    });
+    names
 }
 
 fn summary(r: &Run) -> String {

@@ -1,7 +1,7 @@
 //! Output faces and seconds of [`envelope_simplify::simplify`] on one mesh at several epsilons
 //! (fractions of the bounding-box diagonal), each run from the input.
 //!
-//! `cargo run --release -p envelope-simplify --example simplify_table -- MESH.off [analytical|numerical] [verify] [PERCENT...]`
+//! `cargo run --release -p envelope-simplify --example simplify_table -- MESH.off [auto|analytical|numerical] [verify] [PERCENT...]`
 
 use envelope_offset::{EpsilonField, Method};
 use envelope_simplify::{SimplifyOptions, simplify};
@@ -14,7 +14,8 @@ fn main() {
     let (soup, _) = envelope_io::read_path(std::path::Path::new(path)).expect("readable mesh");
     let method = match args.get(1).map(String::as_str) {
         Some("numerical") => Method::Numerical,
-        _ => Method::Analytical,
+        Some("analytical") => Method::Analytical,
+        _ => Method::Auto,
     };
     let verify = args.iter().any(|a| a == "verify");
     let mut percents: Vec<f64> = args.iter().skip(2).filter_map(|a| a.parse().ok()).collect();
