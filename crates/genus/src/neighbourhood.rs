@@ -4,7 +4,9 @@
 //! uniform grid of cell side `2 alpha` (the paper's choice): every face is registered in the
 //! cells its prism's bounding box overlaps (f64 cell indices, widened by one cell on each side
 //! so that rounding in the index computation can only add candidates, never lose one), and
-//! every candidate pair is then decided exactly by [`AlphaPrism::intersects`].
+//! every candidate pair is then decided exactly by [`AlphaPrism::intersects`]. A prism
+//! spanning more than 4096 cells (a long triangle, a tiny alpha) is paired with every face
+//! instead of being registered, so the grid never blows up.
 
 use std::collections::HashMap;
 
@@ -51,10 +53,21 @@ pub fn alpha_close_pairs(
     let cell = 2.0 * alpha;
     let index = |x: f64| (x / cell).floor() as i64;
     let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    // Prisms spanning more than MAX_CELLS cells (a long triangle and a tiny alpha) are not
+    // registered; they are paired with every prism instead.
+    const MAX_CELLS: i128 = 4096;
+    let mut big: Vec<usize> = Vec::new();
     for (k, p) in prisms.iter().enumerate() {
         let (lo, hi) = p.bbox;
         let l = [index(lo.x) - 1, index(lo.y) - 1, index(lo.z) - 1];
         let h = [index(hi.x) + 1, index(hi.y) + 1, index(hi.z) + 1];
+        let cells: i128 = (0..3)
+            .map(|a| i128::from(h[a]) - i128::from(l[a]) + 1)
+            .product();
+        if !(1..=MAX_CELLS).contains(&cells) {
+            big.push(k);
+            continue;
+        }
         for i in l[0]..=h[0] {
             for j in l[1]..=h[1] {
                 for m in l[2]..=h[2] {
@@ -71,6 +84,13 @@ pub fn alpha_close_pairs(
                 .flat_map(move |(n, &a)| v[n + 1..].iter().map(move |&b| (a.min(b), a.max(b))))
         })
         .collect();
+    for &b in &big {
+        candidates.extend(
+            (0..prisms.len())
+                .filter(|&k| k != b)
+                .map(|k| (k.min(b), k.max(b))),
+        );
+    }
     candidates.sort_unstable();
     candidates.dedup();
     let mut pairs: Vec<(FaceId, FaceId)> = candidates

@@ -83,3 +83,26 @@ fn parallel_plates_touch_exactly_at_two_alpha() {
     assert_eq!(alpha_close_pairs(&s, 0.5, None).unwrap().len(), 1);
     assert!(alpha_close_pairs(&s, 0.49, None).unwrap().is_empty());
 }
+
+#[test]
+fn tiny_alpha_on_long_triangles_stays_bounded() {
+    let s = TriangleSoup::from_raw(
+        &[
+            [0.0, 0.0, 0.0],
+            [1000.0, 0.0, 0.0],
+            [0.0, 1000.0, 0.0],
+            [0.0, 0.0, 1e-7],
+            [1000.0, 0.0, 1e-7],
+            [0.0, 1000.0, 1e-7],
+            [5000.0, 0.0, 0.0],
+            [5001.0, 0.0, 0.0],
+            [5000.0, 1.0, 0.0],
+        ],
+        &[[0, 1, 2], [3, 4, 5], [6, 7, 8]],
+    );
+    assert_eq!(
+        alpha_close_pairs(&s, 1e-6, None).unwrap(),
+        brute_force(&s, 1e-6)
+    );
+    assert_eq!(alpha_close_pairs(&s, 1e-6, None).unwrap().len(), 1);
+}
