@@ -81,6 +81,16 @@ pub struct GenusReport {
     pub closed_chains: usize,
     /// Candidate rims (patch loops of patches with two or more loops).
     pub candidates: usize,
+    /// Candidates refused before capping: concave rims, rims through a vertex twice, rims
+    /// that could not be triangulated.
+    pub refused_shape: usize,
+    /// Candidates refused because the cube passes: a diagonal longer than `2 alpha` or a cap
+    /// triangle outside its corners' cubes.
+    pub refused_wide: usize,
+    /// Candidates refused because the interior spread was not enclosed.
+    pub refused_enclosure: usize,
+    /// Candidates refused by the output validation.
+    pub refused_validation: usize,
     /// Rims capped (a through hole has two).
     pub holes_filled: usize,
     /// Triangles added by the caps.
@@ -111,6 +121,10 @@ impl GenusReport {
             "closed_chains": self.closed_chains,
             "candidates": self.candidates,
             "holes_filled": self.holes_filled,
+            "refused_shape": self.refused_shape,
+            "refused_wide": self.refused_wide,
+            "refused_enclosure": self.refused_enclosure,
+            "refused_validation": self.refused_validation,
             "triangles_added": self.triangles_added,
             "triangles_removed": self.triangles_removed,
             "alpha_close_pairs": self.alpha_close_pairs,
@@ -200,12 +214,18 @@ pub fn reduce_genus(
         .collect();
     let mut candidates: Vec<Candidate> = Vec::new();
     let outward = signed_volume(soup) >= 0.0;
+    let (mut refused_shape, mut refused_wide) = (0, 0);
     for (p, loops) in pat.loops.iter().enumerate() {
         if loops.len() < 2 {
             continue;
         }
-        for lp in loops {
+        for (vertices, faces) in loops
+            .iter()
+            .flat_map(|lp| split_simple(&lp.vertices, &lp.faces))
+        {
+            let lp = crate::tessellation::PatchLoop { vertices, faces };
             if !convex_rim(soup, &edges, &lp.vertices, &lp.faces, outward) {
+                refused_shape += 1;
                 continue;
             }
             let mut key: Vec<(VertexId, VertexId)> = (0..lp.vertices.len())
@@ -229,9 +249,11 @@ pub fn reduce_genus(
     candidates.retain_mut(|c| {
         let distinct: BTreeSet<VertexId> = c.vertices.iter().copied().collect();
         if distinct.len() != c.vertices.len() {
+            refused_shape += 1;
             return false;
         }
         let Some(cap) = triangulate_loop(soup, &c.vertices) else {
+            refused_shape += 1;
             return false;
         };
         let loop_edges: HashSet<(VertexId, VertexId)> = c.key.iter().copied().collect();
@@ -243,6 +265,7 @@ pub fn reduce_genus(
             }) && covered_by_corner_cubes(t.map(|v| soup.position(v)), alpha)
         });
         c.cap = cap;
+        refused_wide += usize::from(!ok);
         ok
     });
     // Two-sided ambiguity: the kept side is the one with less normal variation; ties keep
@@ -250,6 +273,7 @@ pub fn reduce_genus(
     candidates.sort_by(|a, b| a.key.cmp(&b.key).then(a.variation.total_cmp(&b.variation)));
 
     let mut refused: HashSet<usize> = HashSet::new();
+    let mut refused_validation: HashSet<usize> = HashSet::new();
     let mut baseline: Option<HashMap<DegeneracyClass, usize>> = None;
     let (out, added, removed, active) = loop {
         let active = select(soup, &edges, &candidates, &mut refused);
@@ -264,8 +288,12 @@ pub fn reduce_genus(
             Some(bad) if bad.is_empty() => {
                 // Nothing to blame precisely: refuse every active cap.
                 refused.extend(active.iter().copied());
+                refused_validation.extend(active.iter().copied());
             }
-            Some(bad) => refused.extend(bad),
+            Some(bad) => {
+                refused_validation.extend(bad.iter().copied());
+                refused.extend(bad);
+            }
         }
     };
     // Alpha-neighbourhoods of the faces at the accepted rims (report only).
@@ -293,6 +321,10 @@ pub fn reduce_genus(
         open_chains: chains.iter().filter(|c| !c.closed).count(),
         closed_chains: chains.iter().filter(|c| c.closed).count(),
         candidates: num_candidates,
+        refused_shape,
+        refused_wide,
+        refused_enclosure: refused.len() - refused_validation.len(),
+        refused_validation: refused_validation.len(),
         holes_filled: active.len(),
         triangles_added: added_faces.len(),
         triangles_removed: removed,
@@ -301,6 +333,32 @@ pub fn reduce_genus(
         added_faces,
     };
     Ok((out, report))
+}
+
+/// Splits a closed loop through a vertex more than once into simple loops (each keeps its
+/// edges' faces); pieces with fewer than three vertices (slits run both ways) are dropped.
+fn split_simple(vertices: &[VertexId], faces: &[FaceId]) -> Vec<(Vec<VertexId>, Vec<FaceId>)> {
+    let mut out = Vec::new();
+    let mut path: Vec<(VertexId, FaceId)> = Vec::new();
+    let mut pos: HashMap<VertexId, usize> = HashMap::new();
+    for (&v, &f) in vertices.iter().zip(faces) {
+        if let Some(&i) = pos.get(&v) {
+            let cycle: Vec<(VertexId, FaceId)> = path.drain(i..).collect();
+            for (w, _) in &cycle {
+                pos.remove(w);
+            }
+            if cycle.len() >= 3 {
+                out.push(cycle.into_iter().unzip());
+            }
+        }
+        pos.insert(v, path.len());
+        path.push((v, f));
+    }
+    // The rest closes back to path[0] (the loop's first vertex).
+    if path.len() >= 3 {
+        out.push(path.into_iter().unzip());
+    }
+    out
 }
 
 /// Six times the signed volume (f64 heuristic): negative when the faces are oriented inward.
@@ -654,4 +712,43 @@ fn compact(s: &TriangleSoup, added: Vec<usize>) -> (TriangleSoup, Vec<FaceId>) {
         TriangleSoup::new(positions, faces),
         added.into_iter().map(FaceId::from_index).collect(),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn figure_eight_loops_split_at_the_repeated_vertex() {
+        let v = |i: u32| VertexId(i);
+        let f = |i: u32| FaceId(i);
+        // 0-1-2-0-3-4 closes back to 0: two triangles through vertex 0.
+        let loops = split_simple(
+            &[v(0), v(1), v(2), v(0), v(3), v(4)],
+            &[f(10), f(11), f(12), f(13), f(14), f(15)],
+        );
+        assert_eq!(loops.len(), 2);
+        assert_eq!(
+            loops[0],
+            (vec![v(0), v(1), v(2)], vec![f(10), f(11), f(12)])
+        );
+        assert_eq!(
+            loops[1],
+            (vec![v(0), v(3), v(4)], vec![f(13), f(14), f(15)])
+        );
+        // A slit 5-6-5 inside a loop is dropped, the rest kept.
+        let loops = split_simple(
+            &[v(0), v(1), v(5), v(6), v(5), v(2)],
+            &[f(0), f(1), f(2), f(3), f(4), f(5)],
+        );
+        assert_eq!(
+            loops,
+            vec![(vec![v(0), v(1), v(5), v(2)], vec![f(0), f(1), f(4), f(5)])]
+        );
+        // Simple loops pass through unchanged.
+        assert_eq!(
+            split_simple(&[v(0), v(1), v(2)], &[f(0), f(1), f(2)]).len(),
+            1
+        );
+    }
 }
