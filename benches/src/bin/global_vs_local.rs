@@ -3,7 +3,9 @@
 //! growth of the global step's time with mesh size on icospheres (fitted exponent).
 //!
 //! `cargo run --release -p envelope-benches --bin global_vs_local [-- --quick] [--corpus DIR]`
-//! `--quick`: a CI smoke run on small generated meshes (under a minute).
+//! `--quick`: a CI smoke run on small generated meshes (under a minute). `--verify`: certify
+//! every output (`envelope-verify`; a violation fails the run). `--only NAME`: one corpus
+//! mesh. `--no-growth`: skip the icosphere series.
 use envelope_global::Method;
 use envelope_mesh::{TriangleSoup, generate};
 use envelope_offset::EpsilonField;
@@ -42,6 +44,12 @@ fn main() -> ExitCode {
         .position(|a| a == "--corpus")
         .and_then(|i| args.get(i + 1))
         .map_or_else(|| PathBuf::from(".corpus/data/meshes"), PathBuf::from);
+    let only = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|i| args.get(i + 1))
+        .cloned();
+    let no_growth = args.iter().any(|a| a == "--no-growth");
     let mut meshes: Vec<(String, TriangleSoup)> = Vec::new();
     let percents: &[(&str, f64)] = if quick {
         meshes.push(("icosphere(3)".into(), generate::icosphere(3, 1.0)));
@@ -54,6 +62,9 @@ fn main() -> ExitCode {
             "rotor.off",
             "couplingdown.off",
         ] {
+            if only.as_ref().is_some_and(|o| o != name) {
+                continue;
+            }
             match envelope_io::read_path(corpus.join(name)) {
                 Ok((s, _)) => meshes.push((name.into(), s)),
                 Err(e) => eprintln!("skipping {name}: {e} (run scripts/corpus.sh)"),
@@ -82,12 +93,18 @@ fn main() -> ExitCode {
                 None => "error | -".into(),
             };
             failed |= rows.iter().any(|r| r.as_ref().is_none_or(|r| !r.ok));
-            let best = methods
+            let least = rows.iter().flatten().map(|r| r.faces).min();
+            let winners: Vec<&str> = methods
                 .iter()
                 .zip(&rows)
-                .filter_map(|(m, r)| r.as_ref().map(|r| (r.faces, m.as_str())))
-                .min()
-                .map_or("-", |b| b.1);
+                .filter(|(_, r)| r.as_ref().map(|r| r.faces) == least)
+                .map(|(m, _)| m.as_str())
+                .collect();
+            let best = if winners.len() == methods.len() {
+                "tie".to_string()
+            } else {
+                winners.join("=")
+            };
             println!(
                 "| {name} | {} | {label} | {} | {} | {} | {best} |",
                 soup.num_faces(),
@@ -98,7 +115,13 @@ fn main() -> ExitCode {
         }
     }
     // Growth of time with size: global step on icospheres, epsilon 1/2 % of the diagonal.
-    let levels: &[u32] = if quick { &[2, 3, 4] } else { &[3, 4, 5, 6] };
+    let levels: &[u32] = if no_growth {
+        &[]
+    } else if quick {
+        &[2, 3, 4]
+    } else {
+        &[3, 4, 5, 6]
+    };
     println!("\n| icosphere | faces | global s | local s |");
     println!("|---|---|---|---|");
     let mut pts = Vec::new();

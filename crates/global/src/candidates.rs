@@ -12,8 +12,8 @@
 //!
 //! *Where candidates come from (the pruning).* All triples of input vertices is cubic. A
 //! candidate is generated only on the boundary cycle of a [`Region`](crate::Region): the
-//! interior vertices within `k - 1` edges of a seed (`k <= max_rings` rings of faces), or a
-//! chain of three vertices through the seed ([`seed_candidates`]), whose faces
+//! interior vertices within `k - 1` edges of a seed (`k <= max_rings` rings of faces), an
+//! edge, or a chain of three vertices through the seed ([`seed_candidates`]), whose faces
 //! form a disk with a cycle of at most `max_cycle` vertices; every triple on that cycle is
 //! enumerated, and kept only when it covers the seed (the seed's fiber crosses it). Of those,
 //! the best `per_region` by cover then aspect ratio are kept. A region none of whose triples
@@ -124,11 +124,12 @@ impl std::ops::AddAssign for Generated {
 /// * balls: the interior vertices within `k - 1` edges of the seed, `k` from 1 to
 ///   `max_rings` (1: the seed alone, its fan), while the cycle has at most `max_cycle`
 ///   vertices;
+/// * edges (with `max_rings >= 2`): the seed and one interior neighbour of larger id;
 /// * paths (with `max_rings >= 2`): the seed and two of its interior neighbours `u`, `w`,
 ///   `w` the neighbour farthest from `u` in angle around the seed (a short chain through the
 ///   seed, as along a ridge: figure 8).
 ///
-/// `rings` of a candidate is `k` for a ball and 0 for a path.
+/// `rings` of a candidate is `k` for a ball and 0 for an edge or a path.
 #[must_use]
 pub fn seed_candidates(
     mesh: &HalfEdgeMesh,
@@ -168,6 +169,13 @@ pub fn seed_candidates(
         }
     }
     if reach.max_rings >= 2 && !inside_is_empty(mesh, seed) {
+        let edges: Vec<VertexId> = mesh
+            .vertex_neighbors(seed)
+            .filter(|&u| u > seed && !mesh.is_border_vertex(u))
+            .collect();
+        for u in edges {
+            add(&[seed, u], 0, &mut counts);
+        }
         for [u, w] in opposite_pairs(mesh, seed) {
             add(&[seed, u, w], 0, &mut counts);
         }
