@@ -46,6 +46,18 @@ pub struct Fibers<'a> {
 
 /// Whether the triangle with corners `t` meets the fiber of `v` (exact on the f64 points; a
 /// vertex without a fiber is never covered).
+///
+/// ```
+/// use envelope_global::{covers, Fibers};
+/// use envelope_mesh::VertexId;
+/// use glam::DVec3;
+/// let (inner, outer) = ([DVec3::new(0.2, 0.2, -1.0)], [DVec3::new(0.2, 0.2, 1.0)]);
+/// let fibers = Fibers { inner: &inner, outer: &outer };
+/// let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
+/// assert!(covers(&fibers, VertexId(0), t));
+/// assert!(!covers(&fibers, VertexId(0), t.map(|p| p + DVec3::X)));
+/// assert!(!covers(&fibers, VertexId(1), t)); // no fiber
+/// ```
 #[must_use]
 pub fn covers(fibers: &Fibers<'_>, v: VertexId, t: [DVec3; 3]) -> bool {
     let i = v.index();

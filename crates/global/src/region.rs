@@ -51,6 +51,17 @@ pub fn ball(mesh: &HalfEdgeMesh, seed: VertexId, rings: usize) -> Vec<VertexId> 
 
 /// The region of `inside` (see the module docs), or `None` when it is not a disk with one
 /// simple boundary cycle away from the mesh's border.
+///
+/// ```
+/// use envelope_global::{ball, region};
+/// use envelope_mesh::{generate, HalfEdgeMesh, VertexId};
+/// let m = HalfEdgeMesh::from_soup(&generate::icosphere(1, 1.0)).unwrap();
+/// let fan = region(&m, &[VertexId(0)]).unwrap();
+/// assert_eq!(fan.cycle.len(), m.valence(VertexId(0)));
+/// let all: Vec<VertexId> = m.vertices().collect();
+/// assert!(region(&m, &all).is_none()); // a sphere is no disk
+/// assert_eq!(ball(&m, VertexId(0), 1).len(), 1 + m.valence(VertexId(0)));
+/// ```
 #[must_use]
 pub fn region(mesh: &HalfEdgeMesh, inside: &[VertexId]) -> Option<Region> {
     let set: HashSet<VertexId> = inside.iter().copied().collect();
