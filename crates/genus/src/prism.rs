@@ -317,7 +317,7 @@ impl AlphaPrism {
         }
         for (n, t) in self.triangles.iter().enumerate() {
             let [a, b, c] = t.map(|i| self.points[i]);
-            if orient3d(a, b, c, a).is_degenerate() && non_collinear(&self.points, t).is_none() {
+            if crate::exact::collinear(a, b, c) {
                 return Err(format!("facet triangle {n} is degenerate"));
             }
             for (k, &p) in self.points.iter().enumerate() {
@@ -416,10 +416,7 @@ pub(crate) fn supporting_set(points: &[DVec3], t: [usize; 3]) -> Option<Vec<usiz
 pub(crate) fn order_facet(points: &[DVec3], on: &[usize], t: [usize; 3]) -> Vec<usize> {
     let [a, b, c] = t.map(|i| points[i]);
     // An off-plane point, and the orientation sign "(p, q, r) counter-clockwise from outside".
-    let Some(&off) = (0..points.len())
-        .collect::<Vec<_>>()
-        .iter()
-        .find(|&&k| !orient3d(a, b, c, points[k]).is_degenerate())
+    let Some(off) = (0..points.len()).find(|&k| !orient3d(a, b, c, points[k]).is_degenerate())
     else {
         return Vec::new();
     };

@@ -17,7 +17,7 @@
 //! with exact tests.
 
 use envelope_mesh::{TriangleSoup, VertexId};
-use envelope_predicates::{Orientation, orient2d, orient3d};
+use envelope_predicates::{orient2d, orient3d};
 use glam::{DVec2, DVec3};
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
@@ -192,6 +192,5 @@ fn ear_clip(pts: &[DVec3], loop_: &[VertexId]) -> Option<Vec<[VertexId; 3]>> {
         return None;
     }
     out.push([loop_[c], loop_[b], loop_[a]]);
-    let _ = Orientation::Positive;
     Some(out)
 }

@@ -26,6 +26,12 @@ fn run(soup: &TriangleSoup, alpha: f64) -> (TriangleSoup, GenusReport) {
         assert_eq!(c.finding(class).count, 0, "{class:?} in the output");
     }
     assert!(c.manifold);
+    if out.num_faces() > 0 {
+        envelope_mesh::HalfEdgeMesh::from_soup(&out)
+            .unwrap()
+            .sanity_check()
+            .unwrap();
+    }
     assert_added_inside_prisms(soup, &out, &report, alpha);
     assert_eq!(report.faces_out, out.num_faces());
     assert_eq!(
@@ -62,12 +68,8 @@ fn assert_added_inside_prisms(
                 .find(|t| t.iter().any(|w| w.index() == v))
                 .expect("input vertex on a face");
             let prism = AlphaPrism::new(face.map(|w| input.position(w)), alpha).unwrap();
-            for k in 0..8 {
-                let s = |a: u32| if k >> a & 1 == 1 { alpha } else { -alpha };
-                // Corners of the exact cube are within the outward-rounded prism; the f64
-                // corner p ± alpha may round either way, so test the outward-rounded cube.
-                let c = envelope_genus::details::cube_corners(p, alpha)[k];
-                let _ = s;
+            // The outward-rounded corner cube (which contains the exact one) is inside.
+            for c in envelope_genus::details::cube_corners(p, alpha) {
                 assert!(prism.contains(c), "cube corner outside the prism");
             }
         }
@@ -250,4 +252,41 @@ fn narrow_protrusions_are_kept() {
         generate::voxel_surface(3, 3, 2, |i, j, k| k == 0 || !(i == 1 && j == 1), DVec3::ONE);
     let (_, r) = run(&pocket, 0.6);
     assert_eq!(r.holes_filled, 1);
+}
+
+#[test]
+fn regression_fuzz_non_manifold_vertex_input() {
+    // fuzz/genus_prism_union crash-1fed8ddd (fd 03 01 ff c9 2f 03 01): a voxel part whose
+    // cells meet at a corner (a non-manifold vertex), alpha 3.875, beta 33 degrees, cell 0.5.
+    // Such input is accepted; the output may keep the pinch but adds no new defect.
+    let data = [0xc9u8, 0x2f, 0x03, 0x01];
+    let bits: Vec<bool> = (0..48)
+        .map(|i| data.get(i / 8).is_none_or(|b| b >> (i % 8) & 1 == 1))
+        .collect();
+    let part = generate::voxel_surface(
+        4,
+        4,
+        3,
+        |i, j, k| bits[(i + 4 * (j + 4 * k)) as usize],
+        DVec3::splat(0.5),
+    );
+    let before = check(&part, &CheckOptions::default());
+    assert!(before.finding(DegeneracyClass::NonManifoldVertices).count > 0);
+    let options = GenusOptions {
+        alpha: 3.875,
+        beta_degrees: 33.0,
+    };
+    let (out, _) = reduce_genus(&part, &options).unwrap();
+    let after = check(&out, &CheckOptions::default());
+    for class in [
+        DegeneracyClass::NonManifoldVertices,
+        DegeneracyClass::NonManifoldEdges,
+        DegeneracyClass::IntersectingTriangles,
+        DegeneracyClass::CoincidentTriangles,
+    ] {
+        assert!(
+            after.finding(class).count <= before.finding(class).count,
+            "{class:?}"
+        );
+    }
 }
