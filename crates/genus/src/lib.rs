@@ -10,6 +10,10 @@
 //!   caps over the rims a cube of side `2 alpha` cannot pass, removal of the triangles that
 //!   became interior, validation. Every added triangle has input vertices and lies in the
 //!   union of the alpha-cubes of its corners, hence in the union of alpha-prisms.
+//! * [`reduce_genus_with`] with [`TessellationSource::PrismUnion`] (3.3, 4, the paper's
+//!   option "from the full union of alpha-prisms"): also the rims of the regions swallowed
+//!   by the union of prisms (faces whose prism meets the prism of a face facing them across
+//!   empty space and far away on the surface; see [`union`]), so smooth narrow tunnels fill.
 //!
 //! Where the paper is open or garbled, the module docs say which reading we chose
 //! ([`prism`] for the hull, `tessellation` and `reduce` for regions and acceptance; the
@@ -31,13 +35,15 @@ mod reduce;
 mod tessellation;
 pub mod testmeshes;
 mod triangulate;
+pub mod union;
 
 use envelope_check::DegeneracyClass;
 use envelope_mesh::{FaceId, VertexId};
 
 pub use neighbourhood::alpha_close_pairs;
 pub use prism::{AlphaPrism, PointLocation};
-pub use reduce::{GenusOptions, GenusReport, reduce_genus};
+pub use reduce::{GenusOptions, GenusReport, reduce_genus, reduce_genus_with};
+pub use union::TessellationSource;
 
 /// Why the genus reduction refused its input.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

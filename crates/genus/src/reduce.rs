@@ -36,6 +36,7 @@ use crate::tessellation::{
     EdgeMap, face_normals, link_chains, normal_variation, patches, tessellation_edges,
 };
 use crate::triangulate::triangulate_loop;
+use crate::union::{TessellationSource, union_rims};
 
 /// Options of [`reduce_genus`].
 #[derive(Clone, Debug, PartialEq)]
@@ -75,6 +76,11 @@ pub struct GenusReport {
     pub border_loops_out: usize,
     /// Tessellation edges (sharp or border).
     pub tessellation_edges: usize,
+    /// Faces swallowed by the union of alpha-prisms (0 unless
+    /// [`TessellationSource::PrismUnion`]).
+    pub swallowed_faces: usize,
+    /// Candidate rims from the union of alpha-prisms, all levels (included in `candidates`).
+    pub union_candidates: usize,
     /// Open tessellation chains.
     pub open_chains: usize,
     /// Closed tessellation chains.
@@ -117,6 +123,8 @@ impl GenusReport {
             "border_loops_in": self.border_loops_in,
             "border_loops_out": self.border_loops_out,
             "tessellation_edges": self.tessellation_edges,
+            "swallowed_faces": self.swallowed_faces,
+            "union_candidates": self.union_candidates,
             "open_chains": self.open_chains,
             "closed_chains": self.closed_chains,
             "candidates": self.candidates,
@@ -182,6 +190,35 @@ pub fn reduce_genus(
     soup: &TriangleSoup,
     options: &GenusOptions,
 ) -> Result<(TriangleSoup, GenusReport), GenusError> {
+    reduce_genus_with(soup, options, TessellationSource::SharpEdges)
+}
+
+/// [`reduce_genus`] with a choice of where the rims come from: with
+/// [`TessellationSource::PrismUnion`], the rims of the regions swallowed by the union of
+/// alpha-prisms ([`crate::union`]) are candidates too, so narrow tunnels and holes through
+/// smooth surfaces are filled. (A separate entry point rather than a field of
+/// [`GenusOptions`], so that struct literals of the options keep compiling.)
+///
+/// # Errors
+/// As [`reduce_genus`].
+///
+/// ```
+/// use envelope_genus::{reduce_genus_with, GenusOptions, TessellationSource};
+/// use envelope_mesh::{analyze, generate};
+/// // A smooth torus: central hole of radius 0.3, no sharp edge.
+/// let torus = generate::torus(1.0, 0.7, 32, 16);
+/// let sharp = reduce_genus_with(&torus, &GenusOptions::new(0.5), TessellationSource::SharpEdges);
+/// assert_eq!(sharp.unwrap().1.genus_out, Some(1));
+/// let (out, r) =
+///     reduce_genus_with(&torus, &GenusOptions::new(0.5), TessellationSource::PrismUnion).unwrap();
+/// assert_eq!((r.genus_in, r.genus_out), (Some(1), Some(0)));
+/// assert_eq!(analyze(&out).genus, Some(0));
+/// ```
+pub fn reduce_genus_with(
+    soup: &TriangleSoup,
+    options: &GenusOptions,
+    source: TessellationSource,
+) -> Result<(TriangleSoup, GenusReport), GenusError> {
     let start = Instant::now();
     let alpha = options.alpha;
     if !(alpha.is_finite() && alpha > 0.0) {
@@ -240,6 +277,33 @@ pub fn reduce_genus(
                 keep: lp.faces.clone(),
                 key,
                 variation: variation[p],
+                cap: Vec::new(),
+            });
+        }
+    }
+    let (mut swallowed_faces, mut union_candidates) = (0, 0);
+    if source == TessellationSource::PrismUnion {
+        let union = union_rims(soup, &edges, alpha, outward)?;
+        swallowed_faces = union.swallowed;
+        let known: HashSet<Vec<(VertexId, VertexId)>> =
+            candidates.iter().map(|c| c.key.clone()).collect();
+        for (vertices, faces) in union.rims.iter().flat_map(|(v, f)| split_simple(v, f)) {
+            let mut key: Vec<(VertexId, VertexId)> = (0..vertices.len())
+                .map(|i| {
+                    let (a, b) = (vertices[i], vertices[(i + 1) % vertices.len()]);
+                    (a.min(b), a.max(b))
+                })
+                .collect();
+            key.sort_unstable();
+            if known.contains(&key) || candidates.iter().any(|c| c.key == key) {
+                continue;
+            }
+            union_candidates += 1;
+            candidates.push(Candidate {
+                vertices,
+                keep: faces,
+                key,
+                variation: 0.0,
                 cap: Vec::new(),
             });
         }
@@ -318,6 +382,8 @@ pub fn reduce_genus(
         border_loops_in: topo_in.num_border_loops(),
         border_loops_out: topo_out.num_border_loops(),
         tessellation_edges: tess.len(),
+        swallowed_faces,
+        union_candidates,
         open_chains: chains.iter().filter(|c| !c.closed).count(),
         closed_chains: chains.iter().filter(|c| c.closed).count(),
         candidates: num_candidates,
