@@ -5,11 +5,12 @@
 //! `cargo run --release -p envelope-benches --bin global_vs_local [-- --quick] [--corpus DIR]`
 //! `--quick`: a CI smoke run on small generated meshes (under a minute). `--verify`: certify
 //! every output (`envelope-verify`; a violation fails the run). `--only NAME`: one corpus
-//! mesh. `--no-growth`: skip the icosphere series.
-use envelope_global::Method;
+//! mesh. `--no-growth`: skip the icosphere series. The last column is the hybrid in its
+//! other order (`HybridOrder::GlobalFirst`: bounded global, then local).
+use envelope_global::{HybridOrder, HybridStep, Method};
 use envelope_mesh::{TriangleSoup, generate};
 use envelope_offset::EpsilonField;
-use envelope_simplify::{SimplifyOptions, simplify_with};
+use envelope_simplify::{SimplifyOptions, SimplifyStep, simplify_with};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -20,16 +21,26 @@ struct Row {
 }
 
 fn run(soup: &TriangleSoup, eps: f64, method: Method, verify: bool) -> Option<Row> {
+    run_step(soup, eps, method.step().as_ref(), method.as_str(), verify)
+}
+
+fn run_step(
+    soup: &TriangleSoup,
+    eps: f64,
+    step: &dyn SimplifyStep,
+    label: &str,
+    verify: bool,
+) -> Option<Row> {
     let mut options = SimplifyOptions::new(EpsilonField::Constant(eps));
     options.verify = verify;
-    match simplify_with(soup, &options, method.step().as_ref(), &mut ()) {
+    match simplify_with(soup, &options, step, &mut ()) {
         Ok((out, r)) => Some(Row {
             faces: out.num_faces(),
             seconds: r.simplify_seconds,
             ok: r.verify.is_none_or(|v| v.violations.is_empty()),
         }),
         Err(e) => {
-            eprintln!("{}: {e}", method.as_str());
+            eprintln!("{label}: {e}");
             None
         }
     }
@@ -72,17 +83,23 @@ fn main() -> ExitCode {
         }
         &[("1/8%", 0.125), ("1/4%", 0.25), ("1/2%", 0.5), ("1%", 1.0)]
     };
+    // The three methods, then the hybrid in its other order (global first, then local).
+    let global_first = HybridStep {
+        order: HybridOrder::GlobalFirst,
+        ..HybridStep::default()
+    };
     let methods = [Method::Local, Method::Global, Method::Hybrid];
     println!(
-        "| mesh | faces | eps | local faces | local s | global faces | global s | hybrid faces | hybrid s | fewest |"
+        "| mesh | faces | eps | local faces | local s | global faces | global s | hybrid faces | hybrid s | fewest | hybrid global-local faces | s |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     let mut failed = false;
     for (name, soup) in &meshes {
         for &(label, pct) in percents {
             let eps = pct / 100.0 * soup.diagonal();
             let rows: Vec<Option<Row>> =
                 methods.iter().map(|&m| run(soup, eps, m, verify)).collect();
+            let other = run_step(soup, eps, &global_first, "hybrid global-local", verify);
             let cell = |r: &Option<Row>| match r {
                 Some(r) => format!(
                     "{}{} | {:.2}",
@@ -92,7 +109,10 @@ fn main() -> ExitCode {
                 ),
                 None => "error | -".into(),
             };
-            failed |= rows.iter().any(|r| r.as_ref().is_none_or(|r| !r.ok));
+            failed |= rows
+                .iter()
+                .chain([&other])
+                .any(|r| r.as_ref().is_none_or(|r| !r.ok));
             let least = rows.iter().flatten().map(|r| r.faces).min();
             let winners: Vec<&str> = methods
                 .iter()
@@ -106,11 +126,12 @@ fn main() -> ExitCode {
                 winners.join("=")
             };
             println!(
-                "| {name} | {} | {label} | {} | {} | {} | {best} |",
+                "| {name} | {} | {label} | {} | {} | {} | {best} | {} |",
                 soup.num_faces(),
                 cell(&rows[0]),
                 cell(&rows[1]),
-                cell(&rows[2])
+                cell(&rows[2]),
+                cell(&other)
             );
         }
     }

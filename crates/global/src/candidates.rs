@@ -21,15 +21,21 @@
 //! creases where fibers lean) and which removes the seed alone keeps its best-shaped triples with cover 0, ranked after every
 //! covering candidate: they remove one vertex like the local algorithm.
 //!
+//! With border tubes, open regions (removing border vertices, [`Region::open`]) come too:
+//! balls through all vertices that reach the border, chains of 2 and 3 consecutive border
+//! vertices, a border vertex with one interior neighbour. Their cover counts every removed
+//! vertex whose fiber the triple meets (a border vertex's fiber often leaves the chain's
+//! polygon), and they keep their best triples even with cover 0, ranked last.
+//!
 //! What the pruning can miss: valid triangles whose corners are not all on one such cycle
-//! (corners more than `max_rings` rings apart, regions of other shapes, around border
-//! vertices, or around a region that is not a disk), and triangles that do not pass through the prism of the seed of a
+//! (corners more than `max_rings` rings apart, regions of other shapes, or around a region
+//! that is not a disk), and triangles that do not pass through the prism of the seed of a
 //! region they bound. What it cannot do: accept anything. Pruning only removes candidates;
 //! every candidate that is placed passes the exact validity filter of 5.1 against the
 //! barriers and the current approximation, so the guarantee never rests on the pruning.
 //! The fiber test ranks; it does not decide validity.
 
-use crate::region::{Region, ball, region};
+use crate::region::{Region, ball, ball_any, border_next, region};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
 use envelope_simplify::aspect_ratio;
 use glam::DVec3;
@@ -107,6 +113,9 @@ pub struct Reach {
     pub max_cycle: usize,
     /// Candidates kept per region.
     pub per_region: usize,
+    /// Regions may remove border vertices (open regions; only when the barriers have border
+    /// tubes to test the new border edges against).
+    pub border: bool,
 }
 
 /// Counts of a candidate generation.
@@ -152,7 +161,7 @@ pub fn seed_candidates(
     let mut counts = Generated::default();
     let mut out = Vec::new();
     let mut add = |inside: &[VertexId], rings: u8, counts: &mut Generated| -> bool {
-        let Some(r) = region(mesh, inside) else {
+        let Some(r) = region(mesh, inside, reach.border) else {
             return true;
         };
         if r.cycle.len() > reach.max_cycle {
@@ -192,7 +201,60 @@ pub fn seed_candidates(
             add(&[seed, u, w], 0, &mut counts);
         }
     }
+    if reach.border {
+        border_regions(
+            mesh,
+            seed,
+            reach,
+            &mut |inside, rings, counts| add(inside, rings, counts),
+            &mut counts,
+        );
+    }
     (counts, out)
+}
+
+/// The open regions of `seed` (see [`seed_candidates`]): the balls through all vertices that
+/// reach the border, and at a border seed the chains of 2 and 3 consecutive border vertices
+/// starting there, and the seed with each neighbour.
+fn border_regions(
+    mesh: &HalfEdgeMesh,
+    seed: VertexId,
+    reach: &Reach,
+    add: &mut dyn FnMut(&[VertexId], u8, &mut Generated) -> bool,
+    counts: &mut Generated,
+) {
+    let mut last_len = 0;
+    for rings in 1..=reach.max_rings {
+        let inside = ball_any(mesh, seed, rings - 1);
+        if inside.is_empty() || inside.len() == last_len {
+            break;
+        }
+        last_len = inside.len();
+        if !inside.iter().any(|&v| mesh.is_border_vertex(v)) {
+            continue; // a closed ball, generated above
+        }
+        if !add(&inside, rings as u8, counts) {
+            break;
+        }
+    }
+    if !mesh.is_border_vertex(seed) || reach.max_rings < 2 {
+        return;
+    }
+    let mut chain = vec![seed];
+    while chain.len() < 3 {
+        match border_next(mesh, chain[chain.len() - 1]) {
+            Some(w) if !chain.contains(&w) => chain.push(w),
+            _ => break,
+        }
+        add(&chain, 0, counts);
+    }
+    let ring: Vec<VertexId> = mesh
+        .vertex_neighbors(seed)
+        .filter(|&u| !mesh.is_border_vertex(u))
+        .collect();
+    for u in ring {
+        add(&[seed, u], 0, counts);
+    }
 }
 
 fn inside_is_empty(mesh: &HalfEdgeMesh, seed: VertexId) -> bool {
@@ -242,7 +304,9 @@ fn region_candidates(
                 counts.triples += 1;
                 let triangle = [c[a], c[b], c[d]];
                 let p = triangle.map(|v| mesh.position(v));
-                let cover = if covers(fibers, seed, p) {
+                let cover = if r.open {
+                    r.inside.iter().filter(|&&v| covers(fibers, v, p)).count() as u32
+                } else if covers(fibers, seed, p) {
                     counts.covering += 1;
                     r.inside.iter().filter(|&&v| covers(fibers, v, p)).count() as u32
                 } else {
@@ -261,7 +325,9 @@ fn region_candidates(
     }
     // Only where no triple covers the seed (its fiber leaves through a face outside the
     // region), the region keeps its best-shaped triples with cover 0, ranked last.
-    if r.inside.len() > 1 || out.iter().any(|c| c.cover > 0) {
+    // Open regions keep their triples either way: their border vertices are removed on the
+    // local algorithm's terms (the new border edge through the tubes).
+    if !r.open && (r.inside.len() > 1 || out.iter().any(|c| c.cover > 0)) {
         out.retain(|c| c.cover > 0);
     }
     out

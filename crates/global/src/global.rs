@@ -7,7 +7,7 @@
 //! ```text
 //! simplify_global
 //!   loop over passes                 until a pass accepts nothing (or max_passes)
-//!     seed_candidates                every dirty interior vertex, in parallel (rayon)
+//!     seed_candidates                every dirty vertex, in parallel (rayon)
 //!     rank                           decreasing cover, then aspect ratio (total order)
 //!     for each candidate
 //!       overlaps_accepted?           a vertex of its region was touched since: skip
@@ -26,7 +26,7 @@
 //! | ties | seed id (first in id order, as the local algorithm's queue), then aspect ratio, rings, corner ids |
 //! | when a patch stands for its region | every triangle valid (5.1), and, for a region of several vertices, the fiber of every removed vertex meets the patch (exact; the generalized projection of the region onto the patch). Without this, a large region filled across its short boundary collapses the surface between the envelopes (seen on the figure 8 bar: a 4-face output) |
 //! | sub-holes | the local algorithm's greedy filling ([`Greedy::fill_from`]), every triangle through the same [`EnvelopeFilter`] |
-//! | border vertices | never removed by the global step (no open holes, the tubes are never needed); the hybrid's local pass removes them |
+//! | border vertices | removed in open regions ([`Region::open`](crate::Region)) when the barriers have border tubes (as in the local algorithm): the hole is the chain left on the region's boundary, closed by a new border edge that the fill tests against the tubes ([`CandidateProfile::border_edges`](envelope_simplify::CandidateProfile)) and refuses when it already exists; the projection condition below applies to the removed interior vertices, the removed border vertices are taken on the local algorithm's terms (the tube test) |
 //! | passes | after the first, only seeds within `max_rings` rings of a change are generated again |
 //!
 //! Genus and orientation: a region is a disk and the hole a simple polygon filled with
@@ -34,7 +34,7 @@
 //! condition), as in the local algorithm.
 
 use crate::candidates::{Candidate, Fibers, Generated, Reach, covers, seed_candidates};
-use crate::region::{ball, region};
+use crate::region::{ball_any, region};
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_simplify::{
     Barriers, EnvelopeFilter, FaceGrid, FillContext, Filter, Greedy, Hole, Progress,
@@ -56,6 +56,10 @@ pub struct GlobalOptions {
     pub max_passes: usize,
     /// Run the mesh's and the grid's sanity checks after every accepted candidate (slow).
     pub check_each_step: bool,
+    /// Regions may remove border vertices (open holes closed by a new border edge, tested
+    /// against the border tubes). [`simplify_global`] uses it only when the barriers have
+    /// tubes, as the local algorithm does.
+    pub border: bool,
 }
 
 impl Default for GlobalOptions {
@@ -68,6 +72,7 @@ impl Default for GlobalOptions {
             per_region: 8,
             max_passes: 32,
             check_each_step: false,
+            border: true,
         }
     }
 }
@@ -82,6 +87,7 @@ impl GlobalOptions {
             per_region: 3,
             max_passes: 4,
             check_each_step: false,
+            border: true,
         }
     }
 }
@@ -149,8 +155,8 @@ impl GlobalStats {
 }
 
 /// Simplifies `mesh` in place by the global algorithm (see the module docs), every placed
-/// triangle checked by the [`EnvelopeFilter`] against `barriers`. Only interior vertices are
-/// removed.
+/// triangle checked by the [`EnvelopeFilter`] against `barriers`. Border vertices are removed
+/// only when `barriers` has border tubes and [`GlobalOptions::border`] is set.
 ///
 /// ```
 /// use envelope_global::{Fibers, GlobalOptions, simplify_global};
@@ -174,10 +180,16 @@ pub fn simplify_global(
     progress: &mut dyn Progress,
 ) -> Result<GlobalStats, GlobalError> {
     let filter = EnvelopeFilter::new(barriers);
-    simplify_global_with(mesh, &filter, fibers, options, progress)
+    let options = GlobalOptions {
+        border: options.border && barriers.has_tubes(),
+        ..*options
+    };
+    simplify_global_with(mesh, &filter, fibers, &options, progress)
 }
 
-/// [`simplify_global`] with any validity filter.
+/// [`simplify_global`] with any validity filter (which must test
+/// [`CandidateProfile::border_edges`](envelope_simplify::CandidateProfile) when
+/// [`GlobalOptions::border`] is set).
 pub fn simplify_global_with(
     mesh: &mut HalfEdgeMesh,
     filter: &dyn Filter,
@@ -197,12 +209,14 @@ pub fn simplify_global_with(
         max_rings: options.max_rings,
         max_cycle: options.max_cycle,
         per_region: options.per_region,
+        border: options.border,
     };
     let mut g = Global {
         grid: FaceGrid::from_mesh(mesh),
         mesh,
         touched: Vec::new(),
         epoch: 0,
+        border: options.border,
     };
     let mut seeds: Vec<VertexId> = g.mesh.vertices().collect();
     for _ in 0..options.max_passes {
@@ -254,6 +268,8 @@ struct Global<'m> {
     /// Epoch of the last accepted change around each vertex (0: never).
     touched: Vec<u64>,
     epoch: u64,
+    /// Regions may remove border vertices ([`GlobalOptions::border`]).
+    border: bool,
 }
 
 impl Global<'_> {
@@ -291,7 +307,7 @@ impl Global<'_> {
             || c.triangle.iter().any(|&v| !self.mesh.contains_vertex(v))
     }
 
-    /// Live interior vertices within `rings` rings of a vertex changed since `start`.
+    /// Live vertices within `rings` rings (plus one) of a vertex changed since `start`.
     fn dirty_seeds(&self, start: u64, rings: usize) -> Vec<VertexId> {
         let n = self
             .mesh
@@ -302,10 +318,7 @@ impl Global<'_> {
         let mut dirty = vec![false; n];
         for v in self.mesh.vertices() {
             if self.stamp(v) > start {
-                let mut b = ball(self.mesh, v, rings);
-                if b.is_empty() {
-                    b = self.mesh.vertex_neighbors(v).collect();
-                }
+                let b = ball_any(self.mesh, v, rings);
                 for w in b {
                     if w.index() < dirty.len() {
                         dirty[w.index()] = true;
@@ -329,7 +342,7 @@ impl Global<'_> {
         filter: &dyn Filter,
         fibers: &Fibers<'_>,
     ) -> (u64, bool) {
-        let Some(r) = region(self.mesh, &c.inside) else {
+        let Some(r) = region(self.mesh, &c.inside, self.border) else {
             return (0, false);
         };
         let mut at = [0usize; 3];
@@ -342,6 +355,15 @@ impl Global<'_> {
         if !(at[0] < at[1] && at[1] < at[2]) {
             return (0, false);
         }
+        // Removed interior vertices (the projection condition applies to them; removed
+        // border vertices are taken on the local algorithm's terms: the tube test of the
+        // new border edge).
+        let interior: Vec<VertexId> = r
+            .inside
+            .iter()
+            .copied()
+            .filter(|&v| !self.mesh.is_border_vertex(v))
+            .collect();
         let cp = self.mesh.begin();
         if self.mesh.remove_faces(&r.faces).is_err() {
             self.mesh.rollback(cp);
@@ -352,14 +374,15 @@ impl Global<'_> {
         }
         let hole = Hole {
             vertices: r.cycle.clone(),
-            open: false,
+            open: r.open,
         };
         let (ok, tests, placed) = {
             let mut ctx = FillContext::new(self.mesh, &self.grid, filter, &hole);
             let ok = Greedy::default().fill_from(&mut ctx, at);
             (ok, ctx.tests, ctx.placed().to_vec())
         };
-        let cov = ok && covers_removed(self.mesh, fibers, &r.inside, &placed);
+        let cov =
+            ok && (r.inside.len() == 1 || covers_removed(self.mesh, fibers, &interior, &placed));
         let added = if cov {
             self.mesh.add_faces(&placed).ok()
         } else {
@@ -408,10 +431,9 @@ fn covers_removed(
     inside: &[VertexId],
     placed: &[[VertexId; 3]],
 ) -> bool {
-    inside.len() == 1
-        || inside.iter().all(|&v| {
-            placed
-                .iter()
-                .any(|t| covers(fibers, v, t.map(|x| mesh.position(x))))
-        })
+    inside.iter().all(|&v| {
+        placed
+            .iter()
+            .any(|t| covers(fibers, v, t.map(|x| mesh.position(x))))
+    })
 }

@@ -25,4 +25,4 @@ mod step;
 pub use candidates::{Candidate, Fibers, Generated, Reach, covers, seed_candidates};
 pub use global::{GlobalError, GlobalOptions, GlobalStats, simplify_global, simplify_global_with};
 pub use region::{Region, ball, region};
-pub use step::{GlobalStep, HybridStep, Method};
+pub use step::{GlobalStep, HybridOrder, HybridStep, Method};

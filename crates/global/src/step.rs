@@ -17,7 +17,7 @@ pub enum Method {
     /// Vertex removal one at a time (5.2).
     #[default]
     Local,
-    /// Greedy set cover by candidate triangles (5.3); border vertices stay.
+    /// Greedy set cover by candidate triangles (5.3), border vertices in open regions.
     Global,
     /// Local, then global within bounded regions, then local again (5.4, [`HybridStep`]).
     Hybrid,
@@ -57,9 +57,7 @@ impl Method {
                 options: GlobalOptions::default(),
                 then_local: false,
             }),
-            Method::Hybrid => Box::new(HybridStep {
-                options: GlobalOptions::bounded(),
-            }),
+            Method::Hybrid => Box::new(HybridStep::default()),
         }
     }
 }
@@ -109,17 +107,54 @@ impl SimplifyStep for GlobalStep {
     }
 }
 
-/// The hybrid method (5.4): the local algorithm, then the global one within bounded regions
-/// on what local left (where single removals are stuck, groups of vertices may still go
-/// together, figure 8), then local again if global changed anything.
+/// The order of the hybrid's stages ([`HybridStep`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum HybridOrder {
+    /// Local, then global within bounded regions on what local left, then local again if
+    /// global removed anything (the default: measured better, see the crate README).
+    #[default]
+    LocalFirst,
+    /// Global within bounded regions, then local (the wording of 5.4).
+    GlobalFirst,
+}
+
+impl HybridOrder {
+    /// `"local-global-local"` or `"global-local"`.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            HybridOrder::LocalFirst => "local-global-local",
+            HybridOrder::GlobalFirst => "global-local",
+        }
+    }
+}
+
+/// The hybrid method (5.4): "choose nearby groups of vertices to remove simultaneously",
+/// the global algorithm within bounded regions ([`GlobalOptions::bounded`]) combined with
+/// the local one, in the [`HybridOrder`] chosen.
 ///
-/// Each stage only removes vertices from a closed disk (two faces fewer per vertex), so the
-/// hybrid never ends with more faces than the local algorithm alone reaches from the same
-/// mesh in its first stage.
+/// With [`HybridOrder::LocalFirst`]: local, then global on what local left (where single
+/// removals are stuck, groups of vertices may still go together, figure 8), then local
+/// again if global changed anything. Each stage only removes vertices (two faces fewer per
+/// interior vertex, one per border vertex), so this order never ends with more faces than
+/// the local algorithm alone reaches in its first stage. [`HybridOrder::GlobalFirst`] has no
+/// such bound.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct HybridStep {
     /// Options of the global stage.
     pub options: GlobalOptions,
+    /// Which stage runs first.
+    pub order: HybridOrder,
+}
+
+impl Default for HybridStep {
+    /// Bounded global options, local first.
+    fn default() -> Self {
+        HybridStep {
+            options: GlobalOptions::bounded(),
+            order: HybridOrder::default(),
+        }
+    }
 }
 
 impl SimplifyStep for HybridStep {
@@ -129,16 +164,25 @@ impl SimplifyStep for HybridStep {
         input: &StepInput<'_>,
         progress: &mut dyn Progress,
     ) -> Result<StepOutcome, SimplifyError> {
-        let first = LocalStep.run(mesh, input, progress)?.stats;
+        let first = match self.order {
+            HybridOrder::LocalFirst => Some(LocalStep.run(mesh, input, progress)?.stats),
+            HybridOrder::GlobalFirst => None,
+        };
         let g = run_global(mesh, input, &self.options, progress)?;
-        let mut stats = first;
-        stats.candidate_tests += g.filter_tests;
-        stats.attempts += g.attempts;
-        stats.removed += g.removed;
-        stats.no_valid_fill += g.no_valid_fill;
-        stats.vertices_after = g.vertices_after;
-        stats.faces_after = g.faces_after;
-        let second = if g.removed > 0 {
+        let mut stats = match &first {
+            Some(l) => {
+                let mut s = *l;
+                s.candidate_tests += g.filter_tests;
+                s.attempts += g.attempts;
+                s.removed += g.removed;
+                s.no_valid_fill += g.no_valid_fill;
+                s.vertices_after = g.vertices_after;
+                s.faces_after = g.faces_after;
+                s
+            }
+            None => global_stats(&g),
+        };
+        let second = if first.is_none() || g.removed > 0 {
             let l = LocalStep.run(mesh, input, progress)?.stats;
             add_local(&mut stats, &l);
             Some(l)
@@ -149,7 +193,8 @@ impl SimplifyStep for HybridStep {
             stats,
             method: "hybrid",
             details: json!({
-                "local": local_json(&first),
+                "order": self.order.as_str(),
+                "local": first.as_ref().map(local_json),
                 "global": g.to_json(),
                 "local_again": second.as_ref().map(local_json),
             }),
