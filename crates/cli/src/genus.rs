@@ -1,10 +1,12 @@
-//! `envelope genus IN OUT --alpha A [--beta DEG] [--report R.json]`: controlled genus
-//! reduction (El-Sana and Varshney 1997) with `envelope_genus::reduce_genus`.
+//! `envelope genus IN OUT --alpha A [--beta DEG] [--union] [--report R.json]`: controlled
+//! genus reduction (El-Sana and Varshney 1997) with `envelope_genus::reduce_genus_with`;
+//! `--union` adds the rims from the union of alpha-prisms (the paper's option, sections 3.3
+//! and 4), which fill narrow passages through smooth surfaces.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use envelope_genus::{GenusOptions, GenusReport, reduce_genus};
+use envelope_genus::{GenusOptions, GenusReport, TessellationSource, reduce_genus_with};
 use envelope_io::{Format, read_path, write_path};
 use envelope_mesh::TriangleSoup;
 use envelope_offset::parse_epsilon;
@@ -23,6 +25,10 @@ pub struct Args {
     /// Sharp-edge threshold in degrees (angle between face normals).
     #[arg(long, default_value_t = 70.0)]
     pub beta: f64,
+    /// Also take rims from the union of alpha-prisms (fills narrow tunnels and holes through
+    /// smooth, non-sharp surfaces; slower: every face's prism is paired).
+    #[arg(long)]
+    pub union: bool,
     /// Write the report as JSON here.
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -55,12 +61,18 @@ pub(crate) fn reduce(
     soup: &TriangleSoup,
     alpha: f64,
     beta: f64,
+    union: bool,
 ) -> Result<(TriangleSoup, GenusReport), String> {
     let options = GenusOptions {
         alpha,
         beta_degrees: beta,
     };
-    reduce_genus(soup, &options).map_err(|e| e.to_string())
+    let source = if union {
+        TessellationSource::PrismUnion
+    } else {
+        TessellationSource::SharpEdges
+    };
+    reduce_genus_with(soup, &options, source).map_err(|e| e.to_string())
 }
 
 /// Runs `envelope genus`.
@@ -68,7 +80,7 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
     let format = format_for(&args.output)?;
     let (soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
     let alpha = resolve_length("--alpha", &args.alpha, soup.diagonal())?;
-    let (out, report) = reduce(&soup, alpha, args.beta)?;
+    let (out, report) = reduce(&soup, alpha, args.beta, args.union)?;
     write_path(&args.output, &out, format).map_err(|e| e.to_string())?;
     let fmt_genus = |g: Option<u32>| g.map_or_else(|| "undefined".to_string(), |g| g.to_string());
     println!(
@@ -88,6 +100,7 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
         let mut json = report.to_json();
         json["alpha"] = serde_json::json!(alpha);
         json["beta_degrees"] = serde_json::json!(args.beta);
+        json["union"] = serde_json::json!(args.union);
         json["input"] = serde_json::json!(args.input.display().to_string());
         let text = serde_json::to_string_pretty(&json).map_err(|e| e.to_string())?;
         write_text_atomic(path, &text)?;

@@ -1,6 +1,7 @@
 //! `envelope pipeline IN OUTDIR --steps "e0.5%,a2%,e1%,a5%,e2%"`: alternating genus-preserving
 //! (`e`, the local simplifier at that epsilon) and genus-reducing (`a`, `envelope genus` at
-//! that alpha) steps, as in Fig. 11 and Table 1 of El-Sana and Varshney (1997). Percentages
+//! that alpha; `u`, the same with the union-of-alpha-prisms rims, `envelope genus --union`)
+//! steps, as in Fig. 11 and Table 1 of El-Sana and Varshney (1997). Percentages
 //! are of the *input's* bounding-box diagonal (the paper's convention). Writes
 //! OUTDIR/stage-0.off (the input), stage-1.off, ... and summary.json.
 
@@ -24,7 +25,8 @@ pub struct Args {
     /// Output directory (created if missing).
     pub out_dir: PathBuf,
     /// Comma-separated steps: `eX` genus-preserving at epsilon X, `aX` genus-reducing at
-    /// alpha X; X absolute or a percentage of the input diagonal.
+    /// alpha X, `uX` genus-reducing at alpha X with the union-of-prisms rims (`--union`); X
+    /// absolute or a percentage of the input diagonal.
     #[arg(long, default_value = "e0.5%,a2%,e1%,a5%,e2%")]
     pub steps: String,
     /// Sharp-edge threshold of the genus-reducing steps, degrees.
@@ -36,7 +38,8 @@ pub struct Args {
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Step {
     Preserve(f64),
-    Reduce(f64),
+    /// Alpha, and whether the union-of-prisms rims are used.
+    Reduce(f64, bool),
 }
 
 fn parse_steps(s: &str, diagonal: f64) -> Result<Vec<Step>, String> {
@@ -46,10 +49,18 @@ fn parse_steps(s: &str, diagonal: f64) -> Result<Vec<Step>, String> {
         if let Some(v) = t.strip_prefix('e') {
             steps.push(Step::Preserve(resolve_length("--steps e", v, diagonal)?));
         } else if let Some(v) = t.strip_prefix('a') {
-            steps.push(Step::Reduce(resolve_length("--steps a", v, diagonal)?));
+            steps.push(Step::Reduce(
+                resolve_length("--steps a", v, diagonal)?,
+                false,
+            ));
+        } else if let Some(v) = t.strip_prefix('u') {
+            steps.push(Step::Reduce(
+                resolve_length("--steps u", v, diagonal)?,
+                true,
+            ));
         } else {
             return Err(format!(
-                "--steps: {t:?} must start with 'e' (genus-preserving) or 'a' (genus-reducing)"
+                "--steps: {t:?} must start with 'e' (genus-preserving), 'a' or 'u' (genus-reducing)"
             ));
         }
     }
@@ -89,8 +100,8 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
                 soup = out;
                 ("genus-preserving", eps, json!({}))
             }
-            Step::Reduce(alpha) => {
-                let (out, report) = reduce(&soup, alpha, args.beta)
+            Step::Reduce(alpha, union) => {
+                let (out, report) = reduce(&soup, alpha, args.beta, union)
                     .map_err(|e| format!("stage {} (a = {alpha}): {e}", k + 1))?;
                 soup = out;
                 ("genus-reducing", alpha, report.to_json())
@@ -131,8 +142,13 @@ mod tests {
     fn steps_parse_and_reject() {
         assert_eq!(
             parse_steps("e1%, a0.5", 10.0).unwrap(),
-            vec![Step::Preserve(0.1), Step::Reduce(0.5)]
+            vec![Step::Preserve(0.1), Step::Reduce(0.5, false)]
         );
+        assert_eq!(
+            parse_steps("u2%", 10.0).unwrap(),
+            vec![Step::Reduce(0.2, true)]
+        );
+        assert!(parse_steps("u", 1.0).is_err());
         assert!(parse_steps("x1", 1.0).is_err());
         assert!(parse_steps("e-1", 1.0).is_err());
         assert!(parse_steps("a", 1.0).is_err());

@@ -162,3 +162,67 @@ fn pipeline_writes_every_stage_and_summary() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn genus_union_fills_the_smooth_torus_hole() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("torus.off");
+    // Central hole of width 0.6, no sharp edge.
+    write_path(&input, &generate::torus(1.0, 0.7, 32, 16), Format::Off).unwrap();
+    let output = dir.path().join("out.off");
+    let report = dir.path().join("r.json");
+    let genus = |union: bool| {
+        let mut cmd = envelope();
+        cmd.args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
+            .args(["--alpha", "0.5", "--report", report.to_str().unwrap()]);
+        if union {
+            cmd.arg("--union");
+        }
+        let out = cmd.output().unwrap();
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let r: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        assert_eq!(r["union"], union);
+        (analyze(&read_path(&output).unwrap().0).genus, r)
+    };
+    let (g, r) = genus(true);
+    assert_eq!(g, Some(0));
+    assert_eq!(
+        (r["genus_in"].clone(), r["genus_out"].clone()),
+        (1.into(), 0.into())
+    );
+    assert!(r["swallowed_faces"].as_u64().unwrap() > 0);
+    assert!(r["holes_filled"].as_u64().unwrap() >= 2);
+    let (g, r) = genus(false);
+    assert_eq!(g, Some(1));
+    assert_eq!(r["swallowed_faces"], 0);
+
+    // The same as a pipeline step: `u` fills, `a` does not.
+    let out_dir = dir.path().join("stages");
+    let out = envelope()
+        .args([
+            "pipeline",
+            input.to_str().unwrap(),
+            out_dir.to_str().unwrap(),
+        ])
+        .args(["--steps", "a0.5,u0.5"])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+            .unwrap();
+    let stages = s["stages"].as_array().unwrap();
+    assert_eq!(stages[1]["genus"], 1);
+    assert_eq!(stages[2]["genus"], 0);
+}
