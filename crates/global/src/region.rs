@@ -297,6 +297,33 @@ mod tests {
     }
 
     #[test]
+    fn border_vertices_make_open_regions_only_when_asked() {
+        let m = HalfEdgeMesh::from_soup(&generate::open_cylinder(1.0, 1.0, 12, 4)).unwrap();
+        let b = m.vertices().find(|&v| m.is_border_vertex(v)).unwrap();
+        assert_eq!(region(&m, &[b], false), None);
+        let r = region(&m, &[b], true).unwrap();
+        assert!(r.open);
+        // The chain runs from one border neighbour to the other through the interior ones.
+        assert_eq!(r.cycle.len(), m.valence(b));
+        let next = border_next(&m, b).unwrap();
+        assert!(m.is_border_vertex(r.cycle[0]) && m.is_border_vertex(r.cycle[r.cycle.len() - 1]));
+        assert!(r.cycle.contains(&next));
+        // Two consecutive border vertices: one open region whose chain avoids both.
+        let r2 = region(&m, &[b, next], true).unwrap();
+        assert!(r2.open && !r2.cycle.contains(&b) && !r2.cycle.contains(&next));
+        // A whole border loop is no open region (no chain ends to close).
+        let mut lp = vec![b];
+        while let Some(w) = border_next(&m, lp[lp.len() - 1]).filter(|w| !lp.contains(w)) {
+            lp.push(w);
+        }
+        assert_eq!(lp.len(), 12);
+        assert_eq!(region(&m, &lp, true), None);
+        // A closed region stays closed with `border`.
+        let inner = m.vertices().find(|&v| ball(&m, v, 1).len() == 7).unwrap();
+        assert!(!region(&m, &[inner], true).unwrap().open);
+    }
+
+    #[test]
     fn border_vertices_are_never_inside() {
         let m = HalfEdgeMesh::from_soup(&generate::open_cylinder(1.0, 1.0, 12, 4)).unwrap();
         let border = m.vertices().find(|&v| m.is_border_vertex(v)).unwrap();
