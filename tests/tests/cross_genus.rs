@@ -3,13 +3,15 @@
 //! equal ours, on generated parts and on corpus CAD parts (`couplingdown.off`,
 //! `turbine.off`, `pinion.off`, `mech-holes-shark.off`, `anchor.off` at 2 % and 5 % of the
 //! bounding-box diagonal, and turbine and anchor also after the genus-preserving simplifier at
-//! 0.5 %, the Table 1 protocol). When `CI=true` the oracle and the corpus are required (the test
+//! 0.5 %, the Table 1 protocol). Cases named `union ...` run with the union-of-alpha-prisms
+//! rims (`TessellationSource::PrismUnion`): smooth tori (hole filled, hole kept) and
+//! `cheese.off` at 2 %. When `CI=true` the oracle and the corpus are required (the test
 //! fails instead of skipping); a missing corpus mesh is named in the output.
 
 use envelope_genus::testmeshes::{
     block_with_square_pocket, disk_with_square_holes, plate_with_square_holes, square_torus,
 };
-use envelope_genus::{GenusOptions, reduce_genus};
+use envelope_genus::{GenusOptions, TessellationSource, reduce_genus_with};
 use envelope_io::{Format, read_path, write_path};
 use envelope_mesh::{TriangleSoup, analyze, generate};
 use envelope_offset::EpsilonField;
@@ -36,6 +38,17 @@ fn genus_outputs_have_no_self_intersection_and_cgal_topology_agrees() {
         ("square torus".into(), square_torus(1.0, 0.3, 24), 1.0),
         ("disk".into(), disk_with_square_holes(&[1, 2, 3], 1.0), 1.25),
         ("box with tunnel".into(), generate::box_with_tunnel(), 0.5),
+        (
+            "union smooth torus".into(),
+            generate::torus(1.0, 0.7, 32, 16),
+            0.5,
+        ),
+        (
+            "union smooth torus wide".into(),
+            generate::torus(1.0, 0.7, 32, 16),
+            0.1,
+        ),
+        ("union square torus".into(), square_torus(1.0, 0.3, 24), 1.0),
     ];
     let ci = std::env::var("CI").is_ok_and(|v| v == "true");
     match corpus_dir() {
@@ -71,6 +84,15 @@ fn genus_outputs_have_no_self_intersection_and_cgal_topology_agrees() {
                     Err(e) => eprintln!("corpus mesh {name} skipped: {e}"),
                 }
             }
+            let path = dir.join("cheese.off");
+            match read_path(&path) {
+                Ok((soup, _)) => {
+                    let d = soup.diagonal();
+                    cases.push(("union cheese a2%".into(), soup, 0.02 * d));
+                }
+                Err(e) if ci => panic!("{}: {e}", path.display()),
+                Err(e) => eprintln!("corpus mesh cheese skipped: {e}"),
+            }
         }
         None if ci => panic!("CI=true and the corpus is required"),
         None => eprintln!("corpus missing: corpus cases skipped"),
@@ -79,7 +101,12 @@ fn genus_outputs_have_no_self_intersection_and_cgal_topology_agrees() {
     let mut problems = Vec::new();
     let mut reduced = 0;
     for (k, (name, soup, alpha)) in cases.iter().enumerate() {
-        let (out, report) = match reduce_genus(soup, &GenusOptions::new(*alpha)) {
+        let source = if name.starts_with("union ") {
+            TessellationSource::PrismUnion
+        } else {
+            TessellationSource::SharpEdges
+        };
+        let (out, report) = match reduce_genus_with(soup, &GenusOptions::new(*alpha), source) {
             Ok(r) => r,
             Err(e) => {
                 problems.push(format!("{name}: {e}"));
@@ -99,6 +126,21 @@ fn genus_outputs_have_no_self_intersection_and_cgal_topology_agrees() {
             ));
         }
         let ours = analyze(&out);
+        if ours.genus > report.genus_in {
+            problems.push(format!("{name}: genus increased"));
+        }
+        // The smooth torus fills only in union mode and only when 2 alpha passes the hole.
+        let expected = match name.as_str() {
+            "union smooth torus" => Some(0),
+            "union smooth torus wide" => Some(1),
+            _ => ours.genus,
+        };
+        if ours.genus != expected {
+            problems.push(format!(
+                "{name}: genus {:?}, expected {expected:?}",
+                ours.genus
+            ));
+        }
         match oracle.topology(&path).cgal {
             Ok(t) => {
                 if t.genus != ours.genus.map(u64::from)

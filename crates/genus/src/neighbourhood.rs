@@ -39,6 +39,17 @@ pub fn alpha_close_pairs(
     alpha: f64,
     faces: Option<&[FaceId]>,
 ) -> Result<Vec<(FaceId, FaceId)>, GenusError> {
+    alpha_close_pairs_where(soup, alpha, faces, |_, _| true)
+}
+
+/// [`alpha_close_pairs`] restricted to the candidate pairs `keep` accepts; `keep` is asked
+/// before the (costlier) exact prism intersection, so a cheap filter saves most of the time.
+pub(crate) fn alpha_close_pairs_where(
+    soup: &TriangleSoup,
+    alpha: f64,
+    faces: Option<&[FaceId]>,
+    keep: impl Fn(FaceId, FaceId) -> bool + Sync,
+) -> Result<Vec<(FaceId, FaceId)>, GenusError> {
     if !(alpha.is_finite() && alpha > 0.0) {
         return Err(GenusError::InvalidAlpha(alpha));
     }
@@ -57,15 +68,19 @@ pub fn alpha_close_pairs(
     // registered; they are paired with every prism instead.
     const MAX_CELLS: i128 = 4096;
     let mut big: Vec<usize> = Vec::new();
+    let mut is_big = vec![false; prisms.len()];
+    let mut ranges: Vec<([i64; 3], [i64; 3])> = Vec::with_capacity(prisms.len());
     for (k, p) in prisms.iter().enumerate() {
         let (lo, hi) = p.bbox;
         let l = [index(lo.x) - 1, index(lo.y) - 1, index(lo.z) - 1];
         let h = [index(hi.x) + 1, index(hi.y) + 1, index(hi.z) + 1];
+        ranges.push((l, h));
         let cells: i128 = (0..3)
             .map(|a| i128::from(h[a]) - i128::from(l[a]) + 1)
             .product();
         if !(1..=MAX_CELLS).contains(&cells) {
             big.push(k);
+            is_big[k] = true;
             continue;
         }
         for i in l[0]..=h[0] {
@@ -76,29 +91,37 @@ pub fn alpha_close_pairs(
             }
         }
     }
-    let mut candidates: Vec<(usize, usize)> = grid
-        .values()
-        .flat_map(|v| {
-            v.iter()
-                .enumerate()
-                .flat_map(move |(n, &a)| v[n + 1..].iter().map(move |&b| (a.min(b), a.max(b))))
-        })
-        .collect();
-    for &b in &big {
-        candidates.extend(
-            (0..prisms.len())
-                .filter(|&k| k != b)
-                .map(|k| (k.min(b), k.max(b))),
-        );
-    }
-    candidates.sort_unstable();
-    candidates.dedup();
-    let mut pairs: Vec<(FaceId, FaceId)> = candidates
-        .par_iter()
-        .filter(|&&(a, b)| prisms[a].intersects(&prisms[b]))
-        .map(|&(a, b)| {
-            let (f, g) = (ids[a], ids[b]);
-            (f.min(g), f.max(g))
+    // Per face, the later faces sharing a cell (and the big ones): memory stays linear in
+    // the output even when cells are crowded (a large alpha).
+    let mut pairs: Vec<(FaceId, FaceId)> = (0..prisms.len())
+        .into_par_iter()
+        .flat_map_iter(|k| {
+            let mut cand: Vec<usize> = if is_big[k] {
+                (k + 1..prisms.len()).collect()
+            } else {
+                let (l, h) = ranges[k];
+                let mut c = Vec::new();
+                for i in l[0]..=h[0] {
+                    for j in l[1]..=h[1] {
+                        for m in l[2]..=h[2] {
+                            if let Some(v) = grid.get(&[i, j, m]) {
+                                c.extend(v.iter().copied().filter(|&x| x > k));
+                            }
+                        }
+                    }
+                }
+                c.extend(big.iter().copied().filter(|&b| b > k));
+                c
+            };
+            cand.sort_unstable();
+            cand.dedup();
+            let (prisms, ids, keep) = (&prisms, &ids, &keep);
+            cand.into_iter()
+                .filter(move |&b| keep(ids[k], ids[b]) && prisms[k].intersects(&prisms[b]))
+                .map(move |b| {
+                    let (f, g) = (ids[k], ids[b]);
+                    (f.min(g), f.max(g))
+                })
         })
         .collect();
     pairs.sort_unstable();

@@ -49,6 +49,7 @@ use envelope_mesh::{FaceId, TriangleSoup, VertexId};
 use envelope_predicates::{Orientation, orient3d};
 use rayon::prelude::*;
 
+use crate::neighbourhood::alpha_close_pairs_where;
 use crate::tessellation::{EdgeMap, face_normals, patches};
 use crate::{AlphaPrism, GenusError};
 
@@ -103,18 +104,16 @@ fn bridges(
     } else {
         Orientation::Negative
     };
-    let facing: Vec<(FaceId, FaceId)> = crate::alpha_close_pairs(soup, alpha, None)?
-        .into_par_iter()
-        .filter(|&(f, g)| in_front(soup, f, g, front) && in_front(soup, g, f, front))
-        .collect();
     let normals = face_normals(soup);
-    let far: Vec<(FaceId, FaceId)> = facing
-        .into_iter()
-        .filter(|&(f, g)| match (normals[f.index()], normals[g.index()]) {
+    // The cheap tests (normals, then exact orient3d) run before the exact prism
+    // intersection.
+    let far = alpha_close_pairs_where(soup, alpha, None, |f, g| {
+        let opposed = match (normals[f.index()], normals[g.index()]) {
             (Some(n), Some(m)) => n.dot(m) < OPPOSED_COS,
             _ => false,
-        })
-        .collect();
+        };
+        opposed && in_front(soup, f, g, front) && in_front(soup, g, f, front)
+    })?;
     Ok(far)
 }
 
