@@ -5,7 +5,7 @@
 //! bounding-box diagonal, and turbine and anchor also after the genus-preserving simplifier at
 //! 0.5 %, the Table 1 protocol). Cases named `union ...` run with the union-of-alpha-prisms
 //! rims (`TessellationSource::PrismUnion`): smooth tori (hole filled, hole kept) and
-//! `cheese.off` at 2 %. When `CI=true` the oracle and the corpus are required (the test
+//! `cheese.off` at 5 % (133 -> 98 when measured; asserted to go down). When `CI=true` the oracle and the corpus are required (the test
 //! fails instead of skipping); a missing corpus mesh is named in the output.
 
 use envelope_genus::testmeshes::{
@@ -88,7 +88,7 @@ fn genus_outputs_have_no_self_intersection_and_cgal_topology_agrees() {
             match read_path(&path) {
                 Ok((soup, _)) => {
                     let d = soup.diagonal();
-                    cases.push(("union cheese a2%".into(), soup, 0.02 * d));
+                    cases.push(("union cheese a5%".into(), soup, 0.05 * d));
                 }
                 Err(e) if ci => panic!("{}: {e}", path.display()),
                 Err(e) => eprintln!("corpus mesh cheese skipped: {e}"),
@@ -133,6 +133,10 @@ fn genus_outputs_have_no_self_intersection_and_cgal_topology_agrees() {
         let expected = match name.as_str() {
             "union smooth torus" => Some(0),
             "union smooth torus wide" => Some(1),
+            // Measured 133 -> 98; at least one tunnel must fill.
+            "union cheese a5%" if ours.genus.is_none_or(|g| Some(g) >= report.genus_in) => {
+                Some(u32::MAX)
+            }
             _ => ours.genus,
         };
         if ours.genus != expected {
