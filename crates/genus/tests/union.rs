@@ -84,3 +84,21 @@ fn union_mode_does_not_eat_material() {
     assert_eq!(report.swallowed_faces, 0);
     assert_eq!(out.faces, t.faces);
 }
+
+#[test]
+fn union_mode_fills_a_narrower_hole_at_a_smaller_alpha() {
+    // Hole width 0.3, a different tessellation: filled at 2 alpha = 0.6, kept at 0.1.
+    let t = generate::torus(1.0, 0.85, 40, 20);
+    assert_eq!(
+        analyze(&run(&t, 0.3, TessellationSource::PrismUnion)).genus,
+        Some(0)
+    );
+    assert_eq!(
+        analyze(&run(&t, 0.3, TessellationSource::SharpEdges)).genus,
+        Some(1)
+    );
+    assert_eq!(
+        analyze(&run(&t, 0.05, TessellationSource::PrismUnion)).genus,
+        Some(1)
+    );
+}
