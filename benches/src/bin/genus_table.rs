@@ -8,7 +8,8 @@
 //! are percentages of the input's bounding-box diagonal, as in the paper.
 //!
 //! `cargo run --release -p envelope-benches --bin genus_table -- [--quick] [--corpus DIR]
-//! [--eps PCT] [--alpha PCT] [--only NAME]`; `--quick` runs one small part (`anchor` at
+//! [--eps PCT] [--alpha PCT] [--only NAME] [--union]`; `--union` runs the genus-reducing
+//! step with the union-of-alpha-prisms rims (`TessellationSource::PrismUnion`); `--quick` runs one small part (`anchor` at
 //! alpha 5 % unless `--alpha` is given, or a generated plate when the corpus is absent) for a
 //! CI smoke run, and exits 1 when a row fails.
 
@@ -16,7 +17,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use envelope_genus::{GenusOptions, reduce_genus};
+use envelope_genus::{GenusOptions, TessellationSource, reduce_genus_with};
 use envelope_mesh::{TriangleSoup, analyze};
 use envelope_offset::EpsilonField;
 use envelope_simplify::{SimplifyOptions, simplify};
@@ -56,13 +57,20 @@ fn genus(s: &TriangleSoup) -> String {
         .map_or_else(|| "-".to_string(), |g| g.to_string())
 }
 
-fn row(name: &str, soup: &TriangleSoup, eps_pct: f64, alpha_pct: f64) -> Result<String, String> {
+fn row(
+    name: &str,
+    soup: &TriangleSoup,
+    eps_pct: f64,
+    alpha_pct: f64,
+    source: TessellationSource,
+) -> Result<String, String> {
     let d = soup.diagonal();
     let (eps, alpha) = (eps_pct / 100.0 * d, alpha_pct / 100.0 * d);
     let (base, t_base) = preserve(soup, eps)?;
     // (a) genus-reducing at alpha, then genus-preserving at epsilon.
     let t = Instant::now();
-    let (reduced, _) = reduce_genus(&base, &GenusOptions::new(alpha)).map_err(|e| e.to_string())?;
+    let (reduced, _) =
+        reduce_genus_with(&base, &GenusOptions::new(alpha), source).map_err(|e| e.to_string())?;
     let t_reduce = t.elapsed().as_secs_f64();
     let (a, t_a) = preserve(&reduced, eps)?;
     // (b) genus-preserving alone at alpha + epsilon.
@@ -95,6 +103,11 @@ fn main() -> ExitCode {
         .and_then(|s| s.parse().ok())
         .unwrap_or(if quick { 5.0 } else { 2.0 });
     let only = arg_value(&args, "--only");
+    let source = if args.iter().any(|a| a == "--union") {
+        TessellationSource::PrismUnion
+    } else {
+        TessellationSource::SharpEdges
+    };
     println!(
         "| mesh | faces | genus | eps % | GP s | GP faces | genus | alpha % | GR s | GR faces | genus | GP(eps) s | faces (a) | genus | GP(a+e) s | faces (b) | genus | ratio b/a |"
     );
@@ -116,7 +129,7 @@ fn main() -> ExitCode {
                 if quick {
                     let plate =
                         envelope_genus::testmeshes::plate_with_square_holes(&[1, 2, 4], 2, 1.0);
-                    match row("generated plate [1,2,4]", &plate, eps_pct, 10.0) {
+                    match row("generated plate [1,2,4]", &plate, eps_pct, 10.0, source) {
                         Ok(r) => println!("{r}"),
                         Err(e) => {
                             eprintln!("generated plate: {e}");
@@ -127,7 +140,7 @@ fn main() -> ExitCode {
                 continue;
             }
         };
-        match row(name, &soup, eps_pct, alpha_pct) {
+        match row(name, &soup, eps_pct, alpha_pct, source) {
             Ok(r) => println!("{r}"),
             Err(e) => {
                 eprintln!("{name}: {e}");
