@@ -5,7 +5,7 @@
 //! inside the union's interior become interior and are removed, and the curves where the
 //! union's boundary meets the surface bound the regions to retriangulate. Building that union
 //! exactly is out of reach here, so we use a pragmatic reading that reuses the exact
-//! machinery of [`crate::reduce`] and keeps its guarantees:
+//! machinery of [`crate::reduce_genus`] and keeps its guarantees:
 //!
 //! 1. **Bridges.** A pair of faces `(f, g)` is a *bridge* when their alpha-prisms meet
 //!    ([`crate::alpha_close_pairs`], exact: L-infinity distance at most `2 alpha`), each
@@ -18,7 +18,7 @@
 //!    neighbour looked far). A face with a bridge is *swallowed*: the other side of a narrow
 //!    passage is within `2 alpha`, so the face is inside the union of the two sides' prisms.
 //! 2. **Regions.** The surface is cut along the edges between swallowed and other faces
-//!    ([`crate::tessellation::patches`]). A swallowed patch with at least two boundary loops
+//!    ([`crate::details::patches`]). A swallowed patch with at least two boundary loops
 //!    (the wall of a tunnel, the inner band of a torus) is a tessellation region; each of its
 //!    loops, run the other way (the kept side on the left), is a candidate rim. Unswallowed
 //!    disk islands inside a swallowed patch (single-loop patches smaller than the patch
@@ -27,7 +27,7 @@
 //!    triangles lie in the alpha-cubes of their corners, so the regions are also computed
 //!    with the bridges that still hold at radii `0.75 alpha` and `0.5 alpha` (exact prism
 //!    intersections at the smaller radius); all levels' rims are candidates and the
-//!    enclosure test of [`crate::reduce`] keeps a consistent set.
+//!    enclosure test of [`crate::reduce_genus`] keeps a consistent set.
 //!
 //! Every candidate then goes through exactly the same acceptance as a sharp-edge rim (exact
 //! diagonal and corner-cube tests, enclosure spread, `envelope-check` validation), so
