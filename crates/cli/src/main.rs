@@ -67,7 +67,8 @@ enum Command {
     /// Fill the holes and tunnels an L-infinity cube of side 2*alpha cannot pass (El-Sana and
     /// Varshney 1997) and write OUT atomically.
     Genus(genus::Args),
-    /// Alternate genus-preserving (eX) and genus-reducing (aX) steps; writes
+    /// Alternate genus-preserving (eX) and genus-reducing (aX; uX with the union of
+    /// alpha-prisms) steps; writes
     /// OUTDIR/stage-0.off (the input), stage-1.off, ... and summary.json.
     Pipeline(pipeline::Args),
     /// Run the main job on a built-in model (a cup: curved wall, sharp bottom crease, open
