@@ -564,14 +564,7 @@ fn select(
                 active.push(i);
             }
         }
-        let barrier: HashSet<(VertexId, VertexId)> = active
-            .iter()
-            .flat_map(|&i| cands[i].key.iter().copied())
-            .collect();
-        let kept: HashSet<FaceId> = active
-            .iter()
-            .flat_map(|&i| cands[i].keep.iter().copied())
-            .collect();
+        let (barrier, kept) = rim_sets(cands, &active);
         let mut bad = None;
         for &i in &active {
             if interior_region(soup, edges, &cands[i], &barrier, &kept).is_none() {
@@ -628,6 +621,23 @@ fn interior_region(
     Some(region)
 }
 
+/// The rim edges and the kept faces of the active candidates: the walls the interior spread
+/// may not cross, and the faces it may not enter.
+fn rim_sets(
+    cands: &[Candidate],
+    active: &[usize],
+) -> (HashSet<(VertexId, VertexId)>, HashSet<FaceId>) {
+    let barrier = active
+        .iter()
+        .flat_map(|&i| cands[i].key.iter().copied())
+        .collect();
+    let kept = active
+        .iter()
+        .flat_map(|&i| cands[i].keep.iter().copied())
+        .collect();
+    (barrier, kept)
+}
+
 /// Output faces (input ids), the indices of the added faces in it, the number of removed
 /// input faces, and the candidate of each added face.
 fn assemble(
@@ -636,14 +646,7 @@ fn assemble(
     active: &[usize],
 ) -> (TriangleSoup, Vec<usize>, usize, HashMap<usize, usize>) {
     let edges = EdgeMap::new(soup);
-    let barrier: HashSet<(VertexId, VertexId)> = active
-        .iter()
-        .flat_map(|&i| cands[i].key.iter().copied())
-        .collect();
-    let kept: HashSet<FaceId> = active
-        .iter()
-        .flat_map(|&i| cands[i].keep.iter().copied())
-        .collect();
+    let (barrier, kept) = rim_sets(cands, active);
     let mut removed: HashSet<FaceId> = HashSet::new();
     for &i in active {
         if let Some(r) = interior_region(soup, &edges, &cands[i], &barrier, &kept) {

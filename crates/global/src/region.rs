@@ -43,30 +43,27 @@ pub struct Region {
 /// vertices, in breadth-first order (seed first). Empty when `seed` is a border vertex.
 #[must_use]
 pub fn ball(mesh: &HalfEdgeMesh, seed: VertexId, rings: usize) -> Vec<VertexId> {
-    if !mesh.contains_vertex(seed) || mesh.is_isolated(seed) || mesh.is_border_vertex(seed) {
+    if mesh.contains_vertex(seed) && mesh.is_border_vertex(seed) {
         return Vec::new();
     }
-    let mut out = vec![seed];
-    let mut seen: HashSet<VertexId> = HashSet::from([seed]);
-    let mut start = 0;
-    for _ in 0..rings {
-        let end = out.len();
-        for i in start..end {
-            for w in mesh.vertex_neighbors(out[i]) {
-                if !mesh.is_border_vertex(w) && seen.insert(w) {
-                    out.push(w);
-                }
-            }
-        }
-        start = end;
-    }
-    out
+    breadth_first(mesh, seed, rings, |w| !mesh.is_border_vertex(w))
 }
 
 /// All vertices (interior and border) within `rings` edges of `seed`, in breadth-first
 /// order (seed first): the candidate sets of regions that may touch the border.
 #[must_use]
 pub fn ball_any(mesh: &HalfEdgeMesh, seed: VertexId, rings: usize) -> Vec<VertexId> {
+    breadth_first(mesh, seed, rings, |_| true)
+}
+
+/// The vertices within `rings` edges of `seed` along paths whose vertices after the seed all
+/// satisfy `through`, in breadth-first order (seed first); empty for a dead or isolated seed.
+fn breadth_first(
+    mesh: &HalfEdgeMesh,
+    seed: VertexId,
+    rings: usize,
+    through: impl Fn(VertexId) -> bool,
+) -> Vec<VertexId> {
     if !mesh.contains_vertex(seed) || mesh.is_isolated(seed) {
         return Vec::new();
     }
@@ -77,7 +74,7 @@ pub fn ball_any(mesh: &HalfEdgeMesh, seed: VertexId, rings: usize) -> Vec<Vertex
         let end = out.len();
         for i in start..end {
             for w in mesh.vertex_neighbors(out[i]) {
-                if seen.insert(w) {
+                if through(w) && seen.insert(w) {
                     out.push(w);
                 }
             }
