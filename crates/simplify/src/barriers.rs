@@ -334,3 +334,35 @@ impl SlabFilter {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn point() -> impl Strategy<Value = DVec3> {
+        (-4i32..=4, -4i32..=4, -4i32..=4)
+            .prop_map(|(x, y, z)| DVec3::new(x.into(), y.into(), z.into()))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4000))]
+        /// The prefilter may only say "apart" when the exact test says the closed triangles do
+        /// not meet: small integer grids give many touching and coplanar pairs, and the
+        /// nudge by a few ulps puts points just on either side.
+        #[test]
+        fn slab_filter_never_separates_meeting_triangles(
+            t in [point(), point(), point()],
+            q in [point(), point(), point()],
+            nudge in -3i32..=3,
+        ) {
+            let mut q = q;
+            q[0].x += f64::from(nudge) * f64::EPSILON * q[0].x.abs().max(1.0);
+            let bq = Aabb::from_triangle(q);
+            let f = SlabFilter::new(t);
+            if f.separates_points(q) || f.separates(&bq) || SlabFilter::new(q).separates_points(t) {
+                prop_assert!(!triangles_intersect(t, q), "{t:?} {q:?}");
+            }
+        }
+    }
+}
