@@ -41,13 +41,22 @@ use rayon::prelude::*;
 use rug::Rational;
 
 use crate::numeric::{
-    RPoint, add_up, approx_sq_dist, barycentric_point, rational, rpoint, sq_dist_exact, sqrt_down,
-    sqrt_up, square_down, square_up,
+    RPoint, add_up, approx_sq_dist, barycentric_point, cross, dot, rational, rpoint, sq_dist_exact,
+    sqrt_down, sqrt_up, square_down, square_up, sub,
 };
 use crate::{OneSided, Verdict, Witness};
 
 /// Subdivision depth limit (barycentric numerators stay in `u64`).
 const MAX_LEVEL: u32 = 60;
+/// Sub-triangles examined per face at most. A region at exactly epsilon along a curve (a
+/// face parallel to two coplanar triangles, `eps` above their shared edge, where no single
+/// triangle covers a sub-triangle that straddles the edge) would otherwise be subdivided
+/// down to the resolution all along the curve: millions of exact tests. What is left when
+/// the budget runs out is undecided, never proved.
+const MAX_FACE_SUBDIVISIONS: u64 = 1 << 16;
+/// From this depth on, a sub-triangle that no single triangle covers is also tried with an
+/// exact cut between two (see `Search::split_within_exactly`).
+const SPLIT_LEVEL: u32 = 16;
 
 /// Faces per sequential chunk of the parallel loop (the nearest-triangle hint is carried
 /// within a chunk).
@@ -208,8 +217,11 @@ impl Target {
         let Some((_, d2)) = self.nearest_approx(p) else {
             return f64::INFINITY;
         };
-        let mut l2 = d2 * (1.0 - 2f64.powi(-20));
-        for _ in 0..4 {
+        // Tight first (a witness just beyond epsilon needs it), then looser: the approximate
+        // nearest distance may be off by its rounding, or the nearest triangle missed.
+        let shrink = [1.0 - 2f64.powi(-50), 1.0 - 2f64.powi(-20), 0.5, 0.25, 0.125];
+        for factor in shrink {
+            let l2 = d2 * factor;
             if l2.is_nan() || l2 <= 0.0 {
                 return 0.0;
             }
@@ -225,7 +237,6 @@ impl Target {
             if ok {
                 return sqrt_down(l2);
             }
-            l2 *= 0.5;
         }
         0.0
     }
@@ -421,52 +432,119 @@ impl Search<'_> {
         f64::INFINITY
     }
 
-    /// Proves the sub-triangle within `eps`, returning a proved upper bound.
-    fn prove(&self, s: &Sub, est: &Estimate, delta: f64) -> Option<f64> {
-        let e2 = self.tol.proof_threshold(delta)?;
+    /// Proves the sub-triangle within `eps`, returning a proved upper bound. `face` is the
+    /// whole triangle the sub-triangle's barycentric corners refer to.
+    fn prove(&self, face: &[DVec3; 3], s: &Sub, est: &Estimate, delta: f64) -> Option<f64> {
         let (t, m) = est.best?;
+        // Largest double below (eps - delta)^2; 0 when eps - delta may be <= 0, so that only
+        // the exact corners below can prove anything.
+        let e2 = self.tol.proof_threshold(delta).unwrap_or(0.0);
         let c = self.tol.certification_value(m);
         if c <= e2 && self.corners_within(s, t, c) {
             return Some(add_up(sqrt_up(c), delta));
         }
-        if m > e2 * (1.0 + 2f64.powi(-20)) {
+        let near = self.tol.e2hi * (1.0 + 2f64.powi(-20));
+        // The split below is for ties (a corner at epsilon, to the estimate's precision) and
+        // for deep sub-triangles; elsewhere subdividing settles a sub-triangle sooner than
+        // exact cuts would.
+        let tie = est
+            .corner_min
+            .iter()
+            .any(|&d| d >= self.tol.e2lo * (1.0 - 2f64.powi(-20)));
+        let split = (tie || s.level >= SPLIT_LEVEL) && est.corner_min.iter().all(|&d| d <= near);
+        if m > near && !split {
             return None;
         }
-        // Close call: try the few triangles whose estimate is near the threshold exactly.
-        let mut close: Vec<(f64, u32)> = s
-            .cands
-            .iter()
-            .filter_map(|&t| {
-                let tri = &self.target.tris[t as usize];
-                let w =
-                    s.c.iter()
-                        .map(|c| approx_sq_dist(c.p, tri))
-                        .fold(0.0, f64::max);
-                (w <= e2 * (1.0 + 2f64.powi(-20))).then_some((w, t))
-            })
-            .collect();
+        // Close call: try the few triangles whose estimate is near the threshold exactly,
+        // then pairs of the triangles nearest to each corner.
+        let mut close: Vec<(f64, u32)> = Vec::new();
+        let mut nearest: Vec<(f64, u32)> = Vec::new();
+        let mut per_corner = [(f64::INFINITY, u32::MAX); 3];
+        for &t in &s.cands {
+            let tri = &self.target.tris[t as usize];
+            let d = s.c.each_ref().map(|c| approx_sq_dist(c.p, tri));
+            let w = d[0].max(d[1]).max(d[2]);
+            if w <= near {
+                close.push((w, t));
+            }
+            for j in 0..3 {
+                if d[j] < per_corner[j].0 {
+                    per_corner[j] = (d[j], t);
+                }
+            }
+        }
         close.sort_by(|a, b| a.0.total_cmp(&b.0));
-        close
+        close.truncate(4);
+        if close
             .iter()
-            .take(4)
-            .any(|&(_, t)| self.corners_within_exactly(s, t, delta, e2))
-            .then_some(self.tol.eps)
+            .any(|&(_, t)| self.corners_within_exactly(face, s, t, e2))
+        {
+            return Some(self.tol.eps);
+        }
+        for (d, t) in per_corner {
+            if t != u32::MAX && !nearest.iter().any(|&(_, u)| u == t) {
+                nearest.push((d, t));
+            }
+        }
+        (split && self.split_within_exactly(face, s, &nearest)).then_some(self.tol.eps)
     }
 
-    /// Every corner within `eps - delta` of `t`, decided exactly (`e2` is the largest double
-    /// below `(eps - delta)^2`; corners between it and the exact square go to rationals).
-    fn corners_within_exactly(&self, s: &Sub, t: u32, delta: f64, e2: f64) -> bool {
+    /// A sub-triangle that straddles the shared edge of two close triangles `t1`, `t2`
+    /// (a tie along a curve: each point within `eps` of one of them, no single one covering
+    /// all): cut it exactly by a plane through that edge and prove each piece within `eps`
+    /// of the triangle on its side, by its exact vertices (convexity again). The plane holds
+    /// the edge and the sum of the two unit normals, rounded to f64: any plane through the
+    /// edge is sound, this one makes the proof succeed where the nearest-triangle regions
+    /// meet.
+    fn split_within_exactly(&self, face: &[DVec3; 3], s: &Sub, close: &[(f64, u32)]) -> bool {
+        let corners: Vec<RPoint> =
+            s.c.iter()
+                .map(|c| {
+                    if c.delta == 0.0 {
+                        rpoint(c.p)
+                    } else {
+                        barycentric_point(face, c.bary, s.level)
+                    }
+                })
+                .collect();
+        for (i, &(_, t1)) in close.iter().enumerate() {
+            for &(_, t2) in &close[i + 1..] {
+                let (a, b) = (
+                    &self.target.tris[t1 as usize],
+                    &self.target.tris[t2 as usize],
+                );
+                let Some(plane) = bisector(a, b) else {
+                    continue;
+                };
+                let side: Vec<Rational> = corners.iter().map(|q| plane.side(q)).collect();
+                let (lo, hi) = clip_by_sign(&corners, &side);
+                let within = |piece: &[RPoint], t: &[DVec3; 3]| {
+                    piece.iter().all(|q| sq_dist_exact(q, t) <= self.tol.e2)
+                };
+                if (within(&lo, a) && within(&hi, b)) || (within(&lo, b) && within(&hi, a)) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
+    /// Every exact corner of the sub-triangle within `eps` of `t` (then all of it is, by
+    /// convexity of the distance to a triangle). A corner's f64 point within `eps - delta`
+    /// (`e2`, rounded down) settles it; otherwise the exact corner goes to rationals, so a
+    /// tie at exactly `eps` (parallel faces `eps` apart) is proved rather than subdivided.
+    fn corners_within_exactly(&self, face: &[DVec3; 3], s: &Sub, t: u32, e2: f64) -> bool {
         let tri = self.target.tris[t as usize];
-        let mut bound: Option<Rational> = None;
         s.c.iter().all(|c| {
-            if cmp_point_triangle(c.p, tri, e2) != Sign::Positive {
+            if e2 > 0.0 && cmp_point_triangle(c.p, tri, e2) != Sign::Positive {
                 return true;
             }
-            let b = bound.get_or_insert_with(|| {
-                let r = rational(self.tol.eps) - rational(delta);
-                Rational::from(&r * &r)
-            });
-            sq_dist_exact(&rpoint(c.p), &tri) <= *b
+            let exact = if c.delta == 0.0 {
+                rpoint(c.p)
+            } else {
+                barycentric_point(face, c.bary, s.level)
+            };
+            sq_dist_exact(&exact, &tri) <= self.tol.e2
         })
     }
 
@@ -548,7 +626,7 @@ impl Search<'_> {
                 best: Some((t0, m)),
                 corner_min: d,
             };
-            if let Some(u) = self.prove(&s0, &est, 0.0) {
+            if let Some(u) = self.prove(&tri, &s0, &est, 0.0) {
                 // `d` over-estimates each corner's distance: only a ranking for the lower
                 // bound, which is certified separately.
                 let j = (0..3).max_by(|&a, &b| d[a].total_cmp(&d[b])).unwrap_or(0);
@@ -585,7 +663,7 @@ impl Search<'_> {
                 out.upper = out.upper.max(self.upper_bound(&s, &est, delta));
                 continue;
             }
-            if let Some(u) = self.prove(&s, &est, delta) {
+            if let Some(u) = self.prove(&tri, &s, &est, delta) {
                 out.upper = out.upper.max(u);
                 continue;
             }
@@ -602,6 +680,7 @@ impl Search<'_> {
                 .fold(0.0, f64::max);
             if out.witness.is_some()
                 || s.level >= MAX_LEVEL
+                || out.subdivisions >= MAX_FACE_SUBDIVISIONS
                 || diam * (1.0 + 1e-9) + 2.0 * delta <= self.tol.resolution
             {
                 out.undecided |= out.witness.is_none();
@@ -761,4 +840,66 @@ pub(crate) fn one_sided(
         undecided_regions: undecided,
         subdivisions,
     }
+}
+
+/// A plane through three points, exactly: `side(q)` is the sign-carrying determinant.
+struct Plane {
+    origin: RPoint,
+    normal: RPoint,
+}
+
+impl Plane {
+    fn side(&self, q: &RPoint) -> Rational {
+        dot(&sub(q, &self.origin), &self.normal)
+    }
+}
+
+/// The plane through the shared edge of two triangles that also holds the sum of their unit
+/// normals (f64, any rounding is harmless: see `split_within_exactly`); `None` when they
+/// share no edge or the plane degenerates.
+fn bisector(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<Plane> {
+    let shared: Vec<DVec3> = a.iter().copied().filter(|p| b.contains(p)).collect();
+    let [p, q] = shared[..] else {
+        return None;
+    };
+    let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+    let (na, nb) = (normal(a), normal(b));
+    // Opposite orientations: the sum is not a bisector, the difference is.
+    let d = if na.dot(nb) >= 0.0 { na + nb } else { na - nb };
+    let r = p + d;
+    if !r.is_finite() || d == DVec3::ZERO {
+        return None;
+    }
+    let (p, q, r) = (rpoint(p), rpoint(q), rpoint(r));
+    let normal = cross(&sub(&q, &p), &sub(&r, &p));
+    if normal.iter().all(|x| *x == 0) {
+        return None;
+    }
+    Some(Plane { origin: p, normal })
+}
+
+/// Splits a convex polygon by the signs of its vertices: (side <= 0, side >= 0), the
+/// crossing points computed exactly.
+fn clip_by_sign(poly: &[RPoint], side: &[Rational]) -> (Vec<RPoint>, Vec<RPoint>) {
+    let (mut lo, mut hi) = (Vec::new(), Vec::new());
+    for i in 0..poly.len() {
+        let j = (i + 1) % poly.len();
+        let (si, sj) = (&side[i], &side[j]);
+        if *si <= 0 {
+            lo.push(poly[i].clone());
+        }
+        if *si >= 0 {
+            hi.push(poly[i].clone());
+        }
+        if (*si < 0 && *sj > 0) || (*si > 0 && *sj < 0) {
+            let t = si / Rational::from(si - sj);
+            let x: RPoint = std::array::from_fn(|k| {
+                let dk = Rational::from(&poly[j][k] - &poly[i][k]);
+                &poly[i][k] + Rational::from(&dk * &t)
+            });
+            lo.push(x.clone());
+            hi.push(x);
+        }
+    }
+    (lo, hi)
 }

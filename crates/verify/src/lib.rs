@@ -138,7 +138,9 @@ pub struct Witness {
     pub point: DVec3,
     /// Whether `point` is the exact witness.
     pub exact_f64: bool,
-    /// A proved lower bound of its distance to the other mesh (> epsilon).
+    /// A proved lower bound of its distance to the other mesh, at least epsilon. The
+    /// distance itself is proved strictly greater than epsilon; when it exceeds epsilon by
+    /// less than this bound can resolve, the bound is epsilon itself.
     pub distance: f64,
 }
 

@@ -135,7 +135,7 @@ pub(crate) fn rational(x: f64) -> Rational {
     Rational::from_f64(x).expect("finite coordinate")
 }
 
-fn sub(a: &RPoint, b: &RPoint) -> RPoint {
+pub(crate) fn sub(a: &RPoint, b: &RPoint) -> RPoint {
     [
         Rational::from(&a[0] - &b[0]),
         Rational::from(&a[1] - &b[1]),
@@ -143,11 +143,11 @@ fn sub(a: &RPoint, b: &RPoint) -> RPoint {
     ]
 }
 
-fn dot(a: &RPoint, b: &RPoint) -> Rational {
+pub(crate) fn dot(a: &RPoint, b: &RPoint) -> Rational {
     Rational::from(&a[0] * &b[0]) + Rational::from(&a[1] * &b[1]) + Rational::from(&a[2] * &b[2])
 }
 
-fn cross(a: &RPoint, b: &RPoint) -> RPoint {
+pub(crate) fn cross(a: &RPoint, b: &RPoint) -> RPoint {
     [
         Rational::from(&a[1] * &b[2]) - Rational::from(&a[2] * &b[1]),
         Rational::from(&a[2] * &b[0]) - Rational::from(&a[0] * &b[2]),

@@ -9,6 +9,7 @@
 
 use envelope_mesh::generate::icosphere;
 use envelope_mesh::{TriangleSoup, VertexId};
+use envelope_predicates::{Sign, cmp_point_triangle};
 use envelope_verify::{Options, Verdict, certify};
 use glam::DVec3;
 use proptest::prelude::*;
@@ -162,4 +163,43 @@ proptest! {
         let (approx, _) = push_split(&orig, f, u, v, k * eps);
         expect(&orig, &approx, eps, far);
     }
+}
+
+/// Found by the `verify_holds_vs_sampling` fuzz target: a witness at subdivision level 20,
+/// farther than epsilon by about 3e-7, whose lower bound used to fall back to epsilon
+/// itself because the certified lower bound only tried 2^-20 below the approximate
+/// distance.
+#[test]
+fn witness_just_beyond_epsilon_gets_a_lower_bound_above_it() {
+    let soup = |tris: &[[i8; 9]]| {
+        let mut positions = Vec::new();
+        let mut faces = Vec::new();
+        for t in tris {
+            let base = positions.len() as u32;
+            for k in 0..3 {
+                let c = [t[3 * k], t[3 * k + 1], t[3 * k + 2]].map(f64::from);
+                positions.push(DVec3::from_array(c) / 16.0);
+            }
+            faces.push([VertexId(base), VertexId(base + 1), VertexId(base + 2)]);
+        }
+        TriangleSoup::new(positions, faces)
+    };
+    let a = soup(&[[35, -1, -1, -1, -1, -1, -1, -1, 4]]);
+    let b = soup(&[
+        [4, 47, 0, 27, 0, 0, 0, 0, 49],
+        [10, -24, -24, -24, -24, 27, 0, 0, 0],
+    ]);
+    let eps = 0.75;
+    let c = certify(&a, &b, &Options::distance_only(eps));
+    let side = &c.orig_to_approx;
+    assert_eq!(side.verdict, Verdict::Violated);
+    let w = side.witness.as_ref().expect("a witness");
+    assert!(w.exact_f64);
+    for f in &b.faces {
+        let t = f.map(|v| b.positions[v.index()]);
+        // eps^2 = 0.5625 is exact in f64.
+        assert_eq!(cmp_point_triangle(w.point, t, eps * eps), Sign::Positive);
+    }
+    assert!(w.distance > eps, "{w:?}");
+    assert!(side.lower > eps && side.lower <= side.upper, "{side:?}");
 }
