@@ -20,7 +20,7 @@ enum MethodArg {
     Analytical,
     /// Iterative growth with exact checks (4.2).
     Numerical,
-    /// Analytical, and numerical too when analytical falls short; the better one.
+    /// Analytical; where it falls short of epsilon, numerical growth from it.
     Auto,
 }
 

@@ -28,8 +28,7 @@ pub(crate) enum MethodArg {
     Analytical,
     /// Iterative growth with exact checks (4.2).
     Numerical,
-    /// Analytical, and numerical too where analytical falls short of epsilon; the better one
-    /// (default).
+    /// Analytical; where it falls short of epsilon, numerical growth from it (default).
     Auto,
 }
 

@@ -48,12 +48,13 @@ use crate::{OneSided, Verdict, Witness};
 
 /// Subdivision depth limit (barycentric numerators stay in `u64`).
 const MAX_LEVEL: u32 = 60;
-/// Sub-triangles examined per face at most. A region at exactly epsilon along a curve (a
-/// face parallel to two coplanar triangles, `eps` above their shared edge, where no single
-/// triangle covers a sub-triangle that straddles the edge) would otherwise be subdivided
-/// down to the resolution all along the curve: millions of exact tests. What is left when
-/// the budget runs out is undecided, never proved.
-const MAX_FACE_SUBDIVISIONS: u64 = 1 << 16;
+/// Tiny sub-triangles (diameter below `eps * 2^-10`) examined per face at most. A region at
+/// exactly epsilon along a curve that the exact cut cannot prove (the nearest triangles
+/// share no edge) would otherwise be subdivided down to the resolution all along the curve:
+/// millions of exact tests. Larger sub-triangles are not counted: a big face over many
+/// small ones at a small epsilon legitimately needs about (face size / eps)^2 of them.
+/// What is left when the budget runs out is undecided, never proved.
+const MAX_FACE_TINY: u64 = 1 << 16;
 /// From this depth on, a sub-triangle that no single triangle covers is also tried with an
 /// exact cut between two (see `Search::split_within_exactly`).
 const SPLIT_LEVEL: u32 = 16;
@@ -646,6 +647,7 @@ impl Search<'_> {
             level: 0,
             cands,
         }];
+        let mut tiny = 0u64;
         while let Some(s) = stack.pop() {
             out.subdivisions += 1;
             let est = self.estimate(&s);
@@ -678,9 +680,12 @@ impl Search<'_> {
             let diam = (0..3)
                 .map(|j| (s.c[j].p - s.c[(j + 1) % 3].p).length())
                 .fold(0.0, f64::max);
+            if diam < self.tol.eps * 2f64.powi(-10) {
+                tiny += 1;
+            }
             if out.witness.is_some()
                 || s.level >= MAX_LEVEL
-                || out.subdivisions >= MAX_FACE_SUBDIVISIONS
+                || tiny >= MAX_FACE_TINY
                 || diam * (1.0 + 1e-9) + 2.0 * delta <= self.tol.resolution
             {
                 out.undecided |= out.witness.is_none();
