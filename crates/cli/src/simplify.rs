@@ -49,7 +49,8 @@ pub(crate) enum AlgorithmArg {
     Local,
     /// Greedy set cover by candidate triangles (5.3); border vertices are kept.
     Global,
-    /// Local, then global within bounded regions where local is stuck, then local (5.4).
+    /// Local, then global within bounded regions where local is stuck, then local around the
+    /// changes and an exhaustive-filling polish (5.4).
     Hybrid,
 }
 

@@ -5,11 +5,13 @@
 
 use crate::candidates::Fibers;
 use crate::global::{GlobalError, GlobalOptions, GlobalStats, simplify_global};
-use envelope_mesh::HalfEdgeMesh;
+use envelope_mesh::{HalfEdgeMesh, VertexId};
 use envelope_simplify::{
-    LocalStep, Progress, SimplifyError, SimplifyStep, Stats, StepInput, StepOutcome,
+    HoleFilling, LocalStep, Options as LocalOptions, Progress, SimplifyError, SimplifyStep, Stats,
+    StepInput, StepOutcome, simplify_local_from,
 };
 use serde_json::json;
+use std::collections::HashSet;
 
 /// Which simplification algorithm runs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -145,14 +147,20 @@ pub struct HybridStep {
     pub options: GlobalOptions,
     /// Which stage runs first.
     pub order: HybridOrder,
+    /// A last stage: local again over every remaining vertex, with every triangulation of
+    /// holes up to this many vertices tried ([`envelope_simplify::Exhaustive`]) where the
+    /// greedy filling of the first stages found none. Skipped when the job's own hole
+    /// filling is already exhaustive.
+    pub polish: Option<usize>,
 }
 
 impl Default for HybridStep {
-    /// Bounded global options, local first.
+    /// Bounded global options, local first, exhaustive polish of holes up to 10 vertices.
     fn default() -> Self {
         HybridStep {
             options: GlobalOptions::bounded(),
             order: HybridOrder::default(),
+            polish: Some(10),
         }
     }
 }
@@ -168,6 +176,10 @@ impl SimplifyStep for HybridStep {
             HybridOrder::LocalFirst => Some(LocalStep.run(mesh, input, progress)?.stats),
             HybridOrder::GlobalFirst => None,
         };
+        let before: HashSet<[VertexId; 3]> = mesh
+            .faces()
+            .map(|f| canonical(mesh.face_vertices(f)))
+            .collect();
         let g = run_global(mesh, input, &self.options, progress)?;
         let mut stats = match &first {
             Some(l) => {
@@ -183,11 +195,30 @@ impl SimplifyStep for HybridStep {
             None => global_stats(&g),
         };
         let second = if first.is_none() || g.removed > 0 {
-            let l = LocalStep.run(mesh, input, progress)?.stats;
+            // After local, only the vertices of the faces global placed: the rest is as
+            // local left it (as local re-queues only a hole's vertices after a removal).
+            let changed = first.is_some().then(|| changed_vertices(mesh, &before));
+            let l = LocalStep
+                .run_from(mesh, input, changed.as_deref(), progress)?
+                .stats;
             add_local(&mut stats, &l);
             Some(l)
         } else {
             None
+        };
+        let polish = match (self.polish, input.options.hole_filling) {
+            (Some(max_vertices), HoleFilling::Greedy { .. }) => {
+                let options = LocalOptions {
+                    order: input.options.order,
+                    hole_filling: HoleFilling::Exhaustive { max_vertices },
+                    target_faces: input.options.target_faces,
+                    check_each_step: false,
+                };
+                let l = simplify_local_from(mesh, input.barriers, &options, None, &mut ())?;
+                add_local(&mut stats, &l);
+                Some(l)
+            }
+            _ => None,
         };
         Ok(StepOutcome {
             stats,
@@ -197,6 +228,7 @@ impl SimplifyStep for HybridStep {
                 "local": first.as_ref().map(local_json),
                 "global": g.to_json(),
                 "local_again": second.as_ref().map(local_json),
+                "polish": polish.as_ref().map(local_json),
             }),
         })
     }
@@ -245,4 +277,23 @@ fn local_json(l: &Stats) -> serde_json::Value {
         "removed_vertices": l.removed,
         "faces_after": l.faces_after,
     })
+}
+
+/// A face's vertices from its smallest id on, orientation kept.
+fn canonical(t: [VertexId; 3]) -> [VertexId; 3] {
+    let k = (0..3).min_by_key(|&k| t[k]).unwrap_or(0);
+    [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+}
+
+/// The vertices of the faces not in `before`, each once, in face order.
+fn changed_vertices(mesh: &HalfEdgeMesh, before: &HashSet<[VertexId; 3]>) -> Vec<VertexId> {
+    let mut seen = HashSet::new();
+    let mut out = Vec::new();
+    for f in mesh.faces() {
+        let t = mesh.face_vertices(f);
+        if !before.contains(&canonical(t)) {
+            out.extend(t.into_iter().filter(|&v| seen.insert(v)));
+        }
+    }
+    out
 }

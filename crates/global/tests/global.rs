@@ -217,3 +217,48 @@ proptest! {
         }
     }
 }
+
+/// The hybrid's exhaustive polish (`HybridStep::polish`) runs over what the first stages
+/// left: it never adds faces, it is reported, and its output is certified.
+#[test]
+fn hybrid_polish_only_removes_and_is_certified() {
+    use envelope_global::HybridStep;
+    let cases: Vec<(TriangleSoup, f64)> = vec![
+        (
+            bumpy_sphere(3, &[0.03, -0.02, 0.01, -0.035, 0.025, 0.0, -0.01]),
+            0.01,
+        ),
+        (generate::torus(1.0, 0.3, 32, 12), 0.01),
+        (generate::plate_with_holes(2), 0.005),
+    ];
+    let mut removed_by_polish = 0;
+    for (soup, pct) in cases {
+        let eps = pct * soup.diagonal();
+        let options = envelope_simplify::SimplifyOptions::new(EpsilonField::Constant(eps));
+        let step = |polish| HybridStep {
+            polish,
+            ..HybridStep::default()
+        };
+        let (plain, _) = simplify_with(&soup, &options, &step(None), &mut ()).unwrap();
+        let (polished, r) = simplify_with(&soup, &options, &step(Some(10)), &mut ()).unwrap();
+        println!(
+            "{} -> {} -> {} faces",
+            soup.num_faces(),
+            plain.num_faces(),
+            polished.num_faces()
+        );
+        assert!(polished.num_faces() <= plain.num_faces());
+        let polish = &r.method_details["polish"];
+        assert!(
+            polish["attempts"].as_u64().unwrap() > 0,
+            "{:#}",
+            r.method_details
+        );
+        removed_by_polish += polish["removed_vertices"].as_u64().unwrap();
+        assert_certified(&soup, &polished, eps);
+    }
+    assert!(
+        removed_by_polish > 0,
+        "the polish removed nothing on any case"
+    );
+}

@@ -20,7 +20,7 @@
 use std::time::Instant;
 
 use envelope_check::{CheckOptions, DegeneracyClass, check};
-use envelope_mesh::{BuildError, HalfEdgeMesh, TriangleSoup, analyze};
+use envelope_mesh::{BuildError, HalfEdgeMesh, TriangleSoup, VertexId, analyze};
 use envelope_offset::{EnvelopeError, EnvelopeOptions, EpsilonField, Method, build_envelopes};
 use envelope_verify::{Certificate, Verdict};
 use glam::DVec3;
@@ -30,7 +30,7 @@ use thiserror::Error;
 use crate::policy::Rejection;
 use crate::{
     BarrierError, Barriers, HoleFilling, Order, SimplifyError, Visitor, border_walls,
-    simplify_local_visited,
+    simplify_local_from,
 };
 
 /// What [`simplify`] does.
@@ -419,7 +419,22 @@ impl SimplifyStep for LocalStep {
         input: &StepInput<'_>,
         progress: &mut dyn Progress,
     ) -> Result<StepOutcome, SimplifyError> {
-        let stats = run_local(mesh, input.barriers, input.options, progress)?;
+        self.run_from(mesh, input, None, progress)
+    }
+}
+
+impl LocalStep {
+    /// [`SimplifyStep::run`] with the queue started from `seeds` (`None`: every vertex), see
+    /// [`crate::simplify_local_from`]: for a local pass after another step changed the mesh
+    /// in a few places.
+    pub fn run_from(
+        &self,
+        mesh: &mut HalfEdgeMesh,
+        input: &StepInput<'_>,
+        seeds: Option<&[VertexId]>,
+        progress: &mut dyn Progress,
+    ) -> Result<StepOutcome, SimplifyError> {
+        let stats = run_local(mesh, input.barriers, input.options, seeds, progress)?;
         Ok(StepOutcome {
             stats,
             method: "local",
@@ -561,6 +576,7 @@ fn run_local(
     mesh: &mut HalfEdgeMesh,
     barriers: &Barriers,
     options: &SimplifyOptions,
+    seeds: Option<&[VertexId]>,
     progress: &mut dyn Progress,
 ) -> Result<crate::Stats, SimplifyError> {
     let local_options = crate::Options {
@@ -574,5 +590,5 @@ fn run_local(
         attempts: 0,
         removed: 0,
     };
-    simplify_local_visited(mesh, barriers, &local_options, &mut visitor)
+    simplify_local_from(mesh, barriers, &local_options, seeds, &mut visitor)
 }

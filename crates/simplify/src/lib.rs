@@ -37,8 +37,8 @@ pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, NoFilt
 pub use grid::FaceGrid;
 pub use local::{
     HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Policies, Removal, RemovalQueue,
-    SimplifyError, Stats, queue_vertices, simplify_local, simplify_local_visited,
-    simplify_local_with,
+    SimplifyError, Stats, queue_vertices, simplify_local, simplify_local_from,
+    simplify_local_visited, simplify_local_with,
 };
 pub use lod::{Level, LodOptions, LodRule, Screen, lod_chain};
 pub use policy::{

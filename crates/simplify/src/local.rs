@@ -180,6 +180,20 @@ pub fn simplify_local_visited(
     options: &Options,
     visitor: &mut dyn Visitor,
 ) -> Result<Stats, SimplifyError> {
+    simplify_local_from(mesh, barriers, options, None, visitor)
+}
+
+/// [`simplify_local_visited`] with the queue started from `seeds` (in their order; `None`:
+/// every vertex, in id order) instead of every vertex: after another step changed the mesh
+/// in a few places, the vertices around the changes, as the local algorithm re-queues the
+/// hole's vertices after a removal. Seeds that are no longer in the mesh are skipped.
+pub fn simplify_local_from(
+    mesh: &mut HalfEdgeMesh,
+    barriers: &Barriers,
+    options: &Options,
+    seeds: Option<&[VertexId]>,
+    visitor: &mut dyn Visitor,
+) -> Result<Stats, SimplifyError> {
     let filter = EnvelopeFilter::new(barriers);
     let order: &dyn QueueOrder = match options.order {
         Order::Fifo => &Fifo,
@@ -212,13 +226,22 @@ pub fn simplify_local_visited(
         keep_border: !barriers.has_tubes(),
         check_each_step: options.check_each_step,
     };
-    simplify_local_with(mesh, &policies, visitor)
+    run(mesh, &policies, seeds, visitor)
 }
 
 /// [`simplify_local`] with any policies and a visitor.
 pub fn simplify_local_with(
     mesh: &mut HalfEdgeMesh,
     policies: &Policies<'_>,
+    visitor: &mut dyn Visitor,
+) -> Result<Stats, SimplifyError> {
+    run(mesh, policies, None, visitor)
+}
+
+fn run(
+    mesh: &mut HalfEdgeMesh,
+    policies: &Policies<'_>,
+    seeds: Option<&[VertexId]>,
     visitor: &mut dyn Visitor,
 ) -> Result<Stats, SimplifyError> {
     if let Some(v) = mesh.vertices().find(|&v| !mesh.is_manifold_vertex(v)) {
@@ -229,7 +252,16 @@ pub fn simplify_local_with(
         faces_before: mesh.num_faces(),
         ..Stats::default()
     };
-    let mut queue = queue_vertices(mesh, policies.order);
+    let mut queue = match seeds {
+        None => queue_vertices(mesh, policies.order),
+        Some(seeds) => {
+            let mut q = RemovalQueue::default();
+            for &v in seeds.iter().filter(|&&v| mesh.contains_vertex(v)) {
+                q.push(mesh, policies.order, v);
+            }
+            q
+        }
+    };
     let mut local = LocalSimplifier::new(mesh, policies.keep_border);
     let batched = policies.order.is_fifo() && !policies.check_each_step;
     'run: loop {

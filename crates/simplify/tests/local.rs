@@ -573,3 +573,39 @@ fn batched_runs_do_not_depend_on_the_thread_count() {
     );
     assert_guarantees(&s, &mesh(&three), &barriers);
 }
+
+/// `simplify_local_from`: no seeds, no attempt; every vertex in id order, the same run as
+/// `simplify_local`; a few seeds, only those and the vertices re-queued around removals.
+#[test]
+fn a_seeded_queue_starts_from_its_seeds() {
+    let soup = generate::icosphere(2, 1.0);
+    let barriers = Barriers::none();
+    let options = Options::default();
+    let mut none = mesh(&soup);
+    let s =
+        envelope_simplify::simplify_local_from(&mut none, &barriers, &options, Some(&[]), &mut ())
+            .unwrap();
+    assert_eq!((s.attempts, none.num_faces()), (0, soup.num_faces()));
+    let all: Vec<VertexId> = mesh(&soup).vertices().collect();
+    let (mut a, mut b) = (mesh(&soup), mesh(&soup));
+    let sa =
+        envelope_simplify::simplify_local_from(&mut a, &barriers, &options, Some(&all), &mut ())
+            .unwrap();
+    let sb = simplify_local(&mut b, &barriers, &options).unwrap();
+    assert_eq!(sa, sb);
+    assert_eq!(a.to_soup(), b.to_soup());
+    // One seed without barriers: it goes, and the re-queued ring lets the removals spread,
+    // but never to more attempts than a full run.
+    let mut one = mesh(&soup);
+    let s1 = envelope_simplify::simplify_local_from(
+        &mut one,
+        &barriers,
+        &options,
+        Some(&[VertexId(0)]),
+        &mut (),
+    )
+    .unwrap();
+    assert!(!one.contains_vertex(VertexId(0)));
+    assert!(s1.attempts >= 1 && s1.attempts <= sb.attempts + soup.num_vertices());
+    one.sanity_check().unwrap();
+}
