@@ -71,6 +71,8 @@ struct Args {
     meshes: Vec<String>,
     /// With `--meshes all`: only meshes with at most this many faces.
     max_faces: Option<usize>,
+    /// With `--meshes all`: only meshes whose name sorts at or after this one (resuming).
+    from: Option<String>,
     /// (label, fraction of the bounding-box diagonal)
     epsilons: Vec<(String, f64)>,
     tools: Vec<Tool>,
@@ -105,7 +107,7 @@ fn main() -> ExitCode {
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--epsilons 1/64%,...,1%] \
+        "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--epsilons 1/64%,...,1%] \
          [--tools envelope,cgal,openmesh,meshopt] [--timeout S] [--json PATH] [--keep DIR] \
          [--envelope PATH]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
@@ -135,6 +137,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
         keep: None,
         envelope: None,
         max_faces: None,
+        from: None,
     };
     let mut it = argv.iter();
     let list = |v: Option<&String>| -> Option<Vec<String>> {
@@ -170,6 +173,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
             "--keep" => a.keep = Some(PathBuf::from(it.next()?)),
             "--envelope" => a.envelope = Some(PathBuf::from(it.next()?)),
             "--max-faces" => a.max_faces = Some(it.next()?.parse().ok()?),
+            "--from" => a.from = Some(it.next()?.clone()),
             _ => return None,
         }
     }
@@ -550,7 +554,9 @@ fn run(args: &Args) -> Result<(), String> {
     let mut rows = Vec::new();
     let started = Instant::now();
     let meshes = if args.meshes == ["all"] {
-        every_acceptable_mesh(&corpus, args.max_faces)
+        let mut all = every_acceptable_mesh(&corpus, args.max_faces);
+        all.retain(|m| args.from.as_ref().is_none_or(|f| m >= f));
+        all
     } else {
         args.meshes.clone()
     };
