@@ -324,6 +324,9 @@ struct Sub {
     c: [Corner; 3],
     level: u32,
     cands: Vec<u32>,
+    /// `d[j][i]`: approximate squared distance of corner `j` to `cands[i]` (infinite for
+    /// NaN). Computed once per point: a midpoint is a corner of three children.
+    d: [Vec<f64>; 3],
 }
 
 /// The rounded midpoint of two corners, with its error bound.
@@ -376,15 +379,24 @@ struct Estimate {
 }
 
 impl Search<'_> {
+    /// Approximate squared distances of `p` to each of `cands` (NaN as infinity).
+    fn distances(&self, p: DVec3, cands: &[u32]) -> Vec<f64> {
+        cands
+            .iter()
+            .map(|&t| {
+                let d = approx_sq_dist(p, &self.target.tris[t as usize]);
+                if d.is_nan() { f64::INFINITY } else { d }
+            })
+            .collect()
+    }
+
     fn estimate(&self, s: &Sub) -> Estimate {
         let mut best: Option<(u32, f64)> = None;
         let mut corner_min = [f64::INFINITY; 3];
-        for &t in &s.cands {
-            let tri = &self.target.tris[t as usize];
+        for (i, &t) in s.cands.iter().enumerate() {
             let mut worst = 0.0f64;
             for j in 0..3 {
-                let d = approx_sq_dist(s.c[j].p, tri);
-                let d = if d.is_nan() { f64::INFINITY } else { d };
+                let d = s.d[j][i];
                 corner_min[j] = corner_min[j].min(d);
                 worst = worst.max(d);
             }
@@ -461,9 +473,8 @@ impl Search<'_> {
         let mut close: Vec<(f64, u32)> = Vec::new();
         let mut nearest: Vec<(f64, u32)> = Vec::new();
         let mut per_corner = [(f64::INFINITY, u32::MAX); 3];
-        for &t in &s.cands {
-            let tri = &self.target.tris[t as usize];
-            let d = s.c.each_ref().map(|c| approx_sq_dist(c.p, tri));
+        for (i, &t) in s.cands.iter().enumerate() {
+            let d = [s.d[0][i], s.d[1][i], s.d[2][i]];
             let w = d[0].max(d[1]).max(d[2]);
             if w <= near {
                 close.push((w, t));
@@ -620,6 +631,7 @@ impl Search<'_> {
                 c: [corner(0), corner(1), corner(2)],
                 level: 0,
                 cands: Vec::new(),
+                d: [Vec::new(), Vec::new(), Vec::new()],
             };
             let d = tri.map(|p| approx_sq_dist(p, &self.target.tris[t0 as usize]));
             let m = d[0].max(d[1]).max(d[2]);
@@ -642,10 +654,12 @@ impl Search<'_> {
         self.target
             .bvh
             .for_each_overlapping(&query, |t| cands.push(t));
+        let d = tri.map(|p| self.distances(p, &cands));
         let mut stack = vec![Sub {
             c: [corner(0), corner(1), corner(2)],
             level: 0,
             cands,
+            d,
         }];
         let mut tiny = 0u64;
         while let Some(s) = stack.pop() {
@@ -701,23 +715,33 @@ impl Search<'_> {
         let [a, b, c] = s.c;
         // Midpoints sum the numerators over 2^(L+1); the old corners double theirs.
         let (ab, bc, ca) = (midpoint(&a, &b), midpoint(&b, &c), midpoint(&c, &a));
+        let [da, db, dc] = s.d;
+        let (dab, dbc, dca) = (
+            self.distances(ab.p, &s.cands),
+            self.distances(bc.p, &s.cands),
+            self.distances(ca.p, &s.cands),
+        );
         let double = |x: Corner| Corner {
             bary: x.bary.map(|v| v * 2),
             ..x
         };
         let (a2, b2, c2) = (double(a), double(b), double(c));
-        for corners in [[a2, ab, ca], [ab, b2, bc], [ca, bc, c2], [bc, ca, ab]] {
+        let children = [
+            ([a2, ab, ca], [&da, &dab, &dca]),
+            ([ab, b2, bc], [&dab, &db, &dbc]),
+            ([ca, bc, c2], [&dca, &dbc, &dc]),
+            ([bc, ca, ab], [&dbc, &dca, &dab]),
+        ];
+        for (corners, dists) in children {
             let query = Aabb::from_triangle(corners.map(|c| c.p)).inflated(self.tol.eps);
-            let cands = s
-                .cands
-                .iter()
-                .copied()
-                .filter(|&t| self.target.boxes[t as usize].overlaps(&query))
+            let keep: Vec<usize> = (0..s.cands.len())
+                .filter(|&i| self.target.boxes[s.cands[i] as usize].overlaps(&query))
                 .collect();
             stack.push(Sub {
                 c: corners,
                 level: s.level + 1,
-                cands,
+                cands: keep.iter().map(|&i| s.cands[i]).collect(),
+                d: dists.map(|v| keep.iter().map(|&i| v[i]).collect()),
             });
         }
     }
