@@ -6,7 +6,14 @@ use envelope_mesh::{CoordError, TriangleSoup, check_coordinate};
 use envelope_predicates::bvh::{Aabb, Bvh, NodeKind};
 use envelope_predicates::{SegmentTriangle, segment_triangle, triangles_intersect};
 use glam::DVec3;
+use std::cell::Cell;
 use thiserror::Error;
+
+thread_local! {
+    /// See [`Barriers::blocks`]: an index into whichever `Barriers` this thread queried
+    /// last (checked against the length; a stale or foreign index only costs one test).
+    static LAST_BLOCKER: Cell<usize> = const { Cell::new(usize::MAX) };
+}
 
 /// What a barrier triangle constrains.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -168,6 +175,13 @@ impl Barriers {
         };
         let query = Aabb::from_triangle(t);
         let plane = SlabFilter::new(t);
+        // The item that blocked this thread's previous query first: the candidates of one
+        // hole are tested in a row and are mostly blocked by the same envelope triangle. Only
+        // the order of the tests changes, not the answer.
+        let last = LAST_BLOCKER.get();
+        if last < self.triangles.len() && self.item_blocks(last, &query, &plane, t, border_edges) {
+            return true;
+        }
         // Depth-first with a fixed stack: the tree's depth is at most 64 (median splits).
         let mut stack = [root; 64];
         let mut len = 1;
@@ -194,10 +208,11 @@ impl Barriers {
                     }
                 }
                 NodeKind::Leaf(items) => {
-                    if items
-                        .iter()
-                        .any(|&i| self.item_blocks(i as usize, &query, &plane, t, border_edges))
-                    {
+                    if let Some(&i) = items.iter().find(|&&i| {
+                        i as usize != last
+                            && self.item_blocks(i as usize, &query, &plane, t, border_edges)
+                    }) {
+                        LAST_BLOCKER.set(i as usize);
                         return true;
                     }
                 }
@@ -362,6 +377,28 @@ mod tests {
             let f = SlabFilter::new(t);
             if f.separates_points(q) || f.separates(&bq) || SlabFilter::new(q).separates_points(t) {
                 prop_assert!(!triangles_intersect(t, q), "{t:?} {q:?}");
+            }
+        }
+
+        /// `blocks` answers what the brute force over every barrier triangle answers, whatever
+        /// the previous query left as the thread's first item to test (`LAST_BLOCKER`).
+        #[test]
+        fn blocks_is_the_brute_force_answer_whatever_the_hint(
+            barrier in prop::collection::vec([point(), point(), point()], 1..12),
+            queries in prop::collection::vec([point(), point(), point()], 1..8),
+            hint in 0usize..16,
+        ) {
+            let soup = TriangleSoup::new(
+                barrier.iter().flatten().copied().collect(),
+                (0..barrier.len() as u32)
+                    .map(|k| [3 * k, 3 * k + 1, 3 * k + 2].map(envelope_mesh::VertexId))
+                    .collect(),
+            );
+            let b = Barriers::new(vec![soup], Vec::new()).unwrap();
+            LAST_BLOCKER.set(hint);
+            for q in queries {
+                let brute = barrier.iter().any(|&t| triangles_intersect(q, t));
+                prop_assert_eq!(b.blocks(q, [false; 3]), brute, "{:?}", q);
             }
         }
     }
