@@ -107,7 +107,8 @@ pub(crate) struct Args {
     /// Envelope method.
     #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
     envelope: MethodArg,
-    /// Hole filling.
+    /// Hole filling of the local algorithm and of the hybrid's local stages (the global
+    /// method fills the sub-holes around its placed candidates greedily).
     #[arg(long, value_enum, default_value_t = FillArg::Greedy)]
     hole_filling: FillArg,
     /// Simplification algorithm (the report's `method` and `method_details` say what ran and

@@ -60,6 +60,9 @@ pub struct GlobalOptions {
     /// against the border tubes). [`simplify_global`] uses it only when the barriers have
     /// tubes, as the local algorithm does.
     pub border: bool,
+    /// Stop once at most this many faces remain (checked before every candidate; the
+    /// driver sets it from `SimplifyOptions::target_faces`).
+    pub target_faces: Option<usize>,
 }
 
 impl Default for GlobalOptions {
@@ -73,6 +76,7 @@ impl Default for GlobalOptions {
             max_passes: 32,
             check_each_step: false,
             border: true,
+            target_faces: None,
         }
     }
 }
@@ -90,6 +94,7 @@ impl GlobalOptions {
             max_passes: 4,
             check_each_step: false,
             border: true,
+            target_faces: None,
         }
     }
 }
@@ -221,8 +226,9 @@ pub fn simplify_global_with(
         border: options.border,
     };
     let mut seeds: Vec<VertexId> = g.mesh.vertices().collect();
-    for _ in 0..options.max_passes {
-        if seeds.is_empty() {
+    let reached = |mesh: &HalfEdgeMesh| options.target_faces.is_some_and(|t| mesh.num_faces() <= t);
+    'passes: for _ in 0..options.max_passes {
+        if seeds.is_empty() || reached(g.mesh) {
             break;
         }
         stats.passes += 1;
@@ -230,6 +236,9 @@ pub fn simplify_global_with(
         let mut candidates = g.rank(fibers, &seeds, &reach, &mut stats.generated);
         let before = stats.accepted;
         for c in candidates.drain(..) {
+            if reached(g.mesh) {
+                break 'passes;
+            }
             if g.overlaps_accepted(&c, start) {
                 stats.overlapping += 1;
                 continue;

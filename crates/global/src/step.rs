@@ -244,7 +244,11 @@ fn run_global(
         inner: input.inner,
         outer: input.outer,
     };
-    simplify_global(mesh, input.barriers, &fibers, options, progress).map_err(to_simplify_error)
+    let options = GlobalOptions {
+        target_faces: input.options.target_faces,
+        ..*options
+    };
+    simplify_global(mesh, input.barriers, &fibers, &options, progress).map_err(to_simplify_error)
 }
 
 fn global_stats(g: &GlobalStats) -> Stats {

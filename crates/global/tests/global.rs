@@ -262,3 +262,30 @@ fn hybrid_polish_only_removes_and_is_certified() {
         "the polish removed nothing on any case"
     );
 }
+
+/// `SimplifyOptions::target_faces` stops the global method (and every stage of the hybrid)
+/// once the face count is at or below it: not far below (each accepted candidate removes a
+/// bounded region), and above what it reaches unbounded.
+#[test]
+fn global_and_hybrid_stop_at_the_target_face_count() {
+    let soup = generate::icosphere(3, 1.0);
+    let eps = 0.02 * soup.diagonal();
+    for method in [Method::Global, Method::Hybrid] {
+        let (free, _) = run(&soup, eps, method);
+        let target = (soup.num_faces() + free.num_faces()) / 2;
+        let mut options = envelope_simplify::SimplifyOptions::new(EpsilonField::Constant(eps));
+        options.target_faces = Some(target);
+        let (out, _) = simplify_with(&soup, &options, method.step().as_ref(), &mut ()).unwrap();
+        println!(
+            "{}: {} -> {} unbounded, {} with target {target}",
+            method.as_str(),
+            soup.num_faces(),
+            free.num_faces(),
+            out.num_faces()
+        );
+        assert!(out.num_faces() <= target, "{}", method.as_str());
+        // A region of at most 2-3 rings removes at most a few dozen faces at once.
+        assert!(out.num_faces() + 64 > target, "{}", method.as_str());
+        assert_certified(&soup, &out, eps);
+    }
+}
