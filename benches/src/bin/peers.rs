@@ -562,7 +562,17 @@ fn run(args: &Args) -> Result<(), String> {
     };
     for mesh in &meshes {
         let input = corpus.join(format!("{mesh}.off"));
-        let (orig, _) = read_path(&input).map_err(|e| format!("{}: {e}", input.display()))?;
+        let (orig, report) = read_path(&input).map_err(|e| format!("{}: {e}", input.display()))?;
+        // CGAL's Hausdorff distance wants triangles: polygon input goes to the oracle as the
+        // fan triangulation every tool reads.
+        let measured_input = if report.polygons_triangulated > 0 {
+            let tri = dir.join(format!("{mesh}-triangulated.off"));
+            envelope_io::write_path(&tri, &orig, envelope_io::Format::Off)
+                .map_err(|e| format!("{}: {e}", tri.display()))?;
+            tri
+        } else {
+            input.clone()
+        };
         let diag = orig.diagonal();
         for (label, frac) in &args.epsilons {
             let eps = frac * diag;
@@ -583,7 +593,7 @@ fn run(args: &Args) -> Result<(), String> {
                 );
                 let mut r = run_tool(tool, &progs, &input, &out, eps, args.timeout, &dir, &tag);
                 if r.status == Status::Ok {
-                    measure(&mut r, &oracle, &input, &orig, &out, eps);
+                    measure(&mut r, &oracle, &measured_input, &orig, &out, eps);
                 }
                 eprintln!(" {}", summary(&r));
                 row.runs.push((tool, r));
