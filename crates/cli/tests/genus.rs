@@ -1,5 +1,6 @@
 //! End-to-end tests of `envelope genus` and `envelope pipeline`.
 
+use std::path::Path;
 use std::process::Command;
 
 use envelope_io::{Format, read_path, write_path};
@@ -7,6 +8,30 @@ use envelope_mesh::{analyze, generate};
 
 fn envelope() -> Command {
     Command::new(env!("CARGO_BIN_EXE_envelope"))
+}
+
+/// Runs `envelope pipeline INPUT OUT_DIR --steps STEPS`, asserts exit 0, and returns the
+/// summary's stages.
+fn pipeline(input: &Path, out_dir: &Path, steps: &str) -> Vec<serde_json::Value> {
+    let out = envelope()
+        .args([
+            "pipeline",
+            input.to_str().unwrap(),
+            out_dir.to_str().unwrap(),
+        ])
+        .args(["--steps", steps])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+            .unwrap();
+    s["stages"].as_array().unwrap().clone()
 }
 
 #[test]
@@ -122,25 +147,7 @@ fn pipeline_writes_every_stage_and_summary() {
     let input = dir.path().join("plate.off");
     write_path(&input, &generate::plate_with_holes(2), Format::Off).unwrap();
     let out_dir = dir.path().join("stages");
-    let out = envelope()
-        .args([
-            "pipeline",
-            input.to_str().unwrap(),
-            out_dir.to_str().unwrap(),
-        ])
-        .args(["--steps", "e1%,a10%,e2%"])
-        .output()
-        .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let s: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
-            .unwrap();
-    let stages = s["stages"].as_array().unwrap();
+    let stages = pipeline(&input, &out_dir, "e1%,a10%,e2%");
     assert_eq!(stages.len(), 4);
     for (k, st) in stages.iter().enumerate() {
         let (soup, _) = read_path(out_dir.join(format!("stage-{k}.off"))).unwrap();
@@ -204,25 +211,7 @@ fn genus_union_fills_the_smooth_torus_hole() {
 
     // The same as a pipeline step: `u` fills, `a` does not.
     let out_dir = dir.path().join("stages");
-    let out = envelope()
-        .args([
-            "pipeline",
-            input.to_str().unwrap(),
-            out_dir.to_str().unwrap(),
-        ])
-        .args(["--steps", "a0.5,u0.5"])
-        .output()
-        .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let s: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
-            .unwrap();
-    let stages = s["stages"].as_array().unwrap();
+    let stages = pipeline(&input, &out_dir, "a0.5,u0.5");
     assert_eq!(stages[1]["genus"], 1);
     assert_eq!(stages[2]["genus"], 0);
 }
