@@ -387,10 +387,32 @@ impl Greedy {
     }
 }
 
+/// Whether some *ear* of the hole (a triangle on three consecutive hole vertices, the
+/// closing edge of an open hole included) passes the context's test with nothing placed.
+///
+/// A necessary condition for any filling: every triangulation of a polygon has an ear (two
+/// when it has four vertices or more), and by the [`Filter`] contract a triangle rejected
+/// with nothing placed is rejected with more placed. So when it fails, every filler fails
+/// too, and asking it first changes no outcome, only the work: `n` tests instead of the
+/// `n (n - 1) (n - 2) / 6` a failing greedy pass makes (at small epsilon most attempts fail).
+/// Rejections are cached in the context; the test stops at the first accepted ear.
+pub(crate) fn some_ear_accepted(ctx: &mut FillContext<'_>) -> bool {
+    let n = ctx.hole().len();
+    if n < 3 {
+        return false;
+    }
+    let ears = if n == 3 { 1 } else { n };
+    (0..ears).any(|i| {
+        let mut t = [i, (i + 1) % n, (i + 2) % n];
+        t.sort_unstable();
+        ctx.accepts(t)
+    })
+}
+
 impl HoleFiller for Greedy {
     fn fill(&self, ctx: &mut FillContext<'_>) -> bool {
         let n = ctx.hole().len();
-        if n < 3 {
+        if n < 3 || !some_ear_accepted(ctx) {
             return false;
         }
         let ranked = ranked_triangles(ctx);
@@ -457,7 +479,7 @@ impl HoleFiller for Exhaustive {
         if n > self.max_vertices {
             return Greedy::default().fill(ctx);
         }
-        if n < 3 {
+        if n < 3 || !some_ear_accepted(ctx) {
             return false;
         }
         let mut alone: HashMap<[usize; 3], bool> = HashMap::new();
@@ -495,5 +517,78 @@ impl HoleFiller for Exhaustive {
             ctx.place(t);
         }
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use envelope_mesh::TriangleSoup;
+    use glam::DVec3;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// A flat hexagon (no faces needed: the filters below never look at the mesh).
+    fn hexagon() -> (HalfEdgeMesh, Hole) {
+        let ring: Vec<DVec3> = (0..6)
+            .map(|k| {
+                let a = f64::from(k) * std::f64::consts::FRAC_PI_3;
+                DVec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .chain([DVec3::ZERO])
+            .collect();
+        let faces = (0..6u32)
+            .map(|k| [6, k, (k + 1) % 6].map(VertexId))
+            .collect();
+        let m = HalfEdgeMesh::from_soup(&TriangleSoup::new(ring, faces)).unwrap();
+        let hole = Hole {
+            vertices: (0..6).map(VertexId).collect(),
+            open: false,
+        };
+        (m, hole)
+    }
+
+    fn is_ear(t: [VertexId; 3]) -> bool {
+        let mut k = t.map(|v| v.0);
+        k.sort_unstable();
+        matches!(
+            k,
+            [0, 1, 2] | [1, 2, 3] | [2, 3, 4] | [3, 4, 5] | [0, 4, 5] | [0, 1, 5]
+        )
+    }
+
+    /// A filter that rejects every ear leaves no triangulation: both fillers fail after
+    /// asking for the six ears only, where a greedy pass would try all twenty triangles.
+    #[test]
+    fn no_ear_no_filling_after_six_tests() {
+        let (m, hole) = hexagon();
+        let grid = FaceGrid::from_mesh(&m);
+        let calls = AtomicUsize::new(0);
+        let no_ears = |p: &CandidateProfile<'_>| {
+            calls.fetch_add(1, Ordering::Relaxed);
+            !is_ear(p.triangle)
+        };
+        let fillers: [&dyn HoleFiller; 2] = [&Greedy::default(), &Exhaustive::default()];
+        for filler in fillers {
+            calls.store(0, Ordering::Relaxed);
+            let mut ctx = FillContext::new(&m, &grid, &no_ears, &hole);
+            assert!(!filler.fill(&mut ctx));
+            assert_eq!(calls.load(Ordering::Relaxed), 6);
+        }
+        // One ear allowed: still none (a hexagon's triangulations have two ears). Two
+        // opposite ears: exhaustive finds the triangulation that uses them.
+        let allowing = |ears: &'static [[u32; 3]]| {
+            move |p: &CandidateProfile<'_>| {
+                let mut k = p.triangle.map(|v| v.0);
+                k.sort_unstable();
+                !is_ear(p.triangle) || ears.contains(&k)
+            }
+        };
+        let one = allowing(&[[2, 3, 4]]);
+        let mut ctx = FillContext::new(&m, &grid, &one, &hole);
+        assert!(!Exhaustive::default().fill(&mut ctx));
+        let two = allowing(&[[0, 1, 2], [3, 4, 5]]);
+        let mut ctx = FillContext::new(&m, &grid, &two, &hole);
+        assert!(Exhaustive::default().fill(&mut ctx));
+        assert_eq!(ctx.placed().len(), 4);
     }
 }
