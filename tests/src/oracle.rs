@@ -63,6 +63,9 @@ pub enum OracleError {
     },
     /// The answer did not follow the protocol.
     Protocol(String),
+    /// The oracle process ran into a limit of [`Oracle::with_limits`] (CPU time or address
+    /// space) and was stopped; the message says which.
+    Limit(String),
 }
 
 impl fmt::Display for OracleError {
@@ -71,6 +74,7 @@ impl fmt::Display for OracleError {
             OracleError::Io(e) => write!(f, "oracle i/o error: {e}"),
             OracleError::Remote { cmd, message } => write!(f, "oracle `{cmd}` failed: {message}"),
             OracleError::Protocol(m) => write!(f, "oracle protocol error: {m}"),
+            OracleError::Limit(m) => write!(f, "oracle stopped: {m}"),
         }
     }
 }
@@ -185,10 +189,21 @@ pub struct OracleTopology {
     pub soup_counts: Option<(u64, u64)>,
 }
 
+/// Resource limits for each oracle process ([`Oracle::with_limits`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Limits {
+    /// CPU seconds per process (`RLIMIT_CPU`: the kernel stops it with `SIGXCPU`, then
+    /// `SIGKILL`). Also bounds an orphan: if the caller is killed, its oracle child still ends.
+    pub cpu_seconds: Option<u64>,
+    /// Address space per process in bytes (`RLIMIT_AS`: allocations beyond it fail).
+    pub address_space_bytes: Option<u64>,
+}
+
 /// Handle on the oracle binary.
 #[derive(Debug, Clone)]
 pub struct Oracle {
     bin: PathBuf,
+    limits: Limits,
 }
 
 static LOCATED: OnceLock<Result<Oracle, OracleMissing>> = OnceLock::new();
@@ -205,7 +220,10 @@ impl Oracle {
         if let Some(p) = std::env::var_os("ENVELOPE_ORACLE") {
             let bin = PathBuf::from(p);
             return if bin.is_file() {
-                Ok(Oracle { bin })
+                Ok(Oracle {
+                    bin,
+                    limits: Limits::default(),
+                })
             } else {
                 Err(OracleMissing {
                     reason: format!("ENVELOPE_ORACLE={} is not a file", bin.display()),
@@ -230,7 +248,10 @@ impl Oracle {
                 ),
             });
         }
-        Ok(Oracle { bin })
+        Ok(Oracle {
+            bin,
+            limits: Limits::default(),
+        })
     }
 
     /// Path of the binary.
@@ -238,10 +259,65 @@ impl Oracle {
         &self.bin
     }
 
+    /// The same oracle, every process of which runs under `limits` (set by `bash`'s
+    /// `ulimit` before it execs the oracle). A call that hits a limit fails with
+    /// [`OracleError::Limit`]; the next call starts a fresh process. For long measurements
+    /// (CGAL's bounded-error Hausdorff distance can take minutes and gigabytes).
+    #[must_use]
+    pub fn with_limits(&self, limits: Limits) -> Oracle {
+        Oracle {
+            bin: self.bin.clone(),
+            limits,
+        }
+    }
+
+    /// The command that starts one `serve` process under the limits.
+    fn serve_command(&self) -> Command {
+        let Limits {
+            cpu_seconds,
+            address_space_bytes,
+        } = self.limits;
+        if cpu_seconds.is_none() && address_space_bytes.is_none() {
+            let mut c = Command::new(&self.bin);
+            c.arg("serve");
+            return c;
+        }
+        let mut script = String::new();
+        if let Some(t) = cpu_seconds {
+            script.push_str(&format!("ulimit -t {} && ", t.max(1)));
+        }
+        if let Some(b) = address_space_bytes {
+            script.push_str(&format!("ulimit -v {} && ", (b / 1024).max(1)));
+        }
+        script.push_str("exec \"$0\" serve");
+        let mut c = Command::new("bash");
+        c.arg("-c").arg(script).arg(&self.bin);
+        c
+    }
+
+    /// Why a process that failed stopped, when it was one of the limits.
+    fn limit_hit(&self, status: std::process::ExitStatus, stderr: &str) -> Option<String> {
+        use std::os::unix::process::ExitStatusExt;
+        let Limits {
+            cpu_seconds,
+            address_space_bytes,
+        } = self.limits;
+        // SIGXCPU (24) at the soft limit; SIGKILL (9) if it ignored that until the hard one.
+        if let Some(t) = cpu_seconds
+            && matches!(status.signal(), Some(24 | 9))
+        {
+            return Some(format!("CPU-time limit of {t} s"));
+        }
+        let out_of_memory = stderr.contains("bad_alloc") || stderr.contains("memory");
+        address_space_bytes
+            .filter(|_| out_of_memory || status.signal() == Some(6))
+            .map(|b| format!("address-space limit of {} MiB", b >> 20))
+    }
+
     /// Sends a raw request text (one or more requests) and parses every response.
     pub fn raw(&self, request: &str) -> Result<Vec<Response>, OracleError> {
-        let mut child = Command::new(&self.bin)
-            .arg("serve")
+        let mut child = self
+            .serve_command()
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
@@ -269,6 +345,9 @@ impl Oracle {
         let status = child.wait()?;
         let wrote = writer.join().expect("oracle writer thread panicked");
         if !status.success() {
+            if let Some(limit) = self.limit_hit(status, &stderr) {
+                return Err(OracleError::Limit(limit));
+            }
             return Err(OracleError::Protocol(format!(
                 "oracle exited with {status}; stderr: {}",
                 stderr.trim_end()

@@ -417,3 +417,37 @@ fn soup_self_intersections_match_pmp_on_corpus() {
         assert!(compared >= 20, "only {compared} corpus meshes compared");
     }
 }
+
+/// Limits stop a long Hausdorff request instead of letting it run (the corpus sweep had one
+/// at 16 minutes and 9.7 GB): one CPU second against a fine torus pair at a tiny error bound
+/// ends with `OracleError::Limit`, and the same limited oracle still answers a cheap request.
+#[test]
+fn limits_stop_a_long_request() {
+    use envelope_tests::oracle::{Limits, OracleError};
+    let Some(o) = oracle() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let named = |n: usize, m: usize, name: &str| {
+        let q = dir.path().join(name);
+        std::fs::rename(torus(dir.path(), n, m), &q).unwrap();
+        q
+    };
+    let fine = named(400, 200, "fine.off");
+    let coarse = named(60, 30, "coarse.off");
+    let limited = o.with_limits(Limits {
+        cpu_seconds: Some(1),
+        address_space_bytes: None,
+    });
+    match limited.try_hausdorff(&fine, &coarse, 1e-9) {
+        Err(OracleError::Limit(m)) => assert!(m.contains("CPU"), "{m}"),
+        other => panic!("expected the CPU limit to stop it, got {other:?}"),
+    }
+    assert_eq!(
+        limited.version().get("protocol").map(String::as_str),
+        Some("1")
+    );
+    let small = o.with_limits(Limits {
+        cpu_seconds: None,
+        address_space_bytes: Some(64 << 20),
+    });
+    assert!(small.try_hausdorff(&fine, &coarse, 1e-9).is_err());
+}

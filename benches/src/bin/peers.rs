@@ -11,13 +11,16 @@
 //! else wall seconds. Every output is then measured independently: the two-sided Hausdorff
 //! distance over epsilon with CGAL (`envelope-oracle hausdorff`, both directions, error bound
 //! 1% of epsilon), our certified decision (`envelope_verify::certify`, distance only) and CGAL's
-//! self-intersection count (mesh, else soup semantics).
+//! self-intersection count (mesh, else soup semantics). Each oracle process runs under a CPU
+//! time and address-space limit (`--oracle-cpu`, default 600 s; `--oracle-gib`, default 8): a
+//! measurement that hits one shows as `limit` in the table, and an oracle left behind by a
+//! killed `peers` ends at its CPU limit.
 //!
 //! ```sh
 //! benches/peers/build.sh && cargo build --release -p envelope-cli
 //! cargo run --release -p envelope-benches --bin peers -- [--quick] [--meshes a,b]
 //!     [--epsilons 1/64%,1%] [--tools envelope,cgal,openmesh,meshopt] [--timeout S]
-//!     [--json PATH] [--keep DIR] [--envelope PATH]
+//!     [--oracle-cpu S] [--oracle-gib G] [--json PATH] [--keep DIR] [--envelope PATH]
 //! ```
 //! Prints one markdown table; writes the raw results as JSON (default
 //! `benches/results/peers-<unix time>.json`). See `benches/README.md`.
@@ -33,7 +36,7 @@ use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use envelope_io::read_path;
 use envelope_mesh::TriangleSoup;
-use envelope_tests::oracle::{Oracle, corpus_dir, repo_root};
+use envelope_tests::oracle::{Limits, Oracle, corpus_dir, repo_root};
 use envelope_verify::{Options, Verdict, certify};
 use serde_json::{Value, json};
 
@@ -77,6 +80,9 @@ struct Args {
     epsilons: Vec<(String, f64)>,
     tools: Vec<Tool>,
     timeout: f64,
+    /// CPU seconds and GiB of address space for each oracle process (`Oracle::with_limits`).
+    oracle_cpu: u64,
+    oracle_gib: u64,
     json: Option<PathBuf>,
     keep: Option<PathBuf>,
     envelope: Option<PathBuf>,
@@ -108,8 +114,8 @@ fn main() -> ExitCode {
 fn usage() -> ExitCode {
     eprintln!(
         "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--epsilons 1/64%,...,1%] \
-         [--tools envelope,cgal,openmesh,meshopt] [--timeout S] [--json PATH] [--keep DIR] \
-         [--envelope PATH]\n\
+         [--tools envelope,cgal,openmesh,meshopt] [--timeout S] [--oracle-cpu S] [--oracle-gib G] \
+         [--json PATH] [--keep DIR] [--envelope PATH]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
     );
     ExitCode::FAILURE
@@ -133,6 +139,8 @@ fn parse_args(argv: &[String]) -> Option<Args> {
             .collect(),
         tools: Tool::ALL.to_vec(),
         timeout: 600.0,
+        oracle_cpu: 600,
+        oracle_gib: 8,
         json: None,
         keep: None,
         envelope: None,
@@ -169,6 +177,8 @@ fn parse_args(argv: &[String]) -> Option<Args> {
                     .collect::<Option<_>>()?;
             }
             "--timeout" => a.timeout = it.next()?.parse().ok().filter(|t: &f64| *t > 0.0)?,
+            "--oracle-cpu" => a.oracle_cpu = it.next()?.parse().ok().filter(|&t: &u64| t > 0)?,
+            "--oracle-gib" => a.oracle_gib = it.next()?.parse().ok().filter(|&g: &u64| g > 0)?,
             "--json" => a.json = Some(PathBuf::from(it.next()?)),
             "--keep" => a.keep = Some(PathBuf::from(it.next()?)),
             "--envelope" => a.envelope = Some(PathBuf::from(it.next()?)),
@@ -536,7 +546,12 @@ struct Row {
 
 fn run(args: &Args) -> Result<(), String> {
     let corpus = corpus_dir().ok_or("corpus missing: run scripts/corpus.sh")?;
-    let oracle = Oracle::locate().map_err(|e| e.to_string())?;
+    let oracle = Oracle::locate()
+        .map_err(|e| e.to_string())?
+        .with_limits(Limits {
+            cpu_seconds: Some(args.oracle_cpu),
+            address_space_bytes: Some(args.oracle_gib << 30),
+        });
     let progs = locate_programs(args);
     if let Err(m) = &progs.envelope {
         if args.tools.contains(&Tool::Envelope) {
@@ -676,6 +691,7 @@ fn summary(r: &Run) -> String {
 fn dist_cell(r: &Run) -> String {
     match (&r.dist, &r.dist_error) {
         (Some((d, _, _)), _) => format!("{d:.2}"),
+        (None, Some(e)) if e.starts_with("oracle stopped") => "limit".into(),
         (None, Some(_)) => "err".into(),
         _ => String::new(),
     }
@@ -790,7 +806,8 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
          ours: input check, envelopes and simplification, without the built-in certificate, \
          whose time is the `+x cert`; speed ratios use s). \
          MiB: peak RSS of the process. d/eps: two-sided Hausdorff distance over epsilon \
-         (CGAL bounded_error_Hausdorff_distance, bound 1% eps). cert: envelope-verify's \
+         (CGAL bounded_error_Hausdorff_distance, bound 1% eps; `limit`: the oracle process hit \
+         its CPU or memory limit, `err`: another oracle failure). cert: envelope-verify's \
          certified two-sided check (ok = proved <= eps, >=x = proved violated by x eps). \
          self-int: CGAL self-intersecting face pairs of the output.\n",
     );
@@ -850,6 +867,8 @@ fn to_json(rows: &[Row], args: &Args, progs: &Programs, stamp: u64) -> Value {
     json!({
         "unix_time": stamp,
         "timeout_seconds": args.timeout,
+        "oracle_cpu_seconds": args.oracle_cpu,
+        "oracle_address_space_gib": args.oracle_gib,
         "hausdorff_bound_over_eps": HAUSDORFF_BOUND,
         "envelope_binary": progs.envelope.as_ref().map(|p| p.display().to_string()).ok(),
         "rows": rows.iter().map(|row| json!({
