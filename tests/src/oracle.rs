@@ -365,7 +365,20 @@ impl Oracle {
                 v.len()
             )));
         }
-        v.pop().expect("one response").into_ok()
+        match v.pop().expect("one response").into_ok() {
+            // The oracle catches `std::bad_alloc` and answers `err`: under an address-space
+            // limit that is the limit.
+            Err(OracleError::Remote { message, .. })
+                if message.contains("bad_alloc") && self.limits.address_space_bytes.is_some() =>
+            {
+                let b = self.limits.address_space_bytes.unwrap_or(0);
+                Err(OracleError::Limit(format!(
+                    "address-space limit of {} MiB ({message})",
+                    b >> 20
+                )))
+            }
+            other => other,
+        }
     }
 
     /// `version` answer fields (`protocol`, `cgal`, `openmesh`).

@@ -449,5 +449,8 @@ fn limits_stop_a_long_request() {
         cpu_seconds: None,
         address_space_bytes: Some(64 << 20),
     });
-    assert!(small.try_hausdorff(&fine, &coarse, 1e-9).is_err());
+    match small.try_hausdorff(&fine, &coarse, 1e-9) {
+        Err(OracleError::Limit(m)) => assert!(m.contains("address-space"), "{m}"),
+        other => panic!("expected the memory limit to stop it, got {other:?}"),
+    }
 }

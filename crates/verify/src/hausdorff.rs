@@ -16,6 +16,11 @@
 //!   `|p* - p'| <= max delta` and `p'` in the f64 sub-triangle, so `dist(p*, to) <=
 //!   dist(p', t) + delta <= eps`. The exact sub-triangles partition `T`, hence the proof covers
 //!   `T` exactly.
+//! * **Cuts.** A sub-triangle no single triangle covers may still be proved in two pieces:
+//!   cut by a plane through the shared edge of two triangles (exact sides, f64 crossing
+//!   points with proved error bounds), each piece against the triangle on its side, by its
+//!   vertices (`Search::split_within_f64`); ties at exactly `eps` use the same cut in
+//!   rationals (`Search::split_within_exactly`).
 //! * **Witness.** A violation is reported only for a point exactly on `T`: a corner whose f64
 //!   value is exact (`delta == 0`, checked with the f64 predicates) or, otherwise, the exact
 //!   rational corner, checked with rational arithmetic. It must exceed `eps` against every
@@ -35,14 +40,15 @@
 
 use envelope_mesh::FaceId;
 use envelope_predicates::bvh::{Aabb, Bvh, NodeId, NodeKind};
-use envelope_predicates::{Sign, cmp_point_triangle, next_up};
+use envelope_predicates::{Orientation, Sign, cmp_point_triangle, collinear, next_up, orient3d};
 use glam::DVec3;
 use rayon::prelude::*;
 use rug::Rational;
 
 use crate::numeric::{
-    RPoint, add_up, approx_sq_dist, barycentric_point, cross, dot, rational, rpoint, sq_dist_exact,
-    sqrt_down, sqrt_up, square_down, square_up, sub,
+    RPoint, add_up, approx_sq_dist, barycentric_point, cross, crossing_with_bound, dot,
+    orient3d_with_bound, rational, rpoint, sq_dist_exact, sqrt_down, sqrt_up, square_down,
+    square_up, sub,
 };
 use crate::{OneSided, Verdict, Witness};
 
@@ -311,6 +317,35 @@ fn near_vertex(p: DVec3, t: &[DVec3; 3], e2: f64) -> bool {
     })
 }
 
+/// A sufficient test for `dist(p, t)^2 <= e2` in f64 with a rigorous error bound, like
+/// [`near_vertex`] for the edges of `t`: the distance from `p` to an f64 point `q` that lies
+/// within a proved bound of the exact point `a + tau (b - a)` of an edge (`tau` in `[0, 1]`).
+/// Points on an edge's line (midpoints of an approximation's edge that runs along an edge of
+/// `t`, cut points on a shared edge) are the exact predicate's slow case.
+fn near_edge(p: DVec3, t: &[DVec3; 3], e2: f64) -> bool {
+    (0..3).any(|k| {
+        let (a, b) = (t[k], t[(k + 1) % 3]);
+        let ab = b - a;
+        let l2 = ab.length_squared();
+        if l2.is_nan() || l2 <= 0.0 || l2.is_infinite() {
+            return false;
+        }
+        let tau = ((p - a).dot(ab) / l2).clamp(0.0, 1.0);
+        let q = a + ab * tau;
+        let s = (p - q).length_squared();
+        if s.is_nan() || s > e2 {
+            // Cannot pass the test below (and NaN): the common case, kept cheap.
+            return false;
+        }
+        // q against the exact a + tau (b - a): three roundings per coordinate, each below
+        // u (|a| + |b|); 1e-15 (|a| + |b|) covers their Euclidean norm.
+        let off = 1e-15 * (a.abs().max_element() + b.abs().max_element());
+        let s = s * (1.0 + 16.0 * f64::EPSILON) + 4.0 * f64::MIN_POSITIVE;
+        let r = add_up(sqrt_up(s), off);
+        square_up(r) <= e2
+    })
+}
+
 /// A sub-triangle corner: the f64 point, a bound on its distance to the exact corner, and the
 /// exact corner's barycentric numerators (denominator `2^level`).
 #[derive(Clone, Copy, Debug)]
@@ -376,6 +411,8 @@ struct Search<'a> {
 struct Estimate {
     best: Option<(u32, f64)>,
     corner_min: [f64; 3],
+    /// The triangle nearest to each corner (`u32::MAX`: none).
+    corner_best: [u32; 3],
 }
 
 impl Search<'_> {
@@ -393,24 +430,34 @@ impl Search<'_> {
     fn estimate(&self, s: &Sub) -> Estimate {
         let mut best: Option<(u32, f64)> = None;
         let mut corner_min = [f64::INFINITY; 3];
+        let mut corner_best = [u32::MAX; 3];
         for (i, &t) in s.cands.iter().enumerate() {
             let mut worst = 0.0f64;
             for j in 0..3 {
                 let d = s.d[j][i];
-                corner_min[j] = corner_min[j].min(d);
+                if d < corner_min[j] {
+                    corner_min[j] = d;
+                    corner_best[j] = t;
+                }
                 worst = worst.max(d);
             }
             if best.is_none_or(|(_, b)| worst < b) {
                 best = Some((t, worst));
             }
         }
-        Estimate { best, corner_min }
+        Estimate {
+            best,
+            corner_min,
+            corner_best,
+        }
     }
 
     fn corners_within(&self, s: &Sub, t: u32, e2: f64) -> bool {
         let tri = self.target.tris[t as usize];
         s.c.iter().all(|c| {
-            near_vertex(c.p, &tri, e2) || cmp_point_triangle(c.p, tri, e2) != Sign::Positive
+            near_vertex(c.p, &tri, e2)
+                || near_edge(c.p, &tri, e2)
+                || cmp_point_triangle(c.p, tri, e2) != Sign::Positive
         })
     }
 
@@ -456,6 +503,13 @@ impl Search<'_> {
         if c <= e2 && self.corners_within(s, t, c) {
             return Some(add_up(sqrt_up(c), delta));
         }
+        // No single triangle: each corner within epsilon of its nearest one, to the
+        // estimate's precision, and they differ: cut by a plane between two of them.
+        if est.corner_min.iter().all(|&d| d < self.tol.e2lo)
+            && let Some(u) = self.split_within_f64(s, est, delta)
+        {
+            return Some(u);
+        }
         let near = self.tol.e2hi * (1.0 + 2f64.powi(-20));
         // The split below is for ties (a corner at epsilon, to the estimate's precision) and
         // for deep sub-triangles; elsewhere subdividing settles a sub-triangle sooner than
@@ -499,6 +553,82 @@ impl Search<'_> {
             }
         }
         (split && self.split_within_exactly(face, s, &nearest)).then_some(self.tol.eps)
+    }
+
+    /// [`Self::split_within_exactly`] in f64 with proved error bounds, for the f64
+    /// sub-triangle `s` (its exact one is within `delta`): for each pair of the corners'
+    /// nearest triangles that share an edge, cut `s` by the plane through that edge (exact
+    /// signs of the corners; crossing points with [`crossing_with_bound`]) and certify
+    /// each piece against the triangle on its side by its vertices, each vertex's bound plus
+    /// its crossing error. Returns the proved upper bound when it is at most `eps`; `None`
+    /// otherwise (ties at exactly `eps` are left to the rational cut).
+    fn split_within_f64(&self, s: &Sub, est: &Estimate, delta: f64) -> Option<f64> {
+        let mut ts: Vec<u32> = Vec::with_capacity(3);
+        for t in est.corner_best {
+            if t != u32::MAX && !ts.contains(&t) {
+                ts.push(t);
+            }
+        }
+        let corners = s.c.map(|c| c.p);
+        for (i, &t1) in ts.iter().enumerate() {
+            for &t2 in &ts[i + 1..] {
+                let (a, b) = (
+                    &self.target.tris[t1 as usize],
+                    &self.target.tris[t2 as usize],
+                );
+                let Some([p, q, r]) = bisector_points(a, b) else {
+                    continue;
+                };
+                let side = corners.map(|x| orient3d(p, q, r, x));
+                let approx = corners.map(|x| orient3d_with_bound(p, q, r, x));
+                // (point, error) of each piece: side <= 0 goes with one triangle, >= 0 with
+                // the other.
+                let mut lo: Vec<(DVec3, f64)> = Vec::with_capacity(4);
+                let mut hi: Vec<(DVec3, f64)> = Vec::with_capacity(4);
+                for k in 0..3 {
+                    let j = (k + 1) % 3;
+                    if side[k] != Orientation::Positive {
+                        lo.push((corners[k], 0.0));
+                    }
+                    if side[k] != Orientation::Negative {
+                        hi.push((corners[k], 0.0));
+                    }
+                    let opposite = matches!(
+                        (side[k], side[j]),
+                        (Orientation::Negative, Orientation::Positive)
+                            | (Orientation::Positive, Orientation::Negative)
+                    );
+                    if opposite {
+                        let x = crossing_with_bound(corners[k], corners[j], approx[k], approx[j]);
+                        lo.push(x);
+                        hi.push(x);
+                    }
+                }
+                let bound = |piece: &[(DVec3, f64)], t: &[DVec3; 3]| -> Option<f64> {
+                    piece.iter().try_fold(0.0f64, |u, &(v, e)| {
+                        // Crossing points often lie exactly on `t` (coplanar faces): a
+                        // floor of eps * 2^-10 keeps the filter decisive there.
+                        let c = self
+                            .tol
+                            .certification_value(approx_sq_dist(v, t))
+                            .max(self.tol.e2lo * 2f64.powi(-20));
+                        (near_vertex(v, t, c)
+                            || near_edge(v, t, c)
+                            || cmp_point_triangle(v, *t, c) != Sign::Positive)
+                            .then(|| u.max(add_up(sqrt_up(c), e)))
+                    })
+                };
+                for (x, y) in [(a, b), (b, a)] {
+                    if let (Some(u), Some(w)) = (bound(&lo, x), bound(&hi, y)) {
+                        let total = add_up(u.max(w), delta);
+                        if total <= self.tol.eps {
+                            return Some(total);
+                        }
+                    }
+                }
+            }
+        }
+        None
     }
 
     /// A sub-triangle that straddles the shared edge of two close triangles `t1`, `t2`
@@ -638,6 +768,7 @@ impl Search<'_> {
             let est = Estimate {
                 best: Some((t0, m)),
                 corner_min: d,
+                corner_best: [t0; 3],
             };
             if let Some(u) = self.prove(&tri, &s0, &est, 0.0) {
                 // `d` over-estimates each corner's distance: only a ranking for the lower
@@ -883,10 +1014,11 @@ impl Plane {
     }
 }
 
-/// The plane through the shared edge of two triangles that also holds the sum of their unit
-/// normals (f64, any rounding is harmless: see `split_within_exactly`); `None` when they
-/// share no edge or the plane degenerates.
-fn bisector(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<Plane> {
+/// Three f64 points spanning the plane through the shared edge of two triangles that also
+/// holds the sum of their unit normals (any rounding is harmless: any plane through the edge
+/// is sound, see `split_within_exactly`); `None` when they share no edge or the plane
+/// degenerates.
+fn bisector_points(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<[DVec3; 3]> {
     let shared: Vec<DVec3> = a.iter().copied().filter(|p| b.contains(p)).collect();
     let [p, q] = shared[..] else {
         return None;
@@ -896,14 +1028,19 @@ fn bisector(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<Plane> {
     // Opposite orientations: the sum is not a bisector, the difference is.
     let d = if na.dot(nb) >= 0.0 { na + nb } else { na - nb };
     let r = p + d;
-    if !r.is_finite() || d == DVec3::ZERO {
+    if !r.is_finite() || d == DVec3::ZERO || collinear(p, q, r) {
         return None;
     }
+    Some([p, q, r])
+}
+
+/// The plane through the shared edge of two triangles that also holds the sum of their unit
+/// normals (f64, any rounding is harmless: see `split_within_exactly`); `None` when they
+/// share no edge or the plane degenerates.
+fn bisector(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<Plane> {
+    let [p, q, r] = bisector_points(a, b)?;
     let (p, q, r) = (rpoint(p), rpoint(q), rpoint(r));
     let normal = cross(&sub(&q, &p), &sub(&r, &p));
-    if normal.iter().all(|x| *x == 0) {
-        return None;
-    }
     Some(Plane { origin: p, normal })
 }
 
@@ -931,4 +1068,43 @@ fn clip_by_sign(poly: &[RPoint], side: &[Rational]) -> (Vec<RPoint>, Vec<RPoint>
         }
     }
     (lo, hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn coord() -> impl Strategy<Value = f64> {
+        prop_oneof![-4.0f64..4.0, (-40i32..40).prop_map(|k| f64::from(k) / 10.0)]
+    }
+    fn point() -> impl Strategy<Value = DVec3> {
+        (coord(), coord(), coord()).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4000))]
+        /// `near_edge` and `near_vertex` only say "within" when the exact distance is.
+        /// Points on an edge's line (rounded), or a few ulps or a small distance off it.
+        #[test]
+        fn near_tests_are_sound(
+            t in [point(), point(), point()],
+            k in 0usize..3,
+            tau in 0.0f64..1.0,
+            off in prop_oneof![Just(0.0), -1e-14f64..1e-14, -1e-3f64..1e-3],
+            dir in point(),
+            e2 in prop_oneof![Just(0.0), 0.0f64..1e-6, 0.0f64..1e-2],
+        ) {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let p = a + (b - a) * tau + dir * off;
+            let exact = sq_dist_exact(&rpoint(p), &t);
+            if near_edge(p, &t, e2) || near_vertex(p, &t, e2) {
+                prop_assert!(exact <= rational(e2), "{p:?} {t:?} {e2}");
+            }
+            // And it is not vacuous: a point rounded onto an edge is within any usable e2.
+            if off == 0.0 && e2 >= 1e-6 && a != b {
+                prop_assert!(near_edge(p, &t, e2), "{p:?} {t:?} {e2}");
+            }
+        }
+    }
 }

@@ -259,3 +259,121 @@ mod tests {
         assert_eq!(p[1], rational(0.3) / 2);
     }
 }
+
+/// `((b - a) x (c - a)) . (d - a)` evaluated in f64 (the sign convention of
+/// `envelope_predicates::orient3d`), with a bound on its error: Shewchuk's stage-A bound
+/// `(7 + 56 u) u * permanent` (u = 2^-53, "Adaptive precision floating-point arithmetic",
+/// 1997), doubled, plus a term for underflow.
+pub(crate) fn orient3d_with_bound(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> (f64, f64) {
+    // Shewchuk's orient3d(a, b, c, d) is the negation of this convention: evaluate his
+    // expression on (b, a, c, d), which swaps the sign.
+    let (pa, pb, pc, pd) = (b, a, c, d);
+    let (adx, bdx, cdx) = (pa.x - pd.x, pb.x - pd.x, pc.x - pd.x);
+    let (ady, bdy, cdy) = (pa.y - pd.y, pb.y - pd.y, pc.y - pd.y);
+    let (adz, bdz, cdz) = (pa.z - pd.z, pb.z - pd.z, pc.z - pd.z);
+    let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
+    let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
+    let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
+    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
+    let u = f64::EPSILON / 2.0;
+    let bound = 2.0 * (7.0 + 56.0 * u) * u * permanent + 64.0 * f64::MIN_POSITIVE;
+    (det, bound)
+}
+
+/// Where the segment `x y` crosses a plane, given the plane's side values at its ends:
+/// `sx`, `sy` approximate (errors at most `ex`, `ey`) with exactly known, strictly opposite
+/// signs. Returns an f64 point and a proved bound on its distance to the exact crossing.
+///
+/// The exact crossing is `x + l (y - x)` with `l = |sx| / (|sx| + |sy|)` for the exact side
+/// values; `l` lies in the interval the error bounds give (widened for the rounding of its
+/// own computation), and the point is taken at its middle.
+pub(crate) fn crossing_with_bound(
+    x: DVec3,
+    y: DVec3,
+    (sx, ex): (f64, f64),
+    (sy, ey): (f64, f64),
+) -> (DVec3, f64) {
+    let widen = 1e-15;
+    let (ax, ay) = (sx.abs(), sy.abs());
+    let lo = |v: f64, e: f64| ((v - e) * (1.0 - widen)).max(0.0);
+    let hi = |v: f64, e: f64| (v + e) * (1.0 + widen);
+    let l_lo = {
+        let (a, b) = (lo(ax, ex), hi(ay, ey));
+        if a + b > 0.0 {
+            (a / (a + b) * (1.0 - widen)).max(0.0)
+        } else {
+            0.0
+        }
+    };
+    let l_hi = {
+        let (a, b) = (hi(ax, ex), lo(ay, ey));
+        if a + b > 0.0 {
+            (a / (a + b) * (1.0 + widen)).min(1.0)
+        } else {
+            1.0
+        }
+    };
+    let (l_lo, l_hi) = if l_lo <= l_hi && l_hi.is_finite() {
+        (l_lo, l_hi)
+    } else {
+        (0.0, 1.0)
+    };
+    let l = (0.5 * (l_lo + l_hi)).clamp(l_lo, l_hi);
+    let p = x + (y - x) * l;
+    // |l - l*| <= l_hi - l_lo; the rounding of `p` is below 3u per coordinate of
+    // |x| + |y| (sqrt(3) for the Euclidean norm): 1e-15 covers it.
+    let span = (y - x).length() * (1.0 + 1e-12);
+    let round = 1e-15 * (x.abs().max_element() + y.abs().max_element()) + f64::MIN_POSITIVE;
+    let err = add_up((l_hi - l_lo) * span * (1.0 + 1e-12), round);
+    (p, err)
+}
+
+#[cfg(test)]
+mod crossing_tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn coord() -> impl Strategy<Value = f64> {
+        prop_oneof![-8.0f64..8.0, (-64i32..64).prop_map(|k| f64::from(k) / 8.0)]
+    }
+    fn point() -> impl Strategy<Value = DVec3> {
+        (coord(), coord(), coord()).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+        /// The f64 determinant is within its bound of the exact one, and the crossing point
+        /// within its bound of the exact crossing (rational arithmetic).
+        #[test]
+        fn bounds_hold(a in point(), b in point(), c in point(), x in point(), y in point()) {
+            let exact_side = |q: DVec3| {
+                let (ra, rq) = (rpoint(a), rpoint(q));
+                let n = cross(&sub(&rpoint(b), &ra), &sub(&rpoint(c), &ra));
+                dot(&sub(&rq, &ra), &n)
+            };
+            for q in [x, y] {
+                let (s, e) = orient3d_with_bound(a, b, c, q);
+                let diff = (&exact_side(q) - rational(s)).abs();
+                prop_assert!(diff <= rational(e), "side of {q:?}");
+            }
+            let (sx, sy) = (exact_side(x), exact_side(y));
+            if (sx.is_positive() && sy.is_negative()) || (sx.is_negative() && sy.is_positive()) {
+                let (p, err) = crossing_with_bound(
+                    x, y, orient3d_with_bound(a, b, c, x), orient3d_with_bound(a, b, c, y));
+                let t = &sx / Rational::from(&sx - &sy);
+                let (rx, ry) = (rpoint(x), rpoint(y));
+                let star: RPoint = std::array::from_fn(|k| {
+                    let dk = Rational::from(&ry[k] - &rx[k]);
+                    &rx[k] + Rational::from(&dk * &t)
+                });
+                let d = sub(&rpoint(p), &star);
+                let d2 = dot(&d, &d);
+                let e = rational(err);
+                prop_assert!(d2 <= Rational::from(&e * &e), "crossing off by more than {err}");
+            }
+        }
+    }
+}
