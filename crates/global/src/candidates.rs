@@ -37,7 +37,8 @@
 
 use crate::region::{Region, ball, ball_any, border_next, region};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
-use envelope_simplify::aspect_ratio;
+use envelope_predicates::collinear;
+use envelope_simplify::{Barriers, aspect_ratio};
 use glam::DVec3;
 
 /// The per-vertex prism edges: inner and outer envelope points of every input vertex,
@@ -129,6 +130,9 @@ pub struct Generated {
     pub covering: u64,
     /// Candidates kept.
     pub kept: u64,
+    /// Candidates dropped before ranking because they touch an envelope or wall (see
+    /// [`seed_candidates`]'s `screen`).
+    pub blocked: u64,
 }
 
 impl std::ops::AddAssign for Generated {
@@ -137,6 +141,7 @@ impl std::ops::AddAssign for Generated {
         self.triples += o.triples;
         self.covering += o.covering;
         self.kept += o.kept;
+        self.blocked += o.blocked;
     }
 }
 
@@ -151,12 +156,18 @@ impl std::ops::AddAssign for Generated {
 ///   seed, as along a ridge: figure 8).
 ///
 /// `rings` of a candidate is `k` for a ball and 0 for an edge or a path.
+///
+/// With a `screen` (the barriers of the validity filter), each region keeps its best
+/// `per_region` candidates that do not touch an envelope or wall triangle (nor have
+/// collinear corners): the part of the 5.1 test that does not depend on the mesh, so a
+/// candidate it drops would be rejected when tried anyway. Without, the best `per_region`.
 #[must_use]
 pub fn seed_candidates(
     mesh: &HalfEdgeMesh,
     fibers: &Fibers<'_>,
     seed: VertexId,
     reach: &Reach,
+    screen: Option<&Barriers>,
 ) -> (Generated, Vec<Candidate>) {
     let mut counts = Generated::default();
     let mut out = Vec::new();
@@ -170,6 +181,24 @@ pub fn seed_candidates(
         counts.regions += 1;
         let mut kept = region_candidates(mesh, fibers, &r, rings, counts);
         kept.sort_by(Candidate::rank);
+        if let Some(barriers) = screen {
+            let mut taken = 0;
+            kept.retain(|c| {
+                if taken >= reach.per_region {
+                    return false;
+                }
+                let [a, b, d] = c.triangle.map(|v| mesh.position(v));
+                // Border edges are not flagged: envelope and wall contact is tested
+                // whatever they are, tube contact is left to the filter.
+                let ok = !collinear(a, b, d) && !barriers.blocks([a, b, d], [false; 3]);
+                if ok {
+                    taken += 1;
+                } else {
+                    counts.blocked += 1;
+                }
+                ok
+            });
+        }
         kept.truncate(reach.per_region);
         for k in &mut kept {
             k.inside.clone_from(&r.inside);
@@ -331,4 +360,43 @@ fn region_candidates(
         out.retain(|c| c.cover > 0);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use envelope_mesh::generate;
+
+    /// The screen drops exactly the candidates that touch a barrier: with the mesh itself as
+    /// the barrier every candidate touches it (at its corners) and none is kept; with a
+    /// barrier far away, the screened and unscreened runs keep the same candidates.
+    #[test]
+    fn the_screen_drops_blocked_candidates_only() {
+        let soup = generate::icosphere(2, 1.0);
+        let mesh = HalfEdgeMesh::from_soup(&soup).unwrap();
+        let inner: Vec<DVec3> = soup.positions.iter().map(|p| *p * 0.9).collect();
+        let outer: Vec<DVec3> = soup.positions.iter().map(|p| *p * 1.1).collect();
+        let fibers = Fibers {
+            inner: &inner,
+            outer: &outer,
+        };
+        let reach = Reach {
+            max_rings: 2,
+            max_cycle: 12,
+            per_region: 3,
+            border: false,
+        };
+        let seed = VertexId(0);
+        let (plain_counts, plain) = seed_candidates(&mesh, &fibers, seed, &reach, None);
+        assert!(!plain.is_empty());
+        assert_eq!(plain_counts.blocked, 0);
+        let touching = Barriers::new(vec![soup.clone()], vec![]).unwrap();
+        let (counts, kept) = seed_candidates(&mesh, &fibers, seed, &reach, Some(&touching));
+        assert!(kept.is_empty(), "{kept:?}");
+        assert!(counts.blocked >= plain.len() as u64, "{counts:?}");
+        let far = generate::icosphere(1, 10.0);
+        let apart = Barriers::new(vec![far], vec![]).unwrap();
+        let (counts, kept) = seed_candidates(&mesh, &fibers, seed, &reach, Some(&apart));
+        assert_eq!((counts.blocked, kept), (0, plain));
+    }
 }

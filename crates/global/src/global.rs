@@ -151,6 +151,7 @@ impl GlobalStats {
             "candidate_triples": self.generated.triples,
             "candidates_covering": self.generated.covering,
             "candidates_ranked": self.generated.kept,
+            "candidates_blocked": self.generated.blocked,
             "attempts": self.attempts,
             "accepted": self.accepted,
             "overlapping": self.overlapping,
@@ -191,7 +192,7 @@ pub fn simplify_global(
         border: options.border && barriers.has_tubes(),
         ..*options
     };
-    simplify_global_with(mesh, &filter, fibers, &options, progress)
+    run(mesh, &filter, Some(barriers), fibers, &options, progress)
 }
 
 /// [`simplify_global`] with any validity filter (which must test
@@ -200,6 +201,19 @@ pub fn simplify_global(
 pub fn simplify_global_with(
     mesh: &mut HalfEdgeMesh,
     filter: &dyn Filter,
+    fibers: &Fibers<'_>,
+    options: &GlobalOptions,
+    progress: &mut dyn Progress,
+) -> Result<GlobalStats, GlobalError> {
+    run(mesh, filter, None, fibers, options, progress)
+}
+
+/// The driver; `screen`: barriers that `filter` tests every candidate against (see
+/// [`seed_candidates`]).
+fn run(
+    mesh: &mut HalfEdgeMesh,
+    filter: &dyn Filter,
+    screen: Option<&Barriers>,
     fibers: &Fibers<'_>,
     options: &GlobalOptions,
     progress: &mut dyn Progress,
@@ -233,7 +247,7 @@ pub fn simplify_global_with(
         }
         stats.passes += 1;
         let start = g.epoch;
-        let mut candidates = g.rank(fibers, &seeds, &reach, &mut stats.generated);
+        let mut candidates = g.rank(fibers, &seeds, &reach, screen, &mut stats.generated);
         let before = stats.accepted;
         for c in candidates.drain(..) {
             if reached(g.mesh) {
@@ -290,12 +304,13 @@ impl Global<'_> {
         fibers: &Fibers<'_>,
         seeds: &[VertexId],
         reach: &Reach,
+        screen: Option<&Barriers>,
         counts: &mut Generated,
     ) -> Vec<Candidate> {
         let mesh: &HalfEdgeMesh = self.mesh;
         let per_seed: Vec<(Generated, Vec<Candidate>)> = seeds
             .par_iter()
-            .map(|&s| seed_candidates(mesh, fibers, s, reach))
+            .map(|&s| seed_candidates(mesh, fibers, s, reach, screen))
             .collect();
         let mut all = Vec::new();
         for (c, v) in per_seed {
