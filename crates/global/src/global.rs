@@ -82,14 +82,15 @@ impl Default for GlobalOptions {
 }
 
 impl GlobalOptions {
-    /// The hybrid's global stage: regions up to 2 rings and 12 boundary vertices, 3
-    /// candidates per region, 4 passes. (3 rings and 16 boundary vertices gave the same faces
-    /// on all 16 rows of the `global_vs_local` benchmark, at up to 1.3 times the time.)
+    /// The hybrid's global stage: regions up to 2 rings and 10 boundary vertices, 3
+    /// candidates per region, 4 passes. (12 and 16 boundary vertices, and 3 rings, gave the
+    /// same faces on all 16 rows of the `global_vs_local` benchmark at up to 1.2 and 1.6
+    /// times the time.)
     #[must_use]
     pub fn bounded() -> Self {
         GlobalOptions {
             max_rings: 2,
-            max_cycle: 12,
+            max_cycle: 10,
             per_region: 3,
             max_passes: 4,
             check_each_step: false,
