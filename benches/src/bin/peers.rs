@@ -76,6 +76,8 @@ struct Args {
     max_faces: Option<usize>,
     /// With `--meshes all`: only meshes whose name sorts at or after this one (resuming).
     from: Option<String>,
+    /// With `--meshes all`: only meshes whose name sorts before this one (splitting a sweep).
+    until: Option<String>,
     /// (label, fraction of the bounding-box diagonal)
     epsilons: Vec<(String, f64)>,
     tools: Vec<Tool>,
@@ -113,7 +115,7 @@ fn main() -> ExitCode {
 
 fn usage() -> ExitCode {
     eprintln!(
-        "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--epsilons 1/64%,...,1%] \
+        "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--until NAME] [--epsilons 1/64%,...,1%] \
          [--tools envelope,cgal,openmesh,meshopt] [--timeout S] [--oracle-cpu S] [--oracle-gib G] \
          [--json PATH] [--keep DIR] [--envelope PATH]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
@@ -146,6 +148,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
         envelope: None,
         max_faces: None,
         from: None,
+        until: None,
     };
     let mut it = argv.iter();
     let list = |v: Option<&String>| -> Option<Vec<String>> {
@@ -184,6 +187,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
             "--envelope" => a.envelope = Some(PathBuf::from(it.next()?)),
             "--max-faces" => a.max_faces = Some(it.next()?.parse().ok()?),
             "--from" => a.from = Some(it.next()?.clone()),
+            "--until" => a.until = Some(it.next()?.clone()),
             _ => return None,
         }
     }
@@ -571,6 +575,7 @@ fn run(args: &Args) -> Result<(), String> {
     let meshes = if args.meshes == ["all"] {
         let mut all = every_acceptable_mesh(&corpus, args.max_faces);
         all.retain(|m| args.from.as_ref().is_none_or(|f| m >= f));
+        all.retain(|m| args.until.as_ref().is_none_or(|u| m < u));
         all
     } else {
         args.meshes.clone()
