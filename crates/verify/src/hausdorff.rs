@@ -61,6 +61,9 @@ const MAX_LEVEL: u32 = 60;
 /// small ones at a small epsilon legitimately needs about (face size / eps)^2 of them.
 /// What is left when the budget runs out is undecided, never proved.
 const MAX_FACE_TINY: u64 = 1 << 16;
+/// The first pass's budget (see [`one_sided`]): faces it leaves undecided are examined again
+/// with [`MAX_FACE_TINY`] only when no face has a witness.
+const FIRST_PASS_TINY: u64 = 1 << 10;
 /// From this depth on, a sub-triangle that no single triangle covers is also tried with an
 /// exact cut between two (see `Search::split_within_exactly`).
 const SPLIT_LEVEL: u32 = 16;
@@ -405,6 +408,8 @@ struct FaceResult {
 struct Search<'a> {
     target: &'a Target,
     tol: &'a Tolerance,
+    /// Tiny sub-triangles examined per face at most.
+    tiny_budget: u64,
 }
 
 /// Per sub-triangle estimates: the triangle minimising the largest corner distance.
@@ -830,7 +835,7 @@ impl Search<'_> {
             }
             if out.witness.is_some()
                 || s.level >= MAX_LEVEL
-                || tiny >= MAX_FACE_TINY
+                || tiny >= self.tiny_budget
                 || diam * (1.0 + 1e-9) + 2.0 * delta <= self.tol.resolution
             {
                 out.undecided |= out.witness.is_none();
@@ -950,21 +955,67 @@ pub(crate) fn one_sided(
     target: &Target,
     tol: &Tolerance,
 ) -> OneSided {
-    let search = Search { target, tol };
-    let sum = faces
+    // Two passes, so that a violated direction does not spend the full budget on faces
+    // that stay undecided (ties along curves; fuzzed meshes of degenerate triangles took
+    // seconds): the first pass gives each face a small budget and sets aside the faces it
+    // leaves undecided. If some face has a witness, the verdict is `Violated` whatever
+    // they are, and their first-pass results stand; otherwise they are examined again
+    // with the full budget. Both passes are deterministic.
+    let first = Search {
+        target,
+        tol,
+        tiny_budget: FIRST_PASS_TINY,
+    };
+    let (mut sum, deferred) = faces
         .par_chunks(CHUNK)
         .enumerate()
         .map(|(c, chunk)| {
             let mut scratch = Scratch::default();
             let mut sum = Summary::default();
+            let mut deferred = Vec::new();
             for (k, f) in chunk.iter().enumerate() {
                 let tri = f.map(|v| positions[v as usize]);
-                let id = FaceId::from_index(c * CHUNK + k);
-                sum.add(search.face(id, tri, &mut scratch));
+                let index = c * CHUNK + k;
+                let r = first.face(FaceId::from_index(index), tri, &mut scratch);
+                if r.undecided && r.witness.is_none() {
+                    deferred.push((index, r));
+                } else {
+                    sum.add(r);
+                }
             }
-            sum
+            (sum, deferred)
         })
-        .reduce(Summary::default, Summary::merge);
+        .reduce(
+            || (Summary::default(), Vec::new()),
+            |(a, mut da), (b, db)| {
+                da.extend(db);
+                (a.merge(b), da)
+            },
+        );
+    if sum.witness.is_some() {
+        for (_, r) in deferred {
+            sum.add(r);
+        }
+    } else if !deferred.is_empty() {
+        let full = Search {
+            target,
+            tol,
+            tiny_budget: MAX_FACE_TINY,
+        };
+        let again = deferred
+            .par_iter()
+            .map(|&(index, _)| {
+                let f = faces[index];
+                let tri = f.map(|v| positions[v as usize]);
+                let mut s = Summary::default();
+                s.add(full.face(FaceId::from_index(index), tri, &mut Scratch::default()));
+                s
+            })
+            .reduce(Summary::default, Summary::merge);
+        sum = sum.merge(again);
+        // Every sub-triangle examined counts, the first pass's included.
+        sum.subdivisions += deferred.iter().map(|(_, r)| r.subdivisions).sum::<u64>();
+    }
     let Summary {
         mut upper,
         undecided,

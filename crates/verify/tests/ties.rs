@@ -68,3 +68,54 @@ fn a_tie_at_a_point_the_split_cannot_prove_is_undecided_not_violated() {
     // Either way the interval holds epsilon.
     assert!(s.lower <= 0.25 && 0.25 <= s.upper, "{s:?}");
 }
+
+/// A fuzzed pair of mostly degenerate triangles (segments meeting at one point), epsilon
+/// 1.015625: `approx -> orig` has a witness, and two faces whose ties the budget ends. The
+/// verdict is `violated` whatever those two are, so they must not get the full budget:
+/// 262,449 sub-triangles (2.6 s) before the two-pass loop, 4,213 after.
+#[test]
+fn a_violated_direction_does_not_spend_the_full_budget_on_undecided_faces() {
+    let tris = |p: &[[f64; 3]]| {
+        let faces: Vec<[u32; 3]> = (0..p.len() as u32 / 3)
+            .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
+            .collect();
+        soup(
+            p.iter().map(|&[x, y, z]| DVec3::new(x, y, z)).collect(),
+            &faces,
+        )
+    };
+    let orig = tris(&[
+        [0.0, 3.3125, 0.0],
+        [-0.3125, 2.5625, 0.125],
+        [-0.0625, 1.9375, -0.3125],
+        [-0.5625, -0.0625, -0.0625],
+        [-0.0625, -0.0625, -0.8125],
+        [-0.8125, -0.8125, -0.8125],
+        [-0.8125, -0.0625, -0.8125],
+        [-0.0625, -0.0625, -0.0625],
+        [-0.0625, -0.0625, -0.0625],
+        [-0.0625, -0.0625, -0.0625],
+        [-0.0625, -0.0625, -0.0625],
+        [-0.0625, -0.0625, 2.8125],
+    ]);
+    let approx = tris(&[
+        [0.0, -0.3125, 2.5625],
+        [0.125, -0.0625, 1.9375],
+        [-0.3125, 2.8125, -0.5625],
+        [-0.0625, -0.0625, -0.0625],
+        [-0.0625, -0.0625, -0.0625],
+        [-0.0625, 2.5, -0.0625],
+        [-0.0625, -0.0625, -0.0625],
+        [-0.0625, -0.0625, 0.9375],
+        [-3.125, -0.0625, -0.0625],
+        [-0.0625, 2.5625, -0.0625],
+        [-0.0625, -0.0625, 2.5],
+        [-0.0625, -0.0625, -0.0625],
+        [-0.0625, -0.0625, -0.0625],
+        [-0.0625, 4.0625, -0.0625],
+        [-0.0625, 0.0, -0.0625],
+    ]);
+    let s = one_sided(&approx, &orig, 1.015625, 1.015625e-6);
+    assert_eq!(s.verdict, Verdict::Violated, "{s:?}");
+    assert!(s.lower > 1.015625 && s.subdivisions < 20_000, "{s:?}");
+}
