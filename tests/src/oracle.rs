@@ -562,25 +562,31 @@ impl Oracle {
 
     /// [`Oracle::topology`] for many files in one process call.
     pub fn topology_batch<P: AsRef<Path>>(&self, paths: &[P]) -> Vec<OracleTopology> {
+        self.try_topology_batch(paths)
+            .unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// Fallible [`Oracle::topology_batch`].
+    pub fn try_topology_batch<P: AsRef<Path>>(
+        &self,
+        paths: &[P],
+    ) -> Result<Vec<OracleTopology>, OracleError> {
         let mut req = String::new();
         for p in paths {
             req.push_str("topology\n");
-            req.push_str(&path_line(p.as_ref()).unwrap_or_else(|e| panic!("{e}")));
+            req.push_str(&path_line(p.as_ref())?);
             req.push('\n');
         }
-        let rs = self.raw(&req).unwrap_or_else(|e| panic!("{e}"));
-        assert_eq!(
-            rs.len(),
-            paths.len(),
-            "oracle answered {} of {} topology requests",
-            rs.len(),
-            paths.len()
-        );
+        let rs = self.raw(&req)?;
+        if rs.len() != paths.len() {
+            return Err(OracleError::Protocol(format!(
+                "oracle answered {} of {} topology requests",
+                rs.len(),
+                paths.len()
+            )));
+        }
         rs.into_iter()
-            .map(|r| {
-                parse_topology(r.into_ok().unwrap_or_else(|e| panic!("{e}")))
-                    .unwrap_or_else(|e| panic!("{e}"))
-            })
+            .map(|r| parse_topology(r.into_ok()?))
             .collect()
     }
 }

@@ -36,7 +36,7 @@ use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use envelope_io::read_path;
 use envelope_mesh::TriangleSoup;
-use envelope_tests::oracle::{Limits, Oracle, corpus_dir, repo_root};
+use envelope_tests::oracle::{Limits, Oracle, OracleTopology, TopoCounts, corpus_dir, repo_root};
 use envelope_verify::{Options, Verdict, certify};
 use serde_json::{Value, json};
 
@@ -224,6 +224,10 @@ struct Run {
     /// Self-intersecting pairs (CGAL), with the semantics used.
     self_int: Option<(usize, &'static str)>,
     self_int_error: Option<String>,
+    /// Genus, border loops and components of input and output by CGAL (OpenMesh when CGAL
+    /// reads only a soup): `same`, or what changed.
+    topo: Option<String>,
+    topo_error: Option<String>,
 }
 
 impl Run {
@@ -241,6 +245,8 @@ impl Run {
             cert: None,
             self_int: None,
             self_int_error: None,
+            topo: None,
+            topo_error: None,
         }
     }
 }
@@ -522,12 +528,36 @@ fn measure(r: &mut Run, oracle: &Oracle, input: &Path, orig: &TriangleSoup, out:
     let lower = c.approx_to_orig.lower.max(c.orig_to_approx.lower) / eps;
     let upper = c.approx_to_orig.upper.max(c.orig_to_approx.upper) / eps;
     r.cert = Some((c.verdict, lower, upper));
+    match oracle.try_topology_batch(&[input, out]) {
+        Ok(t) => r.topo = Some(compare_topology(&t[0], &t[1])),
+        Err(e) => r.topo_error = Some(e.to_string()),
+    }
     match oracle.try_self_intersections(out, false) {
         Ok(s) => r.self_int = Some((s.pairs.len(), kind_name(&format!("{:?}", s.kind)))),
         Err(_) => match oracle.try_self_intersections(out, true) {
             Ok(s) => r.self_int = Some((s.pairs.len(), "soup")),
             Err(e) => r.self_int_error = Some(e.to_string()),
         },
+    }
+}
+
+/// `same` when genus, border loops and components agree (CGAL's counts; OpenMesh's when CGAL
+/// reads only a polygon soup), else what changed.
+fn compare_topology(a: &OracleTopology, b: &OracleTopology) -> String {
+    let counts = |t: &OracleTopology| t.cgal.clone().or_else(|_| t.openmesh.clone());
+    match (counts(a), counts(b)) {
+        (Ok(x), Ok(y)) => {
+            let key = |c: &TopoCounts| (c.genus, c.borders, c.components);
+            if key(&x) == key(&y) {
+                "same".into()
+            } else {
+                format!(
+                    "genus {:?}->{:?}, loops {}->{}, components {}->{}",
+                    x.genus, y.genus, x.borders, y.borders, x.components, y.components
+                )
+            }
+        }
+        (Err(e), _) | (_, Err(e)) => format!("n/a ({e})"),
     }
 }
 
@@ -681,13 +711,14 @@ fn every_acceptable_mesh(corpus: &Path, max_faces: Option<usize>) -> Vec<String>
 fn summary(r: &Run) -> String {
     match &r.status {
         Status::Ok => format!(
-            "{} faces, {:.3} s, {:.0} MiB, d/eps {}, cert {}, self-int {}",
+            "{} faces, {:.3} s, {:.0} MiB, d/eps {}, cert {}, self-int {}, topology {}",
             r.faces.map_or("?".into(), |f| f.to_string()),
             r.seconds.unwrap_or(f64::NAN),
             r.peak_mib.unwrap_or(f64::NAN),
             dist_cell(r),
             cert_cell(r),
-            si_cell(r)
+            si_cell(r),
+            topo_cell(r)
         ),
         s => format!("{s:?}"),
     }
@@ -713,6 +744,14 @@ fn cert_cell(r: &Run) -> String {
     }
 }
 
+fn topo_cell(r: &Run) -> String {
+    match (&r.topo, &r.topo_error) {
+        (Some(t), _) => t.clone(),
+        (None, Some(_)) => "err".into(),
+        _ => String::new(),
+    }
+}
+
 fn si_cell(r: &Run) -> String {
     match (&r.self_int, &r.self_int_error) {
         (Some((0, _)), _) => "no".into(),
@@ -727,7 +766,7 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
     let mut s = String::new();
     let mut head = vec!["mesh".to_string(), "eps".into()];
     for t in tools {
-        for c in ["faces", "s", "MiB", "d/eps", "cert", "self-int"] {
+        for c in ["faces", "s", "MiB", "d/eps", "cert", "self-int", "topology"] {
             head.push(format!("{} {c}", t.name()));
         }
     }
@@ -766,6 +805,7 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
                     cells.push(dist_cell(r));
                     cells.push(cert_cell(r));
                     cells.push(si_cell(r));
+                    cells.push(topo_cell(r));
                 }
                 other => {
                     let tag = match other {
@@ -779,7 +819,8 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
                         String::new()
                     };
                     let mib = r.peak_mib.map_or(String::new(), |m| format!("{m:.0}"));
-                    cells.extend([tag, wall, mib, String::new(), String::new(), String::new()]);
+                    cells.extend([tag, wall, mib]);
+                    cells.extend(std::iter::repeat_n(String::new(), 4));
                 }
             }
         }
@@ -814,7 +855,8 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
          (CGAL bounded_error_Hausdorff_distance, bound 1% eps; `limit`: the oracle process hit \
          its CPU or memory limit, `err`: another oracle failure). cert: envelope-verify's \
          certified two-sided check (ok = proved <= eps, >=x = proved violated by x eps). \
-         self-int: CGAL self-intersecting face pairs of the output.\n",
+         self-int: CGAL self-intersecting face pairs of the output. topology: genus, border \
+         loops and components of input and output by CGAL (OpenMesh for a soup).\n",
     );
     s
 }
@@ -865,6 +907,8 @@ fn to_json(rows: &[Row], args: &Args, progs: &Programs, stamp: u64) -> Value {
                     "self_intersecting_pairs": r.self_int.map(|s| s.0),
                     "self_intersection_semantics": r.self_int.map(|s| s.1),
                     "self_intersection_error": r.self_int_error,
+                    "topology": r.topo,
+                    "topology_error": r.topo_error,
                 })
             })
             .collect()
@@ -961,4 +1005,37 @@ fn meshopt_child(input: &Path, output: &Path, eps: f64) -> ExitCode {
     }
     println!("faces={} seconds={secs} result_error={err}", out.len() / 3);
     ExitCode::SUCCESS
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn topo(genus: u64, borders: u64, cgal: bool) -> OracleTopology {
+        let c = TopoCounts {
+            v: 8,
+            f: 12,
+            e: 18,
+            isolated: 0,
+            borders,
+            components: 1,
+            chi: 2 - 2 * genus as i64 - borders as i64,
+            genus: Some(genus),
+        };
+        OracleTopology {
+            openmesh: Ok(c.clone()),
+            cgal: if cgal { Ok(c) } else { Err("soup".into()) },
+            file_polygons: Some(12),
+            soup_counts: None,
+        }
+    }
+
+    #[test]
+    fn topology_comparison_names_what_changed() {
+        assert_eq!(compare_topology(&topo(1, 0, true), &topo(1, 0, true)), "same");
+        let d = compare_topology(&topo(1, 0, true), &topo(0, 0, true));
+        assert!(d.contains("genus Some(1)->Some(0)"), "{d}");
+        let d = compare_topology(&topo(0, 2, true), &topo(0, 1, false));
+        assert!(d.contains("loops 2->1"), "{d}");
+    }
 }
