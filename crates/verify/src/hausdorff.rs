@@ -1124,14 +1124,8 @@ fn clip_by_sign(poly: &[RPoint], side: &[Rational]) -> (Vec<RPoint>, Vec<RPoint>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numeric::strategies::point;
     use proptest::prelude::*;
-
-    fn coord() -> impl Strategy<Value = f64> {
-        prop_oneof![-4.0f64..4.0, (-40i32..40).prop_map(|k| f64::from(k) / 10.0)]
-    }
-    fn point() -> impl Strategy<Value = DVec3> {
-        (coord(), coord(), coord()).prop_map(|(x, y, z)| DVec3::new(x, y, z))
-    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4000))]

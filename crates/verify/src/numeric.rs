@@ -331,17 +331,28 @@ pub(crate) fn crossing_with_bound(
     (p, err)
 }
 
+/// Proptest strategies shared by the crate's unit tests.
 #[cfg(test)]
-mod crossing_tests {
-    use super::*;
+pub(crate) mod strategies {
+    use glam::DVec3;
     use proptest::prelude::*;
 
-    fn coord() -> impl Strategy<Value = f64> {
+    /// A coordinate: any double in [-8, 8), or a multiple of 1/8 there (exact ties).
+    pub(crate) fn coord() -> impl Strategy<Value = f64> {
         prop_oneof![-8.0f64..8.0, (-64i32..64).prop_map(|k| f64::from(k) / 8.0)]
     }
-    fn point() -> impl Strategy<Value = DVec3> {
+
+    /// A point of [`coord`]s.
+    pub(crate) fn point() -> impl Strategy<Value = DVec3> {
         (coord(), coord(), coord()).prop_map(|(x, y, z)| DVec3::new(x, y, z))
     }
+}
+
+#[cfg(test)]
+mod crossing_tests {
+    use super::strategies::point;
+    use super::*;
+    use proptest::prelude::*;
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(2000))]
