@@ -81,6 +81,10 @@ pub struct Candidate {
     pub triangle: [VertexId; 3],
     /// Vertices whose fibers it meets, among those the region removes.
     pub cover: u32,
+    /// Faces of the region whose fundamental prism it crosses: each of the face's vertices
+    /// is a corner of the candidate or a removed vertex whose fiber it meets (the prism's
+    /// three edges all meet the candidate).
+    pub faces_covered: u32,
     /// Its aspect ratio (f64, a priority only).
     pub aspect: f64,
     /// The region's seed.
@@ -92,13 +96,14 @@ pub struct Candidate {
 }
 
 impl Candidate {
-    /// The ranking: larger cover first, then better aspect ratio, then seed, rings and
-    /// corners (a total order, so the run is deterministic).
+    /// The ranking: larger vertex cover first, then seed, then more faces covered, better
+    /// aspect ratio, rings and corners (a total order, so the run is deterministic).
     #[must_use]
     pub fn rank(&self, o: &Self) -> std::cmp::Ordering {
         o.cover
             .cmp(&self.cover)
             .then(self.seed.cmp(&o.seed))
+            .then(o.faces_covered.cmp(&self.faces_covered))
             .then(o.aspect.total_cmp(&self.aspect))
             .then(self.rings.cmp(&o.rings))
             .then(self.triangle.cmp(&o.triangle))
@@ -327,23 +332,42 @@ fn region_candidates(
     let n = c.len();
     let seed = r.inside[0];
     let mut out = Vec::new();
+    let mut covered: Vec<VertexId> = Vec::new();
     for a in 0..n {
         for b in a + 1..n {
             for d in b + 1..n {
                 counts.triples += 1;
                 let triangle = [c[a], c[b], c[d]];
                 let p = triangle.map(|v| mesh.position(v));
-                let cover = if r.open {
-                    r.inside.iter().filter(|&&v| covers(fibers, v, p)).count() as u32
+                let met = |ctx: &mut Vec<VertexId>| {
+                    ctx.clear();
+                    ctx.extend(r.inside.iter().copied().filter(|&v| covers(fibers, v, p)));
+                };
+                if r.open {
+                    met(&mut covered);
                 } else if covers(fibers, seed, p) {
                     counts.covering += 1;
-                    r.inside.iter().filter(|&&v| covers(fibers, v, p)).count() as u32
+                    met(&mut covered);
                 } else {
+                    covered.clear();
+                }
+                let cover = covered.len() as u32;
+                let faces_covered = if cover == 0 {
                     0
+                } else {
+                    r.faces
+                        .iter()
+                        .filter(|&&f| {
+                            mesh.face_vertices(f)
+                                .iter()
+                                .all(|v| triangle.contains(v) || covered.contains(v))
+                        })
+                        .count() as u32
                 };
                 out.push(Candidate {
                     triangle,
                     cover,
+                    faces_covered,
                     aspect: aspect_ratio(p),
                     seed,
                     rings,
@@ -397,6 +421,24 @@ mod tests {
         let far = generate::icosphere(1, 10.0);
         let apart = Barriers::new(vec![far], vec![]).unwrap();
         let (counts, kept) = seed_candidates(&mesh, &fibers, seed, &reach, Some(&apart));
-        assert_eq!((counts.blocked, kept), (0, plain));
+        assert_eq!((counts.blocked, kept.clone()), (0, plain));
+        // The seed's fan (1 ring): a candidate covering the seed crosses the prism of each
+        // fan face whose two cycle vertices are both its corners.
+        let fan: Vec<_> = kept
+            .iter()
+            .filter(|c| c.rings == 1 && c.cover == 1)
+            .collect();
+        assert!(!fan.is_empty());
+        for c in fan {
+            let expect = mesh
+                .vertex_faces(seed)
+                .filter(|&f| {
+                    mesh.face_vertices(f)
+                        .iter()
+                        .all(|v| *v == seed || c.triangle.contains(v))
+                })
+                .count() as u32;
+            assert_eq!(c.faces_covered, expect, "{c:?}");
+        }
     }
 }
