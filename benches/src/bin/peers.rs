@@ -1032,7 +1032,10 @@ mod tests {
 
     #[test]
     fn topology_comparison_names_what_changed() {
-        assert_eq!(compare_topology(&topo(1, 0, true), &topo(1, 0, true)), "same");
+        assert_eq!(
+            compare_topology(&topo(1, 0, true), &topo(1, 0, true)),
+            "same"
+        );
         let d = compare_topology(&topo(1, 0, true), &topo(0, 0, true));
         assert!(d.contains("genus Some(1)->Some(0)"), "{d}");
         let d = compare_topology(&topo(0, 2, true), &topo(0, 1, false));

@@ -161,7 +161,12 @@ fn ring(prev: DVec3, c: DVec3, next: DVec3, a_plus: DVec3, a_minus: DVec3) -> Ve
             }
             let theta = std::f64::consts::PI * k as f64 / m as f64;
             let (s, co) = theta.sin_cos();
-            c + co.max(0.0) * up + (-co).max(0.0) * down + s * r * o
+            let p = c + co.max(0.0) * up + (-co).max(0.0) * down + s * r * o;
+            // A product of small components (cos(pi/2) times a tiny component of `up`) can
+            // fall below the exact predicates' range (2^-120) where the loop touches a
+            // coordinate plane (the corpus mesh poly2x^2+y^2-0.062500): such a coordinate
+            // becomes 0, a move below 1e-30, far below the construction's rounding.
+            p.map(|x| if x.abs() < 1e-30 { 0.0 } else { x })
         })
         .collect()
 }
@@ -170,6 +175,22 @@ fn ring(prev: DVec3, c: DVec3, next: DVec3, a_plus: DVec3, a_minus: DVec3) -> Ve
 mod tests {
     use super::*;
     use envelope_mesh::{analyze, generate};
+
+    #[test]
+    fn ring_points_stay_in_the_predicates_range() {
+        // A border running along x through the origin of x, whose normal leans towards x: the
+        // envelope points have x = 2e-36 (in range), the ring points between them
+        // cos(theta) times that, below 2^-120 (7.5e-37) near theta = pi/2.
+        let c = DVec3::new(0.0, 1.0, 0.0);
+        let up = DVec3::new(2e-36, 0.0, 1e-3);
+        let r = ring(c - DVec3::X * 0.1, c, c + DVec3::X * 0.1, c + up, c - up);
+        assert_eq!(r.len(), WALL_SEGMENTS + 1);
+        for p in r {
+            for x in p.to_array() {
+                assert!(envelope_mesh::check_coordinate(x).is_ok(), "{p:?}");
+            }
+        }
+    }
 
     #[test]
     fn outward_points_away_from_the_face_interior() {
