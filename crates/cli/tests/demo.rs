@@ -1,26 +1,20 @@
 //! `envelope demo` runs end to end on the built-in cup and writes its chain.
 
-use std::process::Command;
+mod common;
+use common::{assert_ok, envelope, read_json};
 
 #[test]
 fn demo_writes_a_certified_chain() {
     let dir = tempfile::tempdir().unwrap();
     let out_dir = dir.path().join("demo");
-    let out = Command::new(env!("CARGO_BIN_EXE_envelope"))
+    let out = envelope()
         .args(["demo", "--out-dir", out_dir.to_str().unwrap()])
         .output()
         .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("level"), "{stdout}");
-    let s: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
-            .unwrap();
+    let s: serde_json::Value = read_json(&out_dir.join("summary.json"));
     let levels = s["levels"].as_array().unwrap();
     assert_eq!(levels.len(), 7);
     for l in levels {

@@ -1,12 +1,15 @@
 //! End-to-end tests of `envelope envelopes`: outputs, JSON, exit codes, per-vertex files.
 
-use std::process::{Command, Output};
+use std::process::Output;
 
 use envelope_io::{Format, read_path, write_path};
 use envelope_mesh::generate;
 
+mod common;
+use common::assert_ok;
+
 fn envelope(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_envelope"))
+    common::envelope()
         .args(args)
         .output()
         .expect("run envelope")
@@ -40,12 +43,7 @@ fn sphere_is_proved_with_both_methods() {
             out_dir.to_str().unwrap(),
             "--json",
         ]);
-        assert_eq!(
-            out.status.code(),
-            Some(0),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert_ok(&out);
         let v = json(&out);
         assert_eq!(v["proved"], true);
         assert!(v["epsilon_fraction"]["median"].as_f64().unwrap() > 0.99);
@@ -114,12 +112,7 @@ fn per_vertex_epsilon_file() {
         "--json",
     ];
     let out = envelope(&args);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     // Wrong count: bad input.
     std::fs::write(&eps, "0.01\n").unwrap();
     let out = envelope(&args);

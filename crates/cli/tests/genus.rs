@@ -1,14 +1,11 @@
 //! End-to-end tests of `envelope genus` and `envelope pipeline`.
 
 use std::path::Path;
-use std::process::Command;
 
+mod common;
+use common::{assert_ok, envelope, read_json};
 use envelope_io::{Format, read_path, write_path};
 use envelope_mesh::{analyze, generate};
-
-fn envelope() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_envelope"))
-}
 
 /// Runs `envelope pipeline INPUT OUT_DIR --steps STEPS`, asserts exit 0, and returns the
 /// summary's stages.
@@ -22,15 +19,8 @@ fn pipeline(input: &Path, out_dir: &Path, steps: &str) -> Vec<serde_json::Value>
         .args(["--steps", steps])
         .output()
         .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let s: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
-            .unwrap();
+    assert_ok(&out);
+    let s: serde_json::Value = read_json(&out_dir.join("summary.json"));
     s["stages"].as_array().unwrap().clone()
 }
 
@@ -47,16 +37,10 @@ fn genus_fills_narrow_holes_and_reports() {
         .args(["--alpha", "10%", "--report", report.to_str().unwrap()])
         .output()
         .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let (soup, _) = read_path(&output).unwrap();
     assert_eq!(analyze(&soup).genus, Some(0));
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let r: serde_json::Value = read_json(&report);
     assert_eq!(r["genus_in"], 2);
     assert_eq!(r["genus_out"], 0);
     assert_eq!(r["holes_filled"], 4);
@@ -186,14 +170,8 @@ fn genus_union_fills_the_smooth_torus_hole() {
             cmd.arg("--union");
         }
         let out = cmd.output().unwrap();
-        assert_eq!(
-            out.status.code(),
-            Some(0),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let r: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        assert_ok(&out);
+        let r: serde_json::Value = read_json(&report);
         assert_eq!(r["union"], union);
         (analyze(&read_path(&output).unwrap().0).genus, r)
     };

@@ -3,13 +3,16 @@
 //! refused.
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use envelope_io::{Format, read_path, write_path};
 use envelope_mesh::{TriangleSoup, analyze, generate};
 
+mod common;
+use common::{assert_ok, read_json};
+
 fn envelope(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_envelope"))
+    common::envelope()
         .args(args)
         .output()
         .expect("run envelope")
@@ -35,18 +38,12 @@ fn run(input: &str, dir: &Path, method: &str) -> (TriangleSoup, serde_json::Valu
         "--report",
         report.to_str().unwrap(),
     ]);
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_ok(&out);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("certificate holds"), "{stdout}");
     assert!(stdout.contains(&format!("({method})")), "{stdout}");
     let (soup, _) = read_path(&output).unwrap();
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let r: serde_json::Value = read_json(&report);
     (soup, r)
 }
 

@@ -1,10 +1,12 @@
 //! End-to-end tests of `envelope lod`: nested vertex sets, monotone face counts, summary.
 
 use std::collections::HashSet;
-use std::process::Command;
 
 use envelope_io::{Format, read_path, write_path};
 use envelope_mesh::generate;
+
+mod common;
+use common::{assert_ok, envelope, read_json};
 
 fn key(p: glam::DVec3) -> [u64; 3] {
     p.to_array().map(f64::to_bits)
@@ -16,7 +18,7 @@ fn torus_chain_is_nested_monotone_and_certified() {
     let input = dir.path().join("torus.off");
     write_path(&input, &generate::torus(1.0, 0.35, 48, 24), Format::Off).unwrap();
     let out_dir = dir.path().join("lod");
-    let out = Command::new(env!("CARGO_BIN_EXE_envelope"))
+    let out = envelope()
         .args(["lod", input.to_str().unwrap(), out_dir.to_str().unwrap()])
         .args([
             "--epsilons",
@@ -30,15 +32,8 @@ fn torus_chain_is_nested_monotone_and_certified() {
         ])
         .output()
         .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let s: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
-            .unwrap();
+    assert_ok(&out);
+    let s: serde_json::Value = read_json(&out_dir.join("summary.json"));
     let levels = s["levels"].as_array().unwrap();
     assert_eq!(levels.len(), 4);
     assert_eq!(s["rule"], "cumulative");
@@ -79,7 +74,7 @@ fn decreasing_epsilons_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("s.off");
     write_path(&input, &generate::icosphere(2, 1.0), Format::Off).unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_envelope"))
+    let out = envelope()
         .args([
             "lod",
             input.to_str().unwrap(),
