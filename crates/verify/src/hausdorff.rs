@@ -308,6 +308,12 @@ impl Tolerance {
     }
 }
 
+/// `dist(p, t)^2 <= e2`, exactly: the f64 shortcuts [`near_vertex`] and [`near_edge`] (each
+/// only ever says yes when it is so), then the exact predicate.
+fn within(p: DVec3, t: &[DVec3; 3], e2: f64) -> bool {
+    near_vertex(p, t, e2) || near_edge(p, t, e2) || cmp_point_triangle(p, *t, e2) != Sign::Positive
+}
+
 /// A sufficient test for `dist(p, t)^2 <= e2` in f64 with a rigorous error bound: the
 /// squared distance to a vertex of `t`, rounded up. It spares the exact predicate its worst
 /// case, a point exactly on a vertex of `t` (zero signs defeat floating-point filters).
@@ -420,6 +426,19 @@ struct Estimate {
     corner_best: [u32; 3],
 }
 
+impl Estimate {
+    /// The triangles nearest to the corners, each once, in corner order.
+    fn nearest(&self) -> Vec<u32> {
+        let mut ts: Vec<u32> = Vec::with_capacity(3);
+        for t in self.corner_best {
+            if t != u32::MAX && !ts.contains(&t) {
+                ts.push(t);
+            }
+        }
+        ts
+    }
+}
+
 impl Search<'_> {
     /// Approximate squared distances of `p` to each of `cands` (NaN as infinity).
     fn distances(&self, p: DVec3, cands: &[u32]) -> Vec<f64> {
@@ -459,11 +478,7 @@ impl Search<'_> {
 
     fn corners_within(&self, s: &Sub, t: u32, e2: f64) -> bool {
         let tri = self.target.tris[t as usize];
-        s.c.iter().all(|c| {
-            near_vertex(c.p, &tri, e2)
-                || near_edge(c.p, &tri, e2)
-                || cmp_point_triangle(c.p, tri, e2) != Sign::Positive
-        })
+        s.c.iter().all(|c| within(c.p, &tri, e2))
     }
 
     /// A proved upper bound of `max dist(p, t)` over the f64 sub-triangle, from the
@@ -530,18 +545,10 @@ impl Search<'_> {
         // Close call: try the few triangles whose estimate is near the threshold exactly,
         // then pairs of the triangles nearest to each corner.
         let mut close: Vec<(f64, u32)> = Vec::new();
-        let mut nearest: Vec<(f64, u32)> = Vec::new();
-        let mut per_corner = [(f64::INFINITY, u32::MAX); 3];
         for (i, &t) in s.cands.iter().enumerate() {
-            let d = [s.d[0][i], s.d[1][i], s.d[2][i]];
-            let w = d[0].max(d[1]).max(d[2]);
+            let w = s.d[0][i].max(s.d[1][i]).max(s.d[2][i]);
             if w <= near {
                 close.push((w, t));
-            }
-            for j in 0..3 {
-                if d[j] < per_corner[j].0 {
-                    per_corner[j] = (d[j], t);
-                }
             }
         }
         close.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -552,12 +559,7 @@ impl Search<'_> {
         {
             return Some(self.tol.eps);
         }
-        for (d, t) in per_corner {
-            if t != u32::MAX && !nearest.iter().any(|&(_, u)| u == t) {
-                nearest.push((d, t));
-            }
-        }
-        (split && self.split_within_exactly(face, s, &nearest)).then_some(self.tol.eps)
+        (split && self.split_within_exactly(face, s, &est.nearest())).then_some(self.tol.eps)
     }
 
     /// [`Self::split_within_exactly`] in f64 with proved error bounds, for the f64
@@ -568,12 +570,7 @@ impl Search<'_> {
     /// its crossing error. Returns the proved upper bound when it is at most `eps`; `None`
     /// otherwise (ties at exactly `eps` are left to the rational cut).
     fn split_within_f64(&self, s: &Sub, est: &Estimate, delta: f64) -> Option<f64> {
-        let mut ts: Vec<u32> = Vec::with_capacity(3);
-        for t in est.corner_best {
-            if t != u32::MAX && !ts.contains(&t) {
-                ts.push(t);
-            }
-        }
+        let ts = est.nearest();
         let corners = s.c.map(|c| c.p);
         for (i, &t1) in ts.iter().enumerate() {
             for &t2 in &ts[i + 1..] {
@@ -617,10 +614,7 @@ impl Search<'_> {
                             .tol
                             .certification_value(approx_sq_dist(v, t))
                             .max(self.tol.e2lo * 2f64.powi(-20));
-                        (near_vertex(v, t, c)
-                            || near_edge(v, t, c)
-                            || cmp_point_triangle(v, *t, c) != Sign::Positive)
-                            .then(|| u.max(add_up(sqrt_up(c), e)))
+                        within(v, t, c).then(|| u.max(add_up(sqrt_up(c), e)))
                     })
                 };
                 for (x, y) in [(a, b), (b, a)] {
@@ -643,7 +637,7 @@ impl Search<'_> {
     /// the edge and the sum of the two unit normals, rounded to f64: any plane through the
     /// edge is sound, this one makes the proof succeed where the nearest-triangle regions
     /// meet.
-    fn split_within_exactly(&self, face: &[DVec3; 3], s: &Sub, close: &[(f64, u32)]) -> bool {
+    fn split_within_exactly(&self, face: &[DVec3; 3], s: &Sub, close: &[u32]) -> bool {
         let corners: Vec<RPoint> =
             s.c.iter()
                 .map(|c| {
@@ -654,8 +648,8 @@ impl Search<'_> {
                     }
                 })
                 .collect();
-        for (i, &(_, t1)) in close.iter().enumerate() {
-            for &(_, t2) in &close[i + 1..] {
+        for (i, &t1) in close.iter().enumerate() {
+            for &t2 in &close[i + 1..] {
                 let (a, b) = (
                     &self.target.tris[t1 as usize],
                     &self.target.tris[t2 as usize],
