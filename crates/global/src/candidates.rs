@@ -37,7 +37,6 @@
 
 use crate::region::{Region, ball, ball_any, border_next, region};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
-use envelope_predicates::collinear;
 use envelope_simplify::{Barriers, aspect_ratio};
 use glam::DVec3;
 
@@ -192,10 +191,9 @@ pub fn seed_candidates(
                 if taken >= reach.per_region {
                     return false;
                 }
-                let [a, b, d] = c.triangle.map(|v| mesh.position(v));
                 // Border edges are not flagged: envelope and wall contact is tested
                 // whatever they are, tube contact is left to the filter.
-                let ok = !collinear(a, b, d) && !barriers.blocks([a, b, d], [false; 3]);
+                let ok = !barriers.refuses(c.triangle.map(|v| mesh.position(v)), [false; 3]);
                 if ok {
                     taken += 1;
                 } else {
@@ -339,17 +337,12 @@ fn region_candidates(
                 counts.triples += 1;
                 let triangle = [c[a], c[b], c[d]];
                 let p = triangle.map(|v| mesh.position(v));
-                let met = |ctx: &mut Vec<VertexId>| {
-                    ctx.clear();
-                    ctx.extend(r.inside.iter().copied().filter(|&v| covers(fibers, v, p)));
-                };
-                if r.open {
-                    met(&mut covered);
-                } else if covers(fibers, seed, p) {
-                    counts.covering += 1;
-                    met(&mut covered);
-                } else {
-                    covered.clear();
+                // Closed regions count only triples that cover their seed.
+                let counted = r.open || covers(fibers, seed, p);
+                counts.covering += u64::from(counted && !r.open);
+                covered.clear();
+                if counted {
+                    covered.extend(r.inside.iter().copied().filter(|&v| covers(fibers, v, p)));
                 }
                 let cover = covered.len() as u32;
                 let faces_covered = if cover == 0 {

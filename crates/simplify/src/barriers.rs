@@ -163,6 +163,15 @@ impl Barriers {
         (self.triangles[i], self.kinds[i])
     }
 
+    /// The part of the validity test (5.1) that does not depend on the approximation: the
+    /// corners of `t` are exactly collinear, or [`Self::blocks`] says it touches a barrier.
+    /// [`crate::EnvelopeFilter`] asks it first; the global simplifier screens candidates
+    /// with it.
+    #[must_use]
+    pub fn refuses(&self, t: [DVec3; 3], border_edges: [bool; 3]) -> bool {
+        envelope_predicates::collinear(t[0], t[1], t[2]) || self.blocks(t, border_edges)
+    }
+
     /// True when the closed triangle `t` touches an envelope or wall triangle, or when one of the
     /// closed segments `t[i] t[i+1]` with `border_edges[i]` touches a tube triangle. Exact.
     #[must_use]

@@ -4,9 +4,10 @@
 //! [`EnvelopeFilter`] is *the* test of the paper, shared by the local simplifier here and the
 //! global one: a candidate triangle is valid when
 //!
-//! 1. its corners are not exactly collinear ([`collinear`]),
+//! 1. its corners are not exactly collinear ([`collinear`](envelope_predicates::collinear)),
 //! 2. it does not touch any envelope triangle, and each of its edges that will lie on the
-//!    border does not touch any border-tube triangle ([`Barriers::blocks`]),
+//!    border does not touch any border-tube triangle ([`Barriers::blocks`]; 1 and 2 together
+//!    are [`Barriers::refuses`], the part that does not depend on the approximation),
 //! 3. it does not meet any triangle of the current approximation (the live faces of the mesh
 //!    plus the triangles already placed in the same hole) anywhere other than at the vertices
 //!    and edges it shares with it *by vertex id* ([`adjacent_triangles_intersect`]); sharing
@@ -24,7 +25,7 @@ use crate::Barriers;
 use crate::grid::FaceGrid;
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
-use envelope_predicates::{Shared, adjacent_triangles_intersect, collinear, triangles_intersect};
+use envelope_predicates::{Shared, adjacent_triangles_intersect, triangles_intersect};
 use glam::DVec3;
 
 /// The current approximation a candidate is tested against: the live faces of the mesh
@@ -169,10 +170,8 @@ impl<'b, F: Filter> EnvelopeFilter<'b, F> {
 
 impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
     fn accepts(&self, p: &CandidateProfile<'_>) -> bool {
-        let [a, b, c] = p.corners;
         self.base.accepts(p)
-            && !collinear(a, b, c)
-            && !self.barriers.blocks(p.corners, p.border_edges)
+            && !self.barriers.refuses(p.corners, p.border_edges)
             && !p.approximation.intersects(p.triangle, p.corners)
     }
 }
