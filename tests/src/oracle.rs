@@ -314,6 +314,20 @@ impl Oracle {
             .map(|b| format!("address-space limit of {} MiB", b >> 20))
     }
 
+    /// `e`, or the limit it stands for: the oracle catches `std::bad_alloc` and answers
+    /// `err`, which under an address-space limit is that limit.
+    fn under_limits(&self, e: OracleError) -> OracleError {
+        match (e, self.limits.address_space_bytes) {
+            (OracleError::Remote { message, .. }, Some(b)) if message.contains("bad_alloc") => {
+                OracleError::Limit(format!(
+                    "address-space limit of {} MiB ({message})",
+                    b >> 20
+                ))
+            }
+            (e, _) => e,
+        }
+    }
+
     /// Sends a raw request text (one or more requests) and parses every response.
     pub fn raw(&self, request: &str) -> Result<Vec<Response>, OracleError> {
         let mut child = self
@@ -365,20 +379,10 @@ impl Oracle {
                 v.len()
             )));
         }
-        match v.pop().expect("one response").into_ok() {
-            // The oracle catches `std::bad_alloc` and answers `err`: under an address-space
-            // limit that is the limit.
-            Err(OracleError::Remote { message, .. })
-                if message.contains("bad_alloc") && self.limits.address_space_bytes.is_some() =>
-            {
-                let b = self.limits.address_space_bytes.unwrap_or(0);
-                Err(OracleError::Limit(format!(
-                    "address-space limit of {} MiB ({message})",
-                    b >> 20
-                )))
-            }
-            other => other,
-        }
+        v.pop()
+            .expect("one response")
+            .into_ok()
+            .map_err(|e| self.under_limits(e))
     }
 
     /// `version` answer fields (`protocol`, `cgal`, `openmesh`).
@@ -586,7 +590,7 @@ impl Oracle {
             )));
         }
         rs.into_iter()
-            .map(|r| parse_topology(r.into_ok()?))
+            .map(|r| parse_topology(r.into_ok().map_err(|e| self.under_limits(e))?))
             .collect()
     }
 }
