@@ -36,7 +36,9 @@ use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
 use envelope_io::read_path;
 use envelope_mesh::TriangleSoup;
-use envelope_tests::oracle::{Limits, Oracle, OracleTopology, TopoCounts, corpus_dir, repo_root};
+use envelope_tests::oracle::{
+    Limits, Oracle, OracleError, OracleTopology, TopoCounts, corpus_dir, repo_root,
+};
 use envelope_verify::{Options, Verdict, certify};
 use serde_json::{Value, json};
 
@@ -219,6 +221,8 @@ struct Run {
     /// CGAL: max of the two one-sided distances, over epsilon (with the two sides).
     dist: Option<(f64, f64, f64)>,
     dist_error: Option<String>,
+    /// The distance failed because the oracle hit one of its limits.
+    dist_limited: bool,
     /// Ours: certified verdict, and the larger lower bound over epsilon.
     cert: Option<(Verdict, f64, f64)>,
     /// Self-intersecting pairs (CGAL), with the semantics used.
@@ -242,6 +246,7 @@ impl Run {
             peak_mib: None,
             dist: None,
             dist_error: None,
+            dist_limited: false,
             cert: None,
             self_int: None,
             self_int_error: None,
@@ -518,7 +523,10 @@ fn measure(r: &mut Run, oracle: &Oracle, input: &Path, orig: &TriangleSoup, out:
         oracle.try_hausdorff(input, out, bound),
     ) {
         (Ok(ao), Ok(oa)) => r.dist = Some((ao.max(oa) / eps, ao / eps, oa / eps)),
-        (Err(e), _) | (_, Err(e)) => r.dist_error = Some(e.to_string()),
+        (Err(e), _) | (_, Err(e)) => {
+            r.dist_limited = matches!(e, OracleError::Limit(_));
+            r.dist_error = Some(e.to_string());
+        }
     }
     let options = Options {
         resolution: 1e-3 * eps,
@@ -727,7 +735,7 @@ fn summary(r: &Run) -> String {
 fn dist_cell(r: &Run) -> String {
     match (&r.dist, &r.dist_error) {
         (Some((d, _, _)), _) => format!("{d:.2}"),
-        (None, Some(e)) if e.starts_with("oracle stopped") => "limit".into(),
+        (None, Some(_)) if r.dist_limited => "limit".into(),
         (None, Some(_)) => "err".into(),
         _ => String::new(),
     }
