@@ -86,6 +86,8 @@ fn cases(log: &mut Vec<String>) -> Vec<Case> {
             generate::open_cylinder(1.0, 2.0, 32, 8),
         ),
         ("demo_model (cup)", generate::demo_model()),
+        // A folded vertex (no valid normal): pinned, kept, fills may use it as a corner.
+        ("folded_vertex", generate::folded_vertex()),
     ]
     .into_iter()
     .map(|(n, soup)| Case {
@@ -94,7 +96,14 @@ fn cases(log: &mut Vec<String>) -> Vec<Case> {
         percents: GENERATED_PERCENTS,
     })
     .collect();
-    let mut corpus = vec!["fandisk.off", "mech-holes-shark.off", "elephant.off"];
+    // hand and femur each have one folded vertex (pinned).
+    let mut corpus = vec![
+        "fandisk.off",
+        "mech-holes-shark.off",
+        "elephant.off",
+        "hand.off",
+        "femur.off",
+    ];
     if full_requested() {
         corpus.extend(["bunny00.off", "armadillo.off"]);
     } else {

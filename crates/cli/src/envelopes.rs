@@ -150,6 +150,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
             "repair_rounds": env.proof.repair_rounds,
             "repaired_vertices": env.proof.repaired_vertices,
             "tubes": env.tubes.len(),
+            "pinned": env.pinned.iter().map(|v| v.0).collect::<Vec<_>>(),
             "written": written,
         });
         println!("{v}");
@@ -168,6 +169,13 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
             env.proof.repair_rounds, env.proof.repaired_vertices
         );
         println!("tubes            {}", env.tubes.len());
+        if !env.pinned.is_empty() {
+            println!(
+                "pinned           {} vertices without a valid normal (offsets zero; first: {})",
+                env.pinned.len(),
+                env.pinned[0].0
+            );
+        }
         if proved {
             println!(
                 "proof            PROVED: no self-intersection, none with the input or between envelopes (exact)"

@@ -463,6 +463,48 @@ pub fn moebius_strip(n: u32) -> TriangleSoup {
     soup(pos, faces)
 }
 
+/// A closed genus-0 surface of 9 vertices with a *folded* vertex: the faces around vertex 4
+/// have normals that fit in no open hemisphere, so no vertex normal is within 90 degrees of
+/// all of them (section 3's assumption fails; `envelope-offset` pins such a vertex). The fan
+/// of vertex 4 is the one of vertex 1143 of `hand.off` (Debian's `libcgal-demo`), closed by
+/// a cone to vertex 8 and oriented outwards; manifold and free of self-intersections.
+#[must_use]
+pub fn folded_vertex() -> TriangleSoup {
+    TriangleSoup::from_raw(
+        &[
+            [0.252281, -0.0528258, 0.176936],
+            [0.272219, 0.0103774, 0.195095],
+            [0.249193, -0.0712395, 0.244956],
+            [0.232666, -0.0507647, 0.173094],
+            [0.246718, -0.0295268, 0.179409],
+            [0.218797, 0.0265626, 0.184945],
+            [0.252236, -0.0139216, 0.207271],
+            [0.248447, -0.0303258, 0.181752],
+            [
+                0.2573058511216858,
+                -0.04046152464596106,
+                0.18351760999999997,
+            ],
+        ],
+        &[
+            [0, 3, 4],
+            [4, 2, 6],
+            [5, 1, 4],
+            [0, 4, 1],
+            [4, 7, 5],
+            [6, 7, 4],
+            [3, 2, 4],
+            [2, 8, 6],
+            [6, 8, 7],
+            [0, 8, 3],
+            [3, 8, 2],
+            [5, 8, 1],
+            [1, 8, 0],
+            [7, 8, 5],
+        ],
+    )
+}
+
 /// Two triangles sharing only vertex 0: a non-manifold vertex, two components.
 #[must_use]
 pub fn bow_tie() -> TriangleSoup {
@@ -518,6 +560,7 @@ mod tests {
             (plate_with_holes(2), 13.0),
             (torus(2.0, 0.5, 64, 32), 2.0 * PI * PI * 2.0 * 0.25),
             (uv_sphere(64, 32, 1.0), 4.0 / 3.0 * PI),
+            (folded_vertex(), 1.063_589e-5),
         ];
         for (i, (s, v)) in cases.iter().enumerate() {
             let got = signed_volume(s);

@@ -6,7 +6,8 @@
 //!
 //! 1. accept the input (manifold, consistently oriented: section 3's "well-behaved" model),
 //! 2. evaluate the [`EpsilonField`] per vertex (6.3),
-//! 3. compute [`vertex_normals`] within 90 degrees of every adjacent face (3),
+//! 3. compute [`vertex_normals`] within 90 degrees of every adjacent face (3); a vertex with
+//!    none (a folded fan) is *pinned*: offsets zero there ([`Envelopes::pinned`]),
 //! 4. compute per-vertex `eps_plus` / `eps_minus` by the [`Method::Analytical`] prism
 //!    clipping (4.1) or the [`Method::Numerical`] iterative growth (4.2) (or the growth
 //!    from the proved clipping where it fell short: [`Method::Auto`]),
@@ -24,8 +25,8 @@
 //! vertices, nothing else.
 //!
 //! Choices the paper leaves open, made here: the normal combination (angle-weighted average,
-//! maximin fallback; [`normals`](vertex_normals)), the prism's conservative "closest point"
-//! set and the repair by halving (analytical), `K = 4`, global step `min(1 % of the
+//! maximin fallback; [`normals`](vertex_normals)), pinning where there is no valid normal,
+//! the prism's conservative "closest point" set and the repair by halving (analytical), `K = 4`, global step `min(1 % of the
 //! diagonal, eps/K)`, local step half the shortest incident edge within 90 degrees of the
 //! offset direction, the step tripled after every accepted step (not in the paper: an
 //! unobstructed vertex reaches its target in about 2 checks instead of `K`), at most 10
@@ -155,9 +156,6 @@ pub enum EnvelopeError {
     /// Faces are not consistently oriented.
     #[error("the mesh is not consistently oriented")]
     NotOriented,
-    /// Vertices with no normal within 90 degrees of all adjacent faces (exact).
-    #[error("{} vertices have no valid normal (first: {})", .0.len(), .0[0].0)]
-    NoValidNormal(Vec<VertexId>),
     /// Per-vertex epsilon count differs from the vertex count.
     #[error("{got} epsilon values for {expected} vertices")]
     EpsilonCount {
@@ -181,8 +179,15 @@ pub struct Envelopes {
     pub outer: TriangleSoup,
     /// `v - eps_minus_v n_v` for every vertex, input connectivity.
     pub inner: TriangleSoup,
-    /// Vertex normals.
+    /// Vertex normals (zero at [`Envelopes::pinned`] vertices).
     pub normals: Vec<DVec3>,
+    /// Vertices with no valid normal (no direction strictly within 90 degrees of all their
+    /// faces, decided exactly: a folded fan). Both offsets are zero there: the envelopes
+    /// pass through the input vertex, which pinches the space between them to that point.
+    /// Not in the paper, which assumes every vertex has a normal. A simplifier must keep
+    /// these vertices, and a candidate triangle may touch an envelope there only at a
+    /// corner it shares with it (`envelope-simplify`'s `Barriers::with_pins`).
+    pub pinned: Vec<VertexId>,
     /// Requested epsilon per vertex.
     pub requested: Vec<f64>,
     /// Achieved outer offset per vertex (`<= requested`).
@@ -240,10 +245,15 @@ pub fn build_envelopes(
     let requested = options.epsilon.evaluate(&soup.positions)?;
     let vf = VertexFaces::new(soup.num_vertices(), &soup.faces);
     let vn = normals::vertex_normals_with(soup, &vf);
-    if !vn.invalid.is_empty() {
-        return Err(EnvelopeError::NoValidNormal(vn.invalid));
-    }
     let normals = vn.normals;
+    let pinned = vn.invalid;
+    // What the methods aim for: the requested epsilon, except zero at pinned vertices.
+    let mut targets = requested.clone();
+    for v in &pinned {
+        targets[v.index()] = 0.0;
+    }
+    let requested_all = requested;
+    let requested = targets;
     let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
     let diagonal = soup.diagonal();
     let analytical = || analytical::analytical_eps(soup, &vf, &normals, &requested);
@@ -311,7 +321,7 @@ pub fn build_envelopes(
                 faces: &faces,
                 outer: &outer,
                 inner: &inner,
-                requested: &requested,
+                requested: &requested_all,
                 diagonal,
             };
             let policy = StepPolicy {
@@ -330,7 +340,8 @@ pub fn build_envelopes(
         outer: TriangleSoup::new(outer, soup.faces.clone()),
         inner: TriangleSoup::new(inner, soup.faces.clone()),
         normals,
-        requested,
+        requested: requested_all,
+        pinned,
         eps_plus,
         eps_minus,
         tubes,
@@ -376,7 +387,11 @@ fn prove_and_repair(
     let mut outer = place(&eps_plus, 1.0);
     let mut inner = place(&eps_minus, -1.0);
     let mut proof = Proof {
-        contacts: proof::prove_envelopes(&soup.positions, &outer, &inner, faces),
+        contacts: proof::prove_envelopes(
+            &soup.positions,
+            [(&outer, &eps_plus), (&inner, &eps_minus)],
+            faces,
+        ),
         ..Proof::default()
     };
     let mut repaired = vec![false; soup.num_vertices()];
@@ -414,7 +429,11 @@ fn prove_and_repair(
         outer = place(&eps_plus, 1.0);
         inner = place(&eps_minus, -1.0);
         proof.repair_rounds += 1;
-        proof.contacts = proof::prove_envelopes(&soup.positions, &outer, &inner, faces);
+        proof.contacts = proof::prove_envelopes(
+            &soup.positions,
+            [(&outer, &eps_plus), (&inner, &eps_minus)],
+            faces,
+        );
     }
     proof.repaired_vertices = repaired.iter().filter(|&&r| r).count();
     Proved {

@@ -1,7 +1,9 @@
 //! The exact non-intersection proof (Cohen et al. 4: "the envelopes do not self-intersect").
 //!
 //! The input, the outer and the inner envelope are put in one soup with *no shared vertex
-//! indices between the three* (so an envelope touching the input counts as intersecting), and
+//! indices between the three* (so an envelope touching the input counts as intersecting),
+//! except where an offset is exactly zero (a pinned vertex, see
+//! [`crate::Envelopes::pinned`]: there the envelope vertex is the input vertex), and
 //! [`envelope_predicates::self_intersections`] (BVH candidates, exact adjacency-aware tests on
 //! the f64 vertices) lists every meeting pair. Each pair is reported with the surfaces it
 //! joins, so the one run answers "each alone" (outer-outer, inner-inner, input-input) and
@@ -62,22 +64,34 @@ impl Proof {
     }
 }
 
-/// Exact contacts among input, outer and inner (same connectivity `faces`).
+/// Exact contacts among input, outer and inner (same connectivity `faces`), each envelope
+/// given with its offsets.
+///
+/// An envelope vertex whose offset is exactly zero *is* the input vertex (the same f64
+/// point): it gets the input's index, so faces around it may meet the input's faces there
+/// and only there (adjacency-aware test), as a pinched envelope must. Every other envelope
+/// vertex has its own index, and touching the input counts.
 pub(crate) fn prove_envelopes(
     input: &[DVec3],
-    outer: &[DVec3],
-    inner: &[DVec3],
+    envelopes: [(&[DVec3], &[f64]); 2],
     faces: &[[u32; 3]],
 ) -> Vec<Contact> {
     let n = input.len() as u32;
     let nf = faces.len() as u32;
     let mut positions = Vec::with_capacity(3 * input.len());
     positions.extend_from_slice(input);
-    positions.extend_from_slice(outer);
-    positions.extend_from_slice(inner);
     let mut all = Vec::with_capacity(3 * faces.len());
-    for k in 0..3 {
-        all.extend(faces.iter().map(|f| f.map(|i| i + k * n)));
+    all.extend_from_slice(faces);
+    for (k, (env, eps)) in (1u32..).zip(envelopes) {
+        positions.extend_from_slice(env);
+        let index = |v: u32| {
+            if eps[v as usize] == 0.0 && env[v as usize] == input[v as usize] {
+                v
+            } else {
+                v + k * n
+            }
+        };
+        all.extend(faces.iter().map(|f| f.map(index)));
     }
     let which = |f: u32| {
         let s = match f / nf {

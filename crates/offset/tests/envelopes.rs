@@ -262,3 +262,55 @@ fn auto_keeps_the_better_method() {
     );
     assert!(numerical_kept > 0, "no case exercised the numerical branch");
 }
+
+/// A vertex whose faces fit in no open hemisphere (a fold taken from `hand.off`) is pinned:
+/// normal zero, both offsets zero, and the proof holds with the envelopes passing through
+/// it (they meet the input there and nowhere else). Every other vertex still moves. Before
+/// pinning, such a mesh was refused.
+#[test]
+fn folded_vertex_is_pinned_and_the_proof_holds() {
+    let s = generate::folded_vertex();
+    assert_eq!(
+        envelope_offset::vertex_normals(&s).invalid,
+        vec![envelope_mesh::VertexId(4)]
+    );
+    for m in [Method::Numerical, Method::Analytical, Method::Auto] {
+        let env = build(&s, 0.05 * s.diagonal(), m);
+        assert!(env.proof.holds(), "{m:?}: {:?}", env.proof.contacts);
+        assert_eq!(env.pinned, vec![envelope_mesh::VertexId(4)], "{m:?}");
+        assert_eq!(env.normals[4], DVec3::ZERO);
+        assert_eq!((env.eps_plus[4], env.eps_minus[4]), (0.0, 0.0), "{m:?}");
+        assert_eq!(env.outer.positions[4], s.positions[4]);
+        assert_eq!(env.inner.positions[4], s.positions[4]);
+        assert_eq!(
+            env.requested[4],
+            0.05 * s.diagonal(),
+            "the request is kept as given"
+        );
+        for v in (0..9).filter(|&v| v != 4) {
+            assert!(
+                env.eps_plus[v] > 0.0 && env.eps_minus[v] > 0.0,
+                "{m:?}: vertex {v}"
+            );
+        }
+        // The pinch is the only meeting point: with the pinned copies given their own
+        // indices, the union soup has contacts, and each involves a face of vertex 4.
+        let n = s.num_vertices() as u32;
+        let mut pos = s.positions.clone();
+        pos.extend_from_slice(&env.outer.positions);
+        pos.extend_from_slice(&env.inner.positions);
+        let faces: Vec<[u32; 3]> = (0..3)
+            .flat_map(|k| s.faces.iter().map(move |f| f.map(|v| v.0 + k * n)))
+            .collect();
+        let contacts = self_intersections(&pos, &faces);
+        assert!(!contacts.is_empty());
+        for (a, b) in contacts {
+            for f in [a, b] {
+                assert!(
+                    faces[f as usize].iter().any(|&v| v % n == 4),
+                    "{m:?}: face {f}"
+                );
+            }
+        }
+    }
+}

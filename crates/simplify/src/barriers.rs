@@ -4,7 +4,9 @@
 
 use envelope_mesh::{CoordError, TriangleSoup, check_coordinate};
 use envelope_predicates::bvh::{Aabb, Bvh, NodeKind};
-use envelope_predicates::{SegmentTriangle, segment_triangle, triangles_intersect};
+use envelope_predicates::{
+    SegmentTriangle, Shared, adjacent_triangles_intersect, segment_triangle, triangles_intersect,
+};
 use glam::DVec3;
 use std::cell::Cell;
 use thiserror::Error;
@@ -73,6 +75,8 @@ pub struct Barriers {
     /// one side of its plane).
     slabs: Vec<SlabFilter>,
     kinds: Vec<BarrierKind>,
+    /// Per envelope triangle, a bit per corner that is a pin ([`Barriers::with_pins`]).
+    pinned: Vec<u8>,
     bvh: Option<Bvh>,
     has_tubes: bool,
 }
@@ -134,14 +138,56 @@ impl Barriers {
         let boxes: Vec<Aabb> = triangles.iter().map(|&t| Aabb::from_triangle(t)).collect();
         let bvh = (!boxes.is_empty()).then(|| Bvh::new(&boxes));
         let slabs = triangles.iter().map(|&t| SlabFilter::new(t)).collect();
+        let pinned = vec![0; triangles.len()];
         Ok(Self {
             triangles,
             boxes,
             slabs,
             kinds,
+            pinned,
             bvh,
             has_tubes,
         })
+    }
+
+    /// Declares pin points: input vertices where the envelopes were pinched to the input
+    /// (`envelope-offset`'s `Envelopes::pinned`, a vertex with no valid normal). An envelope
+    /// triangle with a corner at a pin (the same f64 point) no longer blocks a candidate that
+    /// has that point as a corner and meets it nowhere else (exact adjacency-aware test, the
+    /// one used for mesh faces sharing a vertex). A candidate that passes through a pin
+    /// other than at a corner is still blocked, so the pinned vertex itself is never
+    /// removed. Walls and tubes are unaffected.
+    ///
+    /// Why this is safe: the candidate minus its pinned corner is connected and meets no
+    /// barrier, and its other corners are input vertices inside the space between the
+    /// envelopes, so it stays inside that space.
+    ///
+    /// ```
+    /// use envelope_mesh::TriangleSoup;
+    /// use envelope_simplify::Barriers;
+    /// use glam::DVec3;
+    /// let roof = TriangleSoup::from_raw(&[[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]], &[[0, 1, 2]]);
+    /// let candidate = [DVec3::ZERO, DVec3::new(1.0, 0.0, -1.0), DVec3::new(0.0, 1.0, -1.0)];
+    /// let plain = Barriers::new(vec![roof.clone()], vec![]).unwrap();
+    /// assert!(plain.blocks(candidate, [false; 3])); // touches at the origin
+    /// let pinned = Barriers::new(vec![roof], vec![]).unwrap().with_pins(&[DVec3::ZERO]);
+    /// assert!(!pinned.blocks(candidate, [false; 3]));
+    /// ```
+    #[must_use]
+    pub fn with_pins(mut self, pins: &[DVec3]) -> Self {
+        let key = |p: DVec3| p.to_array().map(f64::to_bits);
+        let set: std::collections::HashSet<[u64; 3]> = pins.iter().map(|&p| key(p)).collect();
+        if set.is_empty() {
+            return self;
+        }
+        for (i, t) in self.triangles.iter().enumerate() {
+            if self.kinds[i] == BarrierKind::Envelope {
+                self.pinned[i] = (0..3)
+                    .filter(|&k| set.contains(&key(t[k])))
+                    .fold(0, |m, k| m | 1 << k);
+            }
+        }
+        self
     }
 
     /// Number of barrier triangles (envelopes and tubes).
@@ -271,13 +317,43 @@ impl Barriers {
             BarrierKind::Envelope | BarrierKind::Wall => {
                 !plane.separates_points(b)
                     && !self.slabs[i].separates_points(t)
-                    && triangles_intersect(t, b)
+                    && match shared_pins(t, b, self.pinned[i]) {
+                        Some(shared) => adjacent_triangles_intersect(t, b, shared),
+                        None => triangles_intersect(t, b),
+                    }
             }
             BarrierKind::Tube => (0..3).any(|k| {
                 border_edges[k]
                     && segment_triangle(t[k], t[(k + 1) % 3], b) != SegmentTriangle::Disjoint
             }),
         }
+    }
+}
+
+/// The corners `t[i] == b[j]` with `j` a pin corner of `b` (bit `j` of `mask`), as a
+/// [`Shared`] vertex or edge; `None` when there is none (or three: the same triangle, which
+/// the plain test blocks).
+fn shared_pins(t: [DVec3; 3], b: [DVec3; 3], mask: u8) -> Option<Shared> {
+    if mask == 0 {
+        return None;
+    }
+    let mut pairs = [(0, 0); 3];
+    let mut n = 0;
+    for (j, &q) in b.iter().enumerate() {
+        if mask & 1 << j != 0
+            && let Some(i) = t.iter().position(|&p| p == q)
+        {
+            pairs[n] = (i, j);
+            n += 1;
+        }
+    }
+    match n {
+        1 => Some(Shared::Vertex(pairs[0].0, pairs[0].1)),
+        2 => Some(Shared::Edge(
+            [pairs[0].0, pairs[1].0],
+            [pairs[0].1, pairs[1].1],
+        )),
+        _ => None,
     }
 }
 
@@ -367,6 +443,53 @@ mod tests {
     fn point() -> impl Strategy<Value = DVec3> {
         (-4i32..=4, -4i32..=4, -4i32..=4)
             .prop_map(|(x, y, z)| DVec3::new(x.into(), y.into(), z.into()))
+    }
+
+    /// A roof over the origin: `z = x + y` on the unit corner triangle.
+    fn roof() -> TriangleSoup {
+        TriangleSoup::from_raw(
+            &[[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]],
+            &[[0, 1, 2]],
+        )
+    }
+
+    #[test]
+    fn a_pin_lets_a_candidate_touch_at_its_corner_only() {
+        let plain = Barriers::new(vec![roof()], vec![]).unwrap();
+        let pinned = Barriers::new(vec![roof()], vec![])
+            .unwrap()
+            .with_pins(&[DVec3::ZERO]);
+        let d = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+        // Below the roof, corner at the pin: only the pinned barriers let it through.
+        let below = [DVec3::ZERO, d(1.0, 0.0, 0.0), d(0.0, 1.0, 0.0)];
+        assert!(plain.blocks(below, [false; 3]));
+        assert!(!pinned.blocks(below, [false; 3]));
+        // Corner at the pin, but it crosses the roof away from it.
+        let crossing = [DVec3::ZERO, d(1.0, 0.0, 2.0), d(0.0, 1.0, 0.0)];
+        assert!(pinned.blocks(crossing, [false; 3]));
+        // On the roof's plane along its edge from the pin: meets it along a segment.
+        let along = [DVec3::ZERO, d(0.5, 0.0, 0.5), d(0.5, -1.0, 0.0)];
+        assert!(pinned.blocks(along, [false; 3]));
+        // Through the pin, which is not its corner (the pinned vertex cannot be removed).
+        let through = [d(-1.0, -1.0, 0.0), d(1.0, -1.0, 0.0), d(0.0, 1.0, 0.0)];
+        assert!(through[0].x < 0.0 && pinned.blocks(through, [false; 3]));
+        // A corner at the roof's other corner, which is no pin.
+        let other = [d(1.0, 0.0, 1.0), d(2.0, 0.0, 0.0), d(1.0, -1.0, 0.0)];
+        assert!(pinned.blocks(other, [false; 3]));
+        // A wall with a corner at the pin is not relaxed.
+        let walled = Barriers::with_walls(vec![], vec![], vec![roof()])
+            .unwrap()
+            .with_pins(&[DVec3::ZERO]);
+        assert!(walled.blocks(below, [false; 3]));
+        // Two pins: a candidate sharing the roof's edge between them, folded away from it.
+        let two = Barriers::new(vec![roof()], vec![])
+            .unwrap()
+            .with_pins(&[DVec3::ZERO, d(1.0, 0.0, 1.0)]);
+        let hinge = [DVec3::ZERO, d(1.0, 0.0, 1.0), d(0.5, -1.0, 0.0)];
+        assert!(plain.blocks(hinge, [false; 3]));
+        assert!(!two.blocks(hinge, [false; 3]));
+        let folded = [DVec3::ZERO, d(1.0, 0.0, 1.0), d(0.25, 0.5, 0.75)];
+        assert!(two.blocks(folded, [false; 3]));
     }
 
     proptest! {

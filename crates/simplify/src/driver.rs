@@ -145,6 +145,9 @@ pub struct EnvelopeReport {
     pub repair_rounds: u32,
     /// Border tubes.
     pub tubes: usize,
+    /// Vertices pinned for want of a valid normal (`envelope-offset`'s `Envelopes::pinned`:
+    /// zero offsets there, and the simplifier keeps them).
+    pub pinned: usize,
     /// Seconds to build and prove.
     pub seconds: f64,
 }
@@ -287,6 +290,7 @@ impl SimplifyReport {
                 "proved": e.proved,
                 "repair_rounds": e.repair_rounds,
                 "tubes": e.tubes,
+                "pinned": e.pinned,
                 "seconds": e.seconds,
             },
             "verify": self.verify.as_ref().map(VerifyReport::to_json),
@@ -486,6 +490,7 @@ pub fn simplify_with(
         proved: env.proof.holds(),
         repair_rounds: env.proof.repair_rounds,
         tubes: env.tubes.len(),
+        pinned: env.pinned.len(),
         seconds: env_seconds,
     };
     let used = referenced(soup);
@@ -505,7 +510,12 @@ pub fn simplify_with(
         .map(|w| w.mesh)
         .collect();
     let (outer, inner) = (env.outer.positions.clone(), env.inner.positions.clone());
-    let barriers = Barriers::with_walls(vec![env.outer, env.inner], tubes, walls)?;
+    let pins: Vec<DVec3> = env
+        .pinned
+        .iter()
+        .map(|v| soup.positions[v.index()])
+        .collect();
+    let barriers = Barriers::with_walls(vec![env.outer, env.inner], tubes, walls)?.with_pins(&pins);
 
     let mut mesh = HalfEdgeMesh::from_soup(soup)?;
     progress.stage(Stage::Simplify {
