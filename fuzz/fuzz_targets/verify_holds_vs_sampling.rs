@@ -24,7 +24,8 @@ fn soup(tris: &[[i8; 9]]) -> TriangleSoup {
     for t in tris.iter().take(6) {
         let base = positions.len() as u32;
         for k in 0..3 {
-            positions.push(DVec3::new(t[3 * k] as f64, t[3 * k + 1] as f64, t[3 * k + 2] as f64) / 16.0);
+            positions
+                .push(DVec3::new(t[3 * k] as f64, t[3 * k + 1] as f64, t[3 * k + 2] as f64) / 16.0);
         }
         faces.push([VertexId(base), VertexId(base + 1), VertexId(base + 2)]);
     }

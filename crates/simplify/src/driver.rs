@@ -510,10 +510,11 @@ pub fn simplify_with(
         .map(|w| w.mesh)
         .collect();
     let (outer, inner) = (env.outer.positions.clone(), env.inner.positions.clone());
-    let pins: Vec<DVec3> = env
-        .pinned
-        .iter()
-        .map(|v| soup.positions[v.index()])
+    // Pins: where an envelope passes through the input vertex (a zero offset; every pinned
+    // vertex, and any vertex the numerical growth could not move at all).
+    let pins: Vec<DVec3> = (0..soup.num_vertices())
+        .filter(|&v| used[v] && (env.eps_plus[v] == 0.0 || env.eps_minus[v] == 0.0))
+        .map(|v| soup.positions[v])
         .collect();
     let barriers = Barriers::with_walls(vec![env.outer, env.inner], tubes, walls)?.with_pins(&pins);
 
