@@ -90,6 +90,8 @@ struct Args {
     json: Option<PathBuf>,
     keep: Option<PathBuf>,
     envelope: Option<PathBuf>,
+    /// `--placement` for our simplifier (`subset`, the default, or `slide`).
+    placement: Option<String>,
 }
 
 fn main() -> ExitCode {
@@ -119,7 +121,7 @@ fn usage() -> ExitCode {
     eprintln!(
         "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--until NAME] [--epsilons 1/64%,...,1%] \
          [--tools envelope,cgal,openmesh,meshopt] [--timeout S] [--oracle-cpu S] [--oracle-gib G] \
-         [--json PATH] [--keep DIR] [--envelope PATH]\n\
+         [--json PATH] [--keep DIR] [--envelope PATH] [--placement subset|slide]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
     );
     ExitCode::FAILURE
@@ -148,6 +150,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
         json: None,
         keep: None,
         envelope: None,
+        placement: None,
         max_faces: None,
         from: None,
         until: None,
@@ -187,6 +190,11 @@ fn parse_args(argv: &[String]) -> Option<Args> {
             "--json" => a.json = Some(PathBuf::from(it.next()?)),
             "--keep" => a.keep = Some(PathBuf::from(it.next()?)),
             "--envelope" => a.envelope = Some(PathBuf::from(it.next()?)),
+            "--placement" => {
+                let p = it.next()?;
+                a.placement = Some(p.clone()).filter(|p| p == "subset" || p == "slide");
+                a.placement.as_ref()?;
+            }
             "--max-faces" => a.max_faces = Some(it.next()?.parse().ok()?),
             "--from" => a.from = Some(it.next()?.clone()),
             "--until" => a.until = Some(it.next()?.clone()),
@@ -261,6 +269,8 @@ struct Programs {
     cgal: Option<PathBuf>,
     openmesh: Option<PathBuf>,
     envelope: Result<PathBuf, String>,
+    /// Extra arguments of our `simplify` (`--placement`).
+    envelope_args: Vec<OsString>,
     me: PathBuf,
 }
 
@@ -281,6 +291,11 @@ fn locate_programs(args: &Args) -> Programs {
         cgal: exe(peers.join("cgal_envelope_collapse")),
         openmesh: exe(peers.join("openmesh_decimate")),
         envelope: locate_envelope(args.envelope.as_deref(), &root),
+        envelope_args: args
+            .placement
+            .iter()
+            .flat_map(|p| ["--placement".into(), p.into()])
+            .collect(),
         me: std::env::current_exe().expect("current exe"),
     }
 }
@@ -449,7 +464,7 @@ fn run_tool(
     let report = dir.join(format!("{tag}.report.json"));
     let cmd: Vec<OsString> = match tool {
         Tool::Envelope => match &progs.envelope {
-            Ok(b) => vec![
+            Ok(b) => [
                 b.into(),
                 "simplify".into(),
                 input.into(),
@@ -459,7 +474,10 @@ fn run_tool(
                 "--report".into(),
                 report.clone().into(),
                 "--quiet".into(),
-            ],
+            ]
+            .into_iter()
+            .chain(progs.envelope_args.iter().cloned())
+            .collect(),
             Err(m) => return Run::status(Status::Unavailable(m.clone())),
         },
         Tool::Cgal | Tool::OpenMesh => {

@@ -15,7 +15,7 @@ use envelope_io::{Format, read_path, write_path};
 use envelope_mesh::TriangleSoup;
 use envelope_offset::{EpsilonField, Method, parse_epsilon, read_epsilon_file};
 use envelope_simplify::{
-    HoleFilling, Progress, SimplifyOptions, SimplifyReport, Stage, simplify_with,
+    HoleFilling, Placement, Progress, SimplifyOptions, SimplifyReport, Stage, simplify_with,
 };
 use envelope_verify::Verdict;
 use glam::DVec3;
@@ -82,6 +82,16 @@ impl FillArg {
     }
 }
 
+/// Where output vertices may lie.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub(crate) enum PlacementArg {
+    /// Output vertices are input vertices, unmoved (the paper's 5.2; default).
+    Subset,
+    /// After the subset run, stuck vertices are tried again with their neighbours slid
+    /// along their normals between the envelopes (the paper's section 8).
+    Slide,
+}
+
 /// Arguments of `envelope simplify`.
 #[derive(clap::Args)]
 pub(crate) struct Args {
@@ -115,6 +125,10 @@ pub(crate) struct Args {
     /// the candidate counts).
     #[arg(long, value_enum, default_value_t = AlgorithmArg::Local)]
     method: AlgorithmArg,
+    /// Where output vertices may lie (the report's `placement`; `slide` moves vertices, so
+    /// the output's vertices are no longer a subset of the input's).
+    #[arg(long, value_enum, default_value_t = PlacementArg::Subset)]
+    placement: PlacementArg,
     /// Write the report as JSON to this file.
     #[arg(long)]
     report: Option<PathBuf>,
@@ -323,6 +337,10 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     let options = SimplifyOptions {
         method: args.envelope.method(),
         hole_filling: args.hole_filling.hole_filling(),
+        placement: match args.placement {
+            PlacementArg::Subset => Placement::Subset,
+            PlacementArg::Slide => Placement::Slide,
+        },
         verify: !args.no_verify,
         ..SimplifyOptions::new(field(args, &soup)?)
     };

@@ -240,3 +240,49 @@ fn bad_input_and_arguments_exit_2_and_leave_out_alone() {
         stderr(&o)
     );
 }
+
+/// `--placement slide` (section 8): certified, fewer faces than the default subset placement
+/// on a sphere (curvature everywhere), some output vertices off the input, and the report
+/// says so; the default report says `subset` with no slid removal.
+#[test]
+fn slide_placement_moves_vertices_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let sphere = generate::icosphere(4, 1.0);
+    let input = write(dir.path(), "sphere.off", &sphere);
+    let mut faces = Vec::new();
+    for placement in ["subset", "slide"] {
+        let output = dir.path().join(format!("{placement}.off"));
+        let report = dir.path().join(format!("{placement}.json"));
+        let out = envelope(&[
+            "simplify",
+            &input,
+            output.to_str().unwrap(),
+            "--epsilon",
+            "1/4%",
+            "--placement",
+            placement,
+            "--quiet",
+            "--report",
+            report.to_str().unwrap(),
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        let r: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        assert_eq!(r["placement"], placement);
+        assert_eq!(r["verify"]["verdict"], "holds");
+        let (soup, _) = read_path(&output).unwrap();
+        let off_input = soup
+            .positions
+            .iter()
+            .filter(|p| !sphere.positions.contains(p))
+            .count();
+        let slid = r["slid_removals"].as_u64().unwrap();
+        if placement == "subset" {
+            assert_eq!((off_input, slid), (0, 0));
+        } else {
+            assert!(off_input > 0 && slid > 0, "{off_input} {slid}");
+        }
+        faces.push(soup.num_faces());
+    }
+    assert!(faces[1] < faces[0], "{faces:?}");
+}

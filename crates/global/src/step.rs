@@ -7,8 +7,8 @@ use crate::candidates::Fibers;
 use crate::global::{GlobalError, GlobalOptions, GlobalStats, simplify_global};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
 use envelope_simplify::{
-    HoleFilling, LocalStep, Options as LocalOptions, Progress, SimplifyError, SimplifyStep, Stats,
-    StepInput, StepOutcome, simplify_local_from,
+    HoleFilling, LocalStep, Options as LocalOptions, Placement, Progress, SimplifyError,
+    SimplifyStep, Stats, StepInput, StepOutcome, simplify_local_from,
 };
 use serde_json::json;
 use std::collections::HashSet;
@@ -213,6 +213,7 @@ impl SimplifyStep for HybridStep {
                     hole_filling: HoleFilling::Exhaustive { max_vertices },
                     target_faces: input.options.target_faces,
                     check_each_step: false,
+                    placement: Placement::Subset,
                 };
                 let l = simplify_local_from(mesh, input.barriers, &options, None, &mut ())?;
                 add_local(&mut stats, &l);
@@ -262,6 +263,7 @@ fn global_stats(g: &GlobalStats) -> Stats {
         no_valid_fill: g.no_valid_fill,
         refused: g.overlapping,
         candidate_tests: g.filter_tests,
+        slid: 0,
     }
 }
 

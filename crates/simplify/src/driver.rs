@@ -29,8 +29,8 @@ use thiserror::Error;
 
 use crate::policy::Rejection;
 use crate::{
-    BarrierError, Barriers, HoleFilling, Order, SimplifyError, Visitor, border_walls,
-    simplify_local_from,
+    BarrierError, Barriers, HoleFilling, Order, Placement, SimplifyError, VertexFibers, Visitor,
+    border_walls, simplify_local_sliding,
 };
 
 /// What [`simplify`] does.
@@ -47,6 +47,10 @@ pub struct SimplifyOptions {
     pub hole_filling: HoleFilling,
     /// Queue order (default: the paper's first in, first out).
     pub order: Order,
+    /// Where output vertices may lie (default: the input vertices, as in the paper's 5.2;
+    /// [`Placement::Slide`]: the local step then slides stuck neighbourhoods along the
+    /// fibers, section 8).
+    pub placement: Placement,
     /// Vertices per border-tube ring (`None`: no tubes, border vertices are then kept).
     pub tube_segments: Option<u32>,
     /// Stop once at most this many faces remain.
@@ -65,6 +69,7 @@ impl SimplifyOptions {
             method: Method::Auto,
             hole_filling: HoleFilling::default(),
             order: Order::default(),
+            placement: Placement::default(),
             tube_segments: Some(8),
             target_faces: None,
             verify: false,
@@ -239,6 +244,10 @@ pub struct SimplifyReport {
     pub peak_memory_bytes: Option<u64>,
     /// Vertices removed.
     pub removed_vertices: usize,
+    /// `"subset"` or `"slide"` ([`SimplifyOptions::placement`]).
+    pub placement: &'static str,
+    /// Removals that slid neighbours along their fibers (0 with `"subset"`).
+    pub slid_removals: usize,
     /// Removal attempts.
     pub attempts: usize,
     /// Genus of the input (`None`: undefined).
@@ -277,6 +286,8 @@ impl SimplifyReport {
             "simplify_seconds": self.simplify_seconds,
             "peak_memory_bytes": self.peak_memory_bytes,
             "removed_vertices": self.removed_vertices,
+            "placement": self.placement,
+            "slid_removals": self.slid_removals,
             "attempts": self.attempts,
             "genus_in": self.genus_in,
             "genus_out": self.genus_out,
@@ -438,7 +449,7 @@ impl LocalStep {
         seeds: Option<&[VertexId]>,
         progress: &mut dyn Progress,
     ) -> Result<StepOutcome, SimplifyError> {
-        let stats = run_local(mesh, input.barriers, input.options, seeds, progress)?;
+        let stats = run_local(mesh, input, seeds, progress)?;
         Ok(StepOutcome {
             stats,
             method: "local",
@@ -560,6 +571,11 @@ pub fn simplify_with(
         simplify_seconds,
         peak_memory_bytes: peak_memory_bytes(),
         removed_vertices: stats.removed,
+        placement: match options.placement {
+            Placement::Subset => "subset",
+            Placement::Slide => "slide",
+        },
+        slid_removals: stats.slid,
         attempts: stats.attempts,
         genus_in: topo_in.genus,
         genus_out: topo_out.genus,
@@ -585,21 +601,33 @@ fn referenced(soup: &TriangleSoup) -> Vec<bool> {
 
 fn run_local(
     mesh: &mut HalfEdgeMesh,
-    barriers: &Barriers,
-    options: &SimplifyOptions,
+    input: &StepInput<'_>,
     seeds: Option<&[VertexId]>,
     progress: &mut dyn Progress,
 ) -> Result<crate::Stats, SimplifyError> {
+    let options = input.options;
     let local_options = crate::Options {
         order: options.order,
         hole_filling: options.hole_filling,
         target_faces: options.target_faces,
         check_each_step: false,
+        placement: options.placement,
+    };
+    let fibers = VertexFibers {
+        inner: input.inner,
+        outer: input.outer,
     };
     let mut visitor = ProgressVisitor {
         progress,
         attempts: 0,
         removed: 0,
     };
-    simplify_local_from(mesh, barriers, &local_options, seeds, &mut visitor)
+    simplify_local_sliding(
+        mesh,
+        input.barriers,
+        &local_options,
+        seeds,
+        Some(fibers),
+        &mut visitor,
+    )
 }

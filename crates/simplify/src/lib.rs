@@ -36,9 +36,9 @@ pub use fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
 pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, NoFilter};
 pub use grid::FaceGrid;
 pub use local::{
-    HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Policies, Removal, RemovalQueue,
-    SimplifyError, Stats, queue_vertices, simplify_local, simplify_local_from,
-    simplify_local_visited, simplify_local_with,
+    HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Placement, Policies, Removal,
+    RemovalQueue, SimplifyError, Stats, VertexFibers, queue_vertices, simplify_local,
+    simplify_local_from, simplify_local_sliding, simplify_local_visited, simplify_local_with,
 };
 pub use lod::{Level, LodOptions, LodRule, Screen, lod_chain};
 pub use policy::{

@@ -38,7 +38,7 @@
 //! the whole batch. Other orders take one vertex at a time.
 
 use crate::fill::{FillContext, Hole, HoleFiller};
-use crate::filter::Filter;
+use crate::filter::{Approximation, CandidateProfile, Filter};
 use crate::grid::FaceGrid;
 use crate::policy::{
     Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor,
@@ -46,9 +46,11 @@ use crate::policy::{
 use crate::{Barriers, EnvelopeFilter, Exhaustive, Greedy};
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
+use glam::DVec3;
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
+use std::collections::VecDeque;
 use thiserror::Error;
 
 /// Vertices of larger valence are not tried (their candidate lists grow cubically).
@@ -91,6 +93,8 @@ pub struct Stats {
     pub refused: usize,
     /// Candidate triangles given to the filter.
     pub candidate_tests: u64,
+    /// Removals that slid neighbours along their fibers ([`Placement::Slide`]).
+    pub slid: usize,
 }
 
 /// The hole-filling strategy of [`Options`].
@@ -137,6 +141,48 @@ pub struct Options {
     pub target_faces: Option<usize>,
     /// Run the mesh's, the grid's and the queue's sanity checks after every attempt (slow).
     pub check_each_step: bool,
+    /// Where output vertices may lie (default: the input positions).
+    pub placement: Placement,
+}
+
+/// Where the output vertices of the local algorithm may lie.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Placement {
+    /// The paper's 5.2: the output vertices are a subset of the input vertices, at their
+    /// input positions (nested vertex sets, as level-of-detail chains need).
+    #[default]
+    Subset,
+    /// The paper's section 8 ("allow the vertices to slide along their normal vectors"),
+    /// after the subset run is stuck: a vertex whose removal fails is tried again with its
+    /// interior neighbours slid along their fibers ([`VertexFibers`]) half-way towards its
+    /// tangent plane; see [`LocalSimplifier::try_slide_remove`]. Output vertices then lie
+    /// on their fibers, between the envelopes, not on the input.
+    Slide,
+}
+
+/// The fiber of every vertex (by vertex id): the segment from its inner envelope point to its
+/// outer one (f64 constructions of `envelope-offset`), along which [`Placement::Slide`]
+/// moves it.
+#[derive(Clone, Copy, Debug)]
+pub struct VertexFibers<'a> {
+    /// `v - eps_minus n_v`.
+    pub inner: &'a [DVec3],
+    /// `v + eps_plus n_v`.
+    pub outer: &'a [DVec3],
+}
+
+/// Slid positions stay within this part of a fiber, `[SLIDE_RANGE, 1 - SLIDE_RANGE]` of the
+/// way from the inner to the outer point (a choice: a vertex slid onto an envelope could not
+/// keep a single triangle).
+const SLIDE_RANGE: f64 = 0.05;
+
+impl VertexFibers<'_> {
+    /// `(inner point, outer - inner)` of `v`; `None` without a fiber of positive length.
+    fn segment(&self, v: VertexId) -> Option<(DVec3, DVec3)> {
+        let (a, b) = (*self.inner.get(v.index())?, *self.outer.get(v.index())?);
+        let d = b - a;
+        (d.length_squared() > 0.0 && d.is_finite()).then_some((a, d))
+    }
 }
 
 /// The policies of [`simplify_local_with`].
@@ -153,6 +199,8 @@ pub struct Policies<'p> {
     pub keep_border: bool,
     /// Run sanity checks after every attempt.
     pub check_each_step: bool,
+    /// With fibers, the slide phase ([`Placement::Slide`]) runs after the subset run.
+    pub fibers: Option<VertexFibers<'p>>,
 }
 
 /// Simplifies `mesh` in place by the local algorithm of section 5.2, with the validity test
@@ -194,6 +242,19 @@ pub fn simplify_local_from(
     seeds: Option<&[VertexId]>,
     visitor: &mut dyn Visitor,
 ) -> Result<Stats, SimplifyError> {
+    simplify_local_sliding(mesh, barriers, options, seeds, None, visitor)
+}
+
+/// [`simplify_local_from`] with the vertices' fibers, which [`Placement::Slide`] needs
+/// (without them, or with [`Placement::Subset`], no vertex moves).
+pub fn simplify_local_sliding(
+    mesh: &mut HalfEdgeMesh,
+    barriers: &Barriers,
+    options: &Options,
+    seeds: Option<&[VertexId]>,
+    fibers: Option<VertexFibers<'_>>,
+    visitor: &mut dyn Visitor,
+) -> Result<Stats, SimplifyError> {
     let filter = EnvelopeFilter::new(barriers);
     let order: &dyn QueueOrder = match options.order {
         Order::Fifo => &Fifo,
@@ -225,6 +286,7 @@ pub fn simplify_local_from(
         stop,
         keep_border: !barriers.has_tubes(),
         check_each_step: options.check_each_step,
+        fibers: fibers.filter(|_| options.placement == Placement::Slide),
     };
     run(mesh, &policies, seeds, visitor)
 }
@@ -315,10 +377,97 @@ fn run(
             }
         }
     }
+    if let Some(fibers) = policies.fibers {
+        slide_phase(&mut local, policies, &fibers, &mut stats, visitor)?;
+    }
     stats.candidate_tests = local.candidate_tests;
     stats.vertices_after = local.mesh().num_vertices();
     stats.faces_after = local.mesh().num_faces();
     Ok(stats)
+}
+
+/// The slide phase ([`Placement::Slide`]): every live vertex in id order, first in first
+/// out, one at a time: the plain removal, else [`LocalSimplifier::try_slide_remove`]; after a
+/// removal the hole's vertices and the neighbours of slid vertices are queued again. The
+/// first time round, the plain removal is skipped: the subset run just failed it on the same
+/// mesh (the filter and fillers are deterministic), so only vertices queued again after a
+/// change try it.
+fn slide_phase(
+    local: &mut LocalSimplifier<'_>,
+    policies: &Policies<'_>,
+    fibers: &VertexFibers<'_>,
+    stats: &mut Stats,
+    visitor: &mut dyn Visitor,
+) -> Result<(), SimplifyError> {
+    let mut queue: VecDeque<VertexId> = local.mesh().vertices().collect();
+    let mut queued = vec![false; queue.iter().map(|v| v.index() + 1).max().unwrap_or(0)];
+    for v in &queue {
+        queued[v.index()] = true;
+    }
+    // Whether the vertex's neighbourhood changed since the subset run failed it.
+    let mut changed = vec![false; queued.len()];
+    while let Some(v) = queue.pop_front() {
+        queued[v.index()] = false;
+        if policies.stop.should_stop(local.mesh().num_faces()) {
+            break;
+        }
+        stats.attempts += 1;
+        visitor.on_attempt(v);
+        let mut slid = Vec::new();
+        let plain = if std::mem::take(&mut changed[v.index()]) {
+            local.try_remove_vertex(v, policies.filter, policies.filler)
+        } else {
+            Err(Rejection::NoValidFill)
+        };
+        let result = match plain {
+            Err(Rejection::NoValidFill) => {
+                let r = local.try_slide_remove(v, policies.filter, policies.filler, fibers);
+                if let Ok((_, moved)) = &r {
+                    slid.clone_from(moved);
+                }
+                r.map(|(removal, _)| removal)
+            }
+            other => other,
+        };
+        match result {
+            Ok(removal) => {
+                stats.removed += 1;
+                stats.slid += usize::from(!slid.is_empty());
+                visitor.on_removed(v, &removal.faces);
+                let around = slid.iter().flat_map(|&u| local.mesh().vertex_neighbors(u));
+                let again: Vec<VertexId> = removal
+                    .hole
+                    .vertices
+                    .iter()
+                    .copied()
+                    .chain(around)
+                    .collect();
+                for w in again {
+                    if local.mesh().contains_vertex(w) {
+                        changed[w.index()] = true;
+                        if !queued[w.index()] {
+                            queued[w.index()] = true;
+                            queue.push_back(w);
+                        }
+                    }
+                }
+            }
+            Err(reason) => {
+                if reason == Rejection::NoValidFill {
+                    stats.no_valid_fill += 1;
+                } else {
+                    stats.refused += 1;
+                }
+                visitor.on_rejected(v, reason);
+            }
+        }
+        if policies.check_each_step {
+            local
+                .sanity_check()
+                .map_err(|message| SimplifyError::SanityCheck { after: v, message })?;
+        }
+    }
+    Ok(())
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -529,6 +678,130 @@ impl<'m> LocalSimplifier<'m> {
         let (plan, tests) = self.plan(v, filter, filler);
         self.candidate_tests += tests;
         self.apply(v, plan?)
+    }
+
+    /// Tries to remove `v` with its interior neighbours slid along their fibers (the paper's
+    /// section 8): each neighbour `u` whose fiber is within 60 degrees of `v`'s goes
+    /// half-way from where it is towards the point of its fiber on the plane through `v`
+    /// perpendicular to `v`'s fiber, kept within `[0.05, 0.95]` of the fiber. Then the hole
+    /// is filled as in [`Self::try_remove_vertex`] (the filling sees the slid positions),
+    /// and every other face around a slid vertex, at its new position, must pass `filter`
+    /// against the approximation with the filling in it. All or nothing: on any refusal the
+    /// positions come back exactly. Returns the removal and the slid vertices.
+    ///
+    /// Choices (not in the paper, which only sketches the idea): half-way (a chord over a
+    /// curved patch then errs on both sides instead of one), the 60 degrees, the range, and
+    /// border vertices never slide (their tubes hold them).
+    pub fn try_slide_remove(
+        &mut self,
+        v: VertexId,
+        filter: &dyn Filter,
+        filler: &dyn HoleFiller,
+        fibers: &VertexFibers<'_>,
+    ) -> Result<(Removal, Vec<VertexId>), Rejection> {
+        let m = &*self.mesh;
+        if !m.contains_vertex(v) || m.is_isolated(v) {
+            return Err(Rejection::NotAVertex);
+        }
+        let Some((_, dv)) = fibers.segment(v) else {
+            return Err(Rejection::NoValidFill);
+        };
+        let nv = dv.normalize();
+        let pv = m.position(v);
+        let mut moves: Vec<(VertexId, DVec3, DVec3)> = Vec::new();
+        for u in m.vertex_neighbors(v) {
+            if m.is_border_vertex(u) {
+                continue;
+            }
+            let Some((a, d)) = fibers.segment(u) else {
+                continue;
+            };
+            let dn = d.dot(nv);
+            if dn <= 0.5 * d.length() {
+                continue;
+            }
+            let pu = m.position(u);
+            let s_now = (pu - a).dot(d) / d.length_squared();
+            let s_plane = (pv - a).dot(nv) / dn;
+            let s = (0.5 * (s_now + s_plane)).clamp(SLIDE_RANGE, 1.0 - SLIDE_RANGE);
+            let q = a + d * s;
+            if (s - s_now).abs() > 1e-3 && q.is_finite() && q != pu {
+                moves.push((u, pu, q));
+            }
+        }
+        if moves.is_empty() {
+            return Err(Rejection::NoValidFill);
+        }
+        let mut affected: Vec<FaceId> = moves
+            .iter()
+            .flat_map(|&(u, _, _)| m.vertex_faces(u))
+            .collect();
+        affected.sort_unstable();
+        affected.dedup();
+        self.move_vertices(&affected, moves.iter().map(|&(u, _, q)| (u, q)));
+        let outcome = self
+            .plan_slid(v, filter, filler, &affected)
+            .and_then(|plan| self.apply(v, plan));
+        if outcome.is_err() {
+            self.move_vertices(&affected, moves.iter().map(|&(u, p, _)| (u, p)));
+        }
+        outcome.map(|removal| (removal, moves.iter().map(|&(u, _, _)| u).collect()))
+    }
+
+    /// Sets vertex positions and re-indexes the `affected` faces (every live face around a
+    /// moved vertex).
+    fn move_vertices(
+        &mut self,
+        affected: &[FaceId],
+        moves: impl Iterator<Item = (VertexId, DVec3)>,
+    ) {
+        for &f in affected {
+            self.grid.remove(f);
+        }
+        for (u, q) in moves {
+            self.mesh.set_position(u, q);
+        }
+        for &f in affected {
+            let t = self.mesh.face_vertices(f);
+            self.grid.insert(f, t, t.map(|x| self.mesh.position(x)));
+        }
+    }
+
+    /// The plan of `v`'s removal with slid neighbours, and the check of every `affected`
+    /// face outside `v`'s fan against the approximation with the filling placed.
+    fn plan_slid(
+        &mut self,
+        v: VertexId,
+        filter: &dyn Filter,
+        filler: &dyn HoleFiller,
+        affected: &[FaceId],
+    ) -> Result<Plan, Rejection> {
+        let (plan, tests) = self.plan(v, filter, filler);
+        self.candidate_tests += tests;
+        let plan = plan?;
+        let m = &*self.mesh;
+        for &f in affected.iter().filter(|f| !plan.fan.contains(f)) {
+            let triangle = m.face_vertices(f);
+            let mut excluded = plan.fan.clone();
+            excluded.push(f);
+            let profile = CandidateProfile {
+                triangle,
+                corners: triangle.map(|x| m.position(x)),
+                // The edges of a slid vertex are interior; the third edge did not move.
+                border_edges: [false; 3],
+                approximation: Approximation {
+                    mesh: m,
+                    grid: &self.grid,
+                    placed: &plan.placed,
+                    excluded: &excluded,
+                },
+            };
+            self.candidate_tests += 1;
+            if !filter.accepts(&profile) {
+                return Err(Rejection::NoValidFill);
+            }
+        }
+        Ok(plan)
     }
 
     /// Everything [`Self::try_remove_vertex`] decides, without editing anything: the checks,

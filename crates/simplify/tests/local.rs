@@ -391,6 +391,7 @@ fn exhaustive_fills_where_the_single_pass_gets_stuck() {
             stop: &Exhaust,
             keep_border: false,
             check_each_step: true,
+            fibers: None,
         };
         simplify_local_with(&mut m, &policies, &mut ()).unwrap();
         assert_guarantees(&s, &m, &barriers);
@@ -472,6 +473,7 @@ fn stop_rule_and_visitor() {
         stop: &envelope_simplify::TargetFaces(1000),
         keep_border: true,
         check_each_step: false,
+        fibers: None,
     };
     let stats = simplify_local_with(&mut m, &policies, &mut count).unwrap();
     assert!(
