@@ -28,6 +28,7 @@
 //! | topology | a new edge that already exists elsewhere is refused before the filter is asked (link condition); the mesh's `add_faces` is the last guard |
 //! | very large holes | vertices of valence above [`MAX_HOLE`] are kept (the candidate list is cubic in the valence) |
 //! | spatial index | a hashed uniform grid over the live faces, rebuilt coarser as faces grow ([`FaceGrid`]); barriers in a static BVH |
+//! | vertex positions | input positions ([`Placement::Subset`], the paper's 5.2); [`Placement::Slide`] adds the sliding the paper's section 8 proposes as future work, as a sequential phase after the subset run (see [`LocalSimplifier::try_slide_remove`] for its choices) |
 //!
 //! The output is deterministic and the same for any number of threads. With the
 //! first-in-first-out order the queue is taken in batches (`independent_batch`: the front
@@ -389,9 +390,10 @@ fn run(
 /// The slide phase ([`Placement::Slide`]): every live vertex in id order, first in first
 /// out, one at a time: the plain removal, else [`LocalSimplifier::try_slide_remove`]; after a
 /// removal the hole's vertices and the neighbours of slid vertices are queued again. The
-/// first time round, the plain removal is skipped: the subset run just failed it on the same
-/// mesh (the filter and fillers are deterministic), so only vertices queued again after a
-/// change try it.
+/// first time round, the plain removal is skipped: the subset run failed it last, and by the
+/// paper's rule (only neighbours are queued again) nothing around it changed since; only
+/// vertices queued again after a change try it. (A removal near a vertex but not next to it,
+/// across a thin part, can unblock it; the subset run gives those up too.)
 fn slide_phase(
     local: &mut LocalSimplifier<'_>,
     policies: &Policies<'_>,
