@@ -41,7 +41,7 @@ pub struct Proof {
     /// Meeting face pairs among input, outer and inner (empty when proved).
     pub contacts: Vec<Contact>,
     /// Meeting pairs involving a tube (tube faces are exempt against the input and envelope
-    /// faces around their own border vertices; see [`crate::tubes`]).
+    /// faces around their own border vertices; see [`crate::Tube`]).
     pub tube_contacts: Vec<Contact>,
     /// Rounds of "halve the epsilon of offending vertices and re-prove" that were needed.
     pub repair_rounds: u32,
