@@ -13,6 +13,18 @@ fn build(soup: &TriangleSoup, eps: f64, method: Method) -> Envelopes {
     build_envelopes(soup, &o).expect("acceptable input")
 }
 
+/// Input, outer and inner envelope in one soup, no index shared between the three.
+fn union_soup(soup: &TriangleSoup, env: &Envelopes) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let n = soup.num_vertices() as u32;
+    let mut pos = soup.positions.clone();
+    pos.extend_from_slice(&env.outer.positions);
+    pos.extend_from_slice(&env.inner.positions);
+    let faces = (0..3)
+        .flat_map(|k| soup.faces.iter().map(move |f| f.map(|v| v.0 + k * n)))
+        .collect();
+    (pos, faces)
+}
+
 /// The guarantee, re-checked independently: the union soup has no intersecting pair, and
 /// every envelope vertex is within its requested epsilon of the input (exact).
 fn check(soup: &TriangleSoup, env: &Envelopes) {
@@ -21,13 +33,7 @@ fn check(soup: &TriangleSoup, env: &Envelopes) {
         "proof failed: {:?}",
         &env.proof.contacts[..env.proof.contacts.len().min(5)]
     );
-    let n = soup.num_vertices() as u32;
-    let mut pos = soup.positions.clone();
-    pos.extend_from_slice(&env.outer.positions);
-    pos.extend_from_slice(&env.inner.positions);
-    let faces: Vec<[u32; 3]> = (0..3)
-        .flat_map(|k| soup.faces.iter().map(move |f| f.map(|v| v.0 + k * n)))
-        .collect();
+    let (pos, faces) = union_soup(soup, env);
     assert!(self_intersections(&pos, &faces).is_empty());
     let mut fan = vec![Vec::new(); soup.num_vertices()];
     for (i, f) in soup.faces.iter().enumerate() {
@@ -296,12 +302,7 @@ fn folded_vertex_is_pinned_and_the_proof_holds() {
         // The pinch is the only meeting point: with the pinned copies given their own
         // indices, the union soup has contacts, and each involves a face of vertex 4.
         let n = s.num_vertices() as u32;
-        let mut pos = s.positions.clone();
-        pos.extend_from_slice(&env.outer.positions);
-        pos.extend_from_slice(&env.inner.positions);
-        let faces: Vec<[u32; 3]> = (0..3)
-            .flat_map(|k| s.faces.iter().map(move |f| f.map(|v| v.0 + k * n)))
-            .collect();
+        let (pos, faces) = union_soup(&s, &env);
         let contacts = self_intersections(&pos, &faces);
         assert!(!contacts.is_empty());
         for (a, b) in contacts {

@@ -361,14 +361,7 @@ fn run(
                         queue.push(local.mesh(), policies.order, w);
                     }
                 }
-                Err(reason) => {
-                    if reason == Rejection::NoValidFill {
-                        stats.no_valid_fill += 1;
-                    } else {
-                        stats.refused += 1;
-                    }
-                    visitor.on_rejected(v, reason);
-                }
+                Err(reason) => rejected(&mut stats, visitor, v, reason),
             }
             if policies.check_each_step {
                 let check = local
@@ -385,6 +378,16 @@ fn run(
     stats.vertices_after = local.mesh().num_vertices();
     stats.faces_after = local.mesh().num_faces();
     Ok(stats)
+}
+
+/// Counts a failed attempt at `v` and tells the visitor.
+fn rejected(stats: &mut Stats, visitor: &mut dyn Visitor, v: VertexId, reason: Rejection) {
+    if reason == Rejection::NoValidFill {
+        stats.no_valid_fill += 1;
+    } else {
+        stats.refused += 1;
+    }
+    visitor.on_rejected(v, reason);
 }
 
 /// The slide phase ([`Placement::Slide`]): every live vertex in id order, first in first
@@ -454,14 +457,7 @@ fn slide_phase(
                     }
                 }
             }
-            Err(reason) => {
-                if reason == Rejection::NoValidFill {
-                    stats.no_valid_fill += 1;
-                } else {
-                    stats.refused += 1;
-                }
-                visitor.on_rejected(v, reason);
-            }
+            Err(reason) => rejected(stats, visitor, v, reason),
         }
         if policies.check_each_step {
             local
