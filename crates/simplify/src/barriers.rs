@@ -331,10 +331,11 @@ impl Barriers {
 }
 
 /// The corners `t[i] == b[j]` with `j` a pin corner of `b` (bit `j` of `mask`), as a
-/// [`Shared`] vertex or edge; `None` when there is none (or three: the same triangle, which
-/// the plain test blocks).
+/// [`Shared`] vertex or edge; `None` when there is none, or three (the same triangle), or
+/// either triangle repeats a point (then the plain test decides: it can only block more).
 fn shared_pins(t: [DVec3; 3], b: [DVec3; 3], mask: u8) -> Option<Shared> {
-    if mask == 0 {
+    let repeats = |x: [DVec3; 3]| x[0] == x[1] || x[1] == x[2] || x[2] == x[0];
+    if mask == 0 || repeats(t) || repeats(b) {
         return None;
     }
     let mut pairs = [(0, 0); 3];
@@ -531,6 +532,46 @@ mod tests {
             for q in queries {
                 let brute = barrier.iter().any(|&t| triangles_intersect(q, t));
                 prop_assert_eq!(b.blocks(q, [false; 3]), brute, "{:?}", q);
+            }
+        }
+
+        /// Pins only relax: whatever pinned barriers block, plain ones block; a candidate
+        /// with no pin among its corners gets the plain answer; and a candidate let through
+        /// that meets a barrier triangle shares a pinned corner with each one it meets.
+        /// Candidates start at a barrier corner half the time, so corners are shared often.
+        #[test]
+        fn pins_only_relax_at_shared_pinned_corners(
+            barrier in prop::collection::vec([point(), point(), point()], 1..10),
+            queries in prop::collection::vec(([point(), point(), point()], any::<bool>(), 0usize..30), 1..8),
+            pin_picks in prop::collection::vec(0usize..30, 0..6),
+        ) {
+            let corners: Vec<DVec3> = barrier.iter().flatten().copied().collect();
+            let pins: Vec<DVec3> = pin_picks.iter().map(|&k| corners[k % corners.len()]).collect();
+            let soup = TriangleSoup::new(
+                corners.clone(),
+                (0..barrier.len() as u32)
+                    .map(|k| [3 * k, 3 * k + 1, 3 * k + 2].map(envelope_mesh::VertexId))
+                    .collect(),
+            );
+            let plain = Barriers::new(vec![soup.clone()], Vec::new()).unwrap();
+            let pinned = Barriers::new(vec![soup], Vec::new()).unwrap().with_pins(&pins);
+            for (mut q, at_corner, k) in queries {
+                if at_corner {
+                    q[0] = corners[k % corners.len()];
+                }
+                let (p, b) = (plain.blocks(q, [false; 3]), pinned.blocks(q, [false; 3]));
+                prop_assert!(!b || p, "{:?}", q);
+                if !q.iter().any(|c| pins.contains(c)) {
+                    prop_assert_eq!(p, b, "{:?}", q);
+                }
+                if !b {
+                    for t in barrier.iter().filter(|&&t| triangles_intersect(q, t)) {
+                        prop_assert!(
+                            t.iter().any(|c| pins.contains(c) && q.contains(c)),
+                            "{:?} meets {:?} away from a pin", q, t
+                        );
+                    }
+                }
             }
         }
     }
