@@ -723,7 +723,12 @@ impl<'m> LocalSimplifier<'m> {
             let s_plane = (pv - a).dot(nv) / dn;
             let s = (0.5 * (s_now + s_plane)).clamp(SLIDE_RANGE, 1.0 - SLIDE_RANGE);
             let q = a + d * s;
-            if (s - s_now).abs() > 1e-3 && q.is_finite() && q != pu {
+            // The exact predicates' range (a cancellation can leave a coordinate below it).
+            let in_range = q
+                .to_array()
+                .into_iter()
+                .all(|x| envelope_mesh::check_coordinate(x).is_ok());
+            if (s - s_now).abs() > 1e-3 && in_range && q != pu {
                 moves.push((u, pu, q));
             }
         }
