@@ -5,7 +5,7 @@
 use envelope_mesh::{CoordError, TriangleSoup, check_coordinate};
 use envelope_predicates::bvh::{Aabb, Bvh, NodeKind};
 use envelope_predicates::{
-    SegmentTriangle, Shared, adjacent_triangles_intersect, segment_triangle, triangles_intersect,
+    SegmentTriangle, indexed_triangles_intersect, segment_triangle, triangles_intersect,
 };
 use glam::DVec3;
 use std::cell::Cell;
@@ -317,8 +317,8 @@ impl Barriers {
             BarrierKind::Envelope | BarrierKind::Wall => {
                 !plane.separates_points(b)
                     && !self.slabs[i].separates_points(t)
-                    && match shared_pins(t, b, self.pinned[i]) {
-                        Some(shared) => adjacent_triangles_intersect(t, b, shared),
+                    && match pin_ids(t, b, self.pinned[i]) {
+                        Some(g) => indexed_triangles_intersect(t, [0, 1, 2], b, g),
                         None => triangles_intersect(t, b),
                     }
             }
@@ -330,32 +330,25 @@ impl Barriers {
     }
 }
 
-/// The corners `t[i] == b[j]` with `j` a pin corner of `b` (bit `j` of `mask`), as a
-/// [`Shared`] vertex or edge; `None` when there is none, or three (the same triangle), or
-/// either triangle repeats a point (then the plain test decides: it can only block more).
-fn shared_pins(t: [DVec3; 3], b: [DVec3; 3], mask: u8) -> Option<Shared> {
+/// Corner ids for [`indexed_triangles_intersect`], with the candidate `t` numbered
+/// `[0, 1, 2]`: a pin corner `j` of `b` (bit `j` of `mask`) at the point of `t[i]` gets id
+/// `i` (they share it), every other corner of `b` an id of its own. `None` when no pin
+/// corner is shared, or either triangle repeats a point (then the plain test decides: it
+/// can only block more).
+fn pin_ids(t: [DVec3; 3], b: [DVec3; 3], mask: u8) -> Option<[u32; 3]> {
     let repeats = |x: [DVec3; 3]| x[0] == x[1] || x[1] == x[2] || x[2] == x[0];
     if mask == 0 || repeats(t) || repeats(b) {
         return None;
     }
-    let mut pairs = [(0, 0); 3];
-    let mut n = 0;
-    for (j, &q) in b.iter().enumerate() {
-        if mask & 1 << j != 0
-            && let Some(i) = t.iter().position(|&p| p == q)
-        {
-            pairs[n] = (i, j);
-            n += 1;
-        }
-    }
-    match n {
-        1 => Some(Shared::Vertex(pairs[0].0, pairs[0].1)),
-        2 => Some(Shared::Edge(
-            [pairs[0].0, pairs[1].0],
-            [pairs[0].1, pairs[1].1],
-        )),
-        _ => None,
-    }
+    let mut shared = false;
+    let ids = [0, 1, 2].map(|j| {
+        let at = (mask & 1 << j != 0)
+            .then(|| t.iter().position(|&p| p == b[j]))
+            .flatten();
+        shared |= at.is_some();
+        at.map_or(3 + j as u32, |i| i as u32)
+    });
+    shared.then_some(ids)
 }
 
 /// A conservative f64 separating-axis test for one triangle `t`.

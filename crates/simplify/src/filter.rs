@@ -25,7 +25,7 @@ use crate::Barriers;
 use crate::grid::FaceGrid;
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
-use envelope_predicates::{Shared, adjacent_triangles_intersect, triangles_intersect};
+use envelope_predicates::indexed_triangles_intersect;
 use glam::DVec3;
 
 /// The current approximation a candidate is tested against: the live faces of the mesh
@@ -43,41 +43,10 @@ pub struct Approximation<'a> {
     pub excluded: &'a [FaceId],
 }
 
-/// How two triangles given by vertex ids share corners.
-enum Sharing {
-    None,
-    Some(Shared),
-    All,
-}
-
-fn sharing(f: [VertexId; 3], g: [VertexId; 3]) -> Sharing {
-    let mut pairs = [(0, 0); 3];
-    let mut n = 0;
-    for i in 0..3 {
-        if let Some(j) = g.iter().position(|&x| x == f[i]) {
-            pairs[n] = (i, j);
-            n += 1;
-        }
-    }
-    match n {
-        0 => Sharing::None,
-        1 => Sharing::Some(Shared::Vertex(pairs[0].0, pairs[0].1)),
-        2 => Sharing::Some(Shared::Edge(
-            [pairs[0].0, pairs[1].0],
-            [pairs[0].1, pairs[1].1],
-        )),
-        _ => Sharing::All,
-    }
-}
-
 /// Exact: closed triangles `f` and `g` (vertex ids, positions `pf`, `pg`) meet away from
 /// the corners they share by id.
 pub(crate) fn meet(f: [VertexId; 3], pf: [DVec3; 3], g: [VertexId; 3], pg: [DVec3; 3]) -> bool {
-    match sharing(f, g) {
-        Sharing::None => triangles_intersect(pf, pg),
-        Sharing::Some(s) => adjacent_triangles_intersect(pf, pg, s),
-        Sharing::All => true,
-    }
+    indexed_triangles_intersect(pf, f.map(|v| v.0), pg, g.map(|v| v.0))
 }
 
 impl Approximation<'_> {
