@@ -51,7 +51,6 @@ use glam::DVec3;
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
-use std::collections::VecDeque;
 use thiserror::Error;
 
 /// Vertices of larger valence are not tried (their candidate lists grow cubically).
@@ -404,21 +403,23 @@ fn slide_phase(
     stats: &mut Stats,
     visitor: &mut dyn Visitor,
 ) -> Result<(), SimplifyError> {
-    let mut queue: VecDeque<VertexId> = local.mesh().vertices().collect();
-    let mut queued = vec![false; queue.iter().map(|v| v.index() + 1).max().unwrap_or(0)];
-    for v in &queue {
-        queued[v.index()] = true;
-    }
+    let mut queue = queue_vertices(local.mesh(), &Fifo);
     // Whether the vertex's neighbourhood changed since the subset run failed it.
-    let mut changed = vec![false; queued.len()];
-    while let Some(v) = queue.pop_front() {
-        queued[v.index()] = false;
+    let mut changed = vec![
+        false;
+        local
+            .mesh()
+            .vertices()
+            .map(|v| v.index() + 1)
+            .max()
+            .unwrap_or(0)
+    ];
+    while let Some(v) = queue.pop() {
         if policies.stop.should_stop(local.mesh().num_faces()) {
             break;
         }
         stats.attempts += 1;
         visitor.on_attempt(v);
-        let mut slid = Vec::new();
         let plain = if std::mem::take(&mut changed[v.index()]) {
             local.try_remove_vertex(v, policies.filter, policies.filler)
         } else {
@@ -426,16 +427,12 @@ fn slide_phase(
         };
         let result = match plain {
             Err(Rejection::NoValidFill) => {
-                let r = local.try_slide_remove(v, policies.filter, policies.filler, fibers);
-                if let Ok((_, moved)) = &r {
-                    slid.clone_from(moved);
-                }
-                r.map(|(removal, _)| removal)
+                local.try_slide_remove(v, policies.filter, policies.filler, fibers)
             }
-            other => other,
+            other => other.map(|removal| (removal, Vec::new())),
         };
         match result {
-            Ok(removal) => {
+            Ok((removal, slid)) => {
                 stats.removed += 1;
                 stats.slid += usize::from(!slid.is_empty());
                 visitor.on_removed(v, &removal.faces);
@@ -450,10 +447,7 @@ fn slide_phase(
                 for w in again {
                     if local.mesh().contains_vertex(w) {
                         changed[w.index()] = true;
-                        if !queued[w.index()] {
-                            queued[w.index()] = true;
-                            queue.push_back(w);
-                        }
+                        queue.push(local.mesh(), &Fifo, w);
                     }
                 }
             }
