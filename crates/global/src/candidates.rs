@@ -41,14 +41,9 @@ use envelope_simplify::{Barriers, aspect_ratio};
 use glam::DVec3;
 
 /// The per-vertex prism edges: inner and outer envelope points of every input vertex,
-/// indexed by vertex id (f64 constructions of `envelope-offset`).
-#[derive(Clone, Copy, Debug)]
-pub struct Fibers<'a> {
-    /// `v - eps_minus n_v`.
-    pub inner: &'a [DVec3],
-    /// `v + eps_plus n_v`.
-    pub outer: &'a [DVec3],
-}
+/// indexed by vertex id (f64 constructions of `envelope-offset`); the same fibers the local
+/// simplifier slides vertices along.
+pub use envelope_simplify::VertexFibers as Fibers;
 
 /// Whether the triangle with corners `t` meets the fiber of `v` (exact on the f64 points; a
 /// vertex without a fiber is never covered).

@@ -26,8 +26,8 @@
 //!
 //! Choices the paper leaves open, made here: the normal combination (angle-weighted average,
 //! maximin fallback; [`normals`](vertex_normals)), pinning where there is no valid normal,
-//! the prism's conservative "closest point" set and the repair by halving (analytical), `K = 4`, global step `min(1 % of the
-//! diagonal, eps/K)`, local step half the shortest incident edge within 90 degrees of the
+//! the prism's conservative "closest point" set and the repair by halving (analytical),
+//! `K = 4`, global step `min(1 % of the diagonal, eps/K)`, local step half the shortest incident edge within 90 degrees of the
 //! offset direction, the step tripled after every accepted step (not in the paper: an
 //! unobstructed vertex reaches its target in about 2 checks instead of `K`), at most 10
 //! halvings per step (numerical; [`NumericalParams`]), the order of moves (Z-order
@@ -252,21 +252,10 @@ pub fn build_envelopes(
     for v in &pinned {
         targets[v.index()] = 0.0;
     }
-    let requested_all = requested;
-    let requested = targets;
     let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
     let diagonal = soup.diagonal();
-    let analytical = || analytical::analytical_eps(soup, &vf, &normals, &requested);
-    let numerical = || {
-        numerical_eps(
-            soup,
-            &normals,
-            &requested,
-            &options.numerical,
-            diagonal,
-            None,
-        )
-    };
+    let analytical = || analytical::analytical_eps(soup, &vf, &normals, &targets);
+    let numerical = || numerical_eps(soup, &normals, &targets, &options.numerical, diagonal, None);
     let prove = |(p, m): (Vec<f64>, Vec<f64>)| {
         prove_and_repair(soup, &normals, &faces, p, m, options.max_repair_rounds)
     };
@@ -283,7 +272,7 @@ pub fn build_envelopes(
         Method::Analytical => (Method::Analytical, prove(analytical())),
         Method::Numerical => (Method::Numerical, prove(numerical())),
         Method::Auto => {
-            let short = |e: &[f64]| e.iter().zip(&requested).any(|(x, r)| x < r);
+            let short = |e: &[f64]| e.iter().zip(&targets).any(|(x, r)| x < r);
             let a = prove(analytical());
             if !a.proof.holds() {
                 // Repair gave up: numerical from scratch, and the better of the two.
@@ -299,7 +288,7 @@ pub fn build_envelopes(
                 let n = prove(numerical_eps(
                     soup,
                     &normals,
-                    &requested,
+                    &targets,
                     &options.numerical,
                     diagonal,
                     Some((&a.eps_plus, &a.eps_minus)),
@@ -321,7 +310,7 @@ pub fn build_envelopes(
                 faces: &faces,
                 outer: &outer,
                 inner: &inner,
-                requested: &requested_all,
+                requested: &requested,
                 diagonal,
             };
             let policy = StepPolicy {
@@ -340,7 +329,7 @@ pub fn build_envelopes(
         outer: TriangleSoup::new(outer, soup.faces.clone()),
         inner: TriangleSoup::new(inner, soup.faces.clone()),
         normals,
-        requested: requested_all,
+        requested,
         pinned,
         eps_plus,
         eps_minus,
