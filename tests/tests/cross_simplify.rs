@@ -11,7 +11,8 @@
 //! 1/4 % and 1 % of the bounding-box diagonal, and corpus meshes at 1/4 % and 1 %:
 //! `fandisk.off`, `mech-holes-shark.off` and `elephant.off` always, `bunny00.off` and
 //! `armadillo.off` only with `ENVELOPE_FULL_CORPUS=1` or in a release build; fandisk and
-//! mech-holes-shark also with `Placement::Slide` (vertices moved along their fibers).
+//! mech-holes-shark also with `Placement::Slide` (vertices moved along their fibers) and
+//! `Placement::Collapse` (and edges collapsed to quadric points).
 //!
 //! Every failing (mesh, epsilon, property) is collected and printed together; the test then
 //! fails naming all of them, except the ones listed in [`KNOWN_FAILURES`] (printed as
@@ -122,14 +123,20 @@ fn cases(log: &mut Vec<String>) -> Vec<Case> {
     for name in corpus {
         match read_path(dir.join(name)) {
             Ok((soup, _)) if input_problems(&soup).is_empty() => {
-                // Sliding (section 8) on two of them: vertices leave the input.
+                // Sliding (section 8) and edge collapses on two of them: vertices leave the
+                // input.
                 if matches!(name, "fandisk.off" | "mech-holes-shark.off") {
-                    v.push(Case {
-                        name: format!("{name} (slide)"),
-                        soup: soup.clone(),
-                        percents: CORPUS_PERCENTS,
-                        placement: Placement::Slide,
-                    });
+                    for (tag, placement) in [
+                        ("slide", Placement::Slide),
+                        ("collapse", Placement::Collapse),
+                    ] {
+                        v.push(Case {
+                            name: format!("{name} ({tag})"),
+                            soup: soup.clone(),
+                            percents: CORPUS_PERCENTS,
+                            placement,
+                        });
+                    }
                 }
                 v.push(Case {
                     name: name.to_string(),

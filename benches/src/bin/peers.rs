@@ -90,7 +90,7 @@ struct Args {
     json: Option<PathBuf>,
     keep: Option<PathBuf>,
     envelope: Option<PathBuf>,
-    /// `--placement` for our simplifier (`subset`, the default, or `slide`).
+    /// `--placement` for our simplifier (`subset`, the default, `slide` or `collapse`).
     placement: Option<String>,
 }
 
@@ -121,7 +121,7 @@ fn usage() -> ExitCode {
     eprintln!(
         "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--until NAME] [--epsilons 1/64%,...,1%] \
          [--tools envelope,cgal,openmesh,meshopt] [--timeout S] [--oracle-cpu S] [--oracle-gib G] \
-         [--json PATH] [--keep DIR] [--envelope PATH] [--placement subset|slide]\n\
+         [--json PATH] [--keep DIR] [--envelope PATH] [--placement subset|slide|collapse]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
     );
     ExitCode::FAILURE
@@ -192,7 +192,8 @@ fn parse_args(argv: &[String]) -> Option<Args> {
             "--envelope" => a.envelope = Some(PathBuf::from(it.next()?)),
             "--placement" => {
                 let p = it.next()?;
-                a.placement = Some(p.clone()).filter(|p| p == "subset" || p == "slide");
+                a.placement = Some(p.clone())
+                    .filter(|p| ["subset", "slide", "collapse"].contains(&p.as_str()));
                 a.placement.as_ref()?;
             }
             "--max-faces" => a.max_faces = Some(it.next()?.parse().ok()?),

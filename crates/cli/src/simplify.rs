@@ -90,6 +90,9 @@ pub(crate) enum PlacementArg {
     /// After the subset run, stuck vertices are tried again with their neighbours slid
     /// along their normals between the envelopes (the paper's section 8).
     Slide,
+    /// `slide`, then a vertex that still cannot go is removed by collapsing an edge into a
+    /// neighbour moved to a quadric-optimal point between the envelopes.
+    Collapse,
 }
 
 /// Arguments of `envelope simplify`.
@@ -125,8 +128,8 @@ pub(crate) struct Args {
     /// the candidate counts).
     #[arg(long, value_enum, default_value_t = AlgorithmArg::Local)]
     method: AlgorithmArg,
-    /// Where output vertices may lie (the report's `placement`; `slide` moves vertices, so
-    /// the output's vertices are no longer a subset of the input's).
+    /// Where output vertices may lie (the report's `placement`; `slide` and `collapse` move
+    /// vertices, so the output's vertices are no longer a subset of the input's).
     #[arg(long, value_enum, default_value_t = PlacementArg::Subset)]
     placement: PlacementArg,
     /// Write the report as JSON to this file.
@@ -340,6 +343,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         placement: match args.placement {
             PlacementArg::Subset => Placement::Subset,
             PlacementArg::Slide => Placement::Slide,
+            PlacementArg::Collapse => Placement::Collapse,
         },
         verify: !args.no_verify,
         ..SimplifyOptions::new(field(args, &soup)?)

@@ -264,6 +264,7 @@ fn global_stats(g: &GlobalStats) -> Stats {
         refused: g.overlapping,
         candidate_tests: g.filter_tests,
         slid: 0,
+        collapsed: 0,
     }
 }
 

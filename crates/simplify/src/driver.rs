@@ -49,7 +49,8 @@ pub struct SimplifyOptions {
     pub order: Order,
     /// Where output vertices may lie (default: the input vertices, as in the paper's 5.2;
     /// [`Placement::Slide`]: the local step then slides stuck neighbourhoods along the
-    /// fibers, section 8).
+    /// fibers, section 8; [`Placement::Collapse`]: and then collapses edges of what is still
+    /// stuck).
     pub placement: Placement,
     /// Vertices per border-tube ring (`None`: no tubes, border vertices are then kept).
     pub tube_segments: Option<u32>,
@@ -244,10 +245,12 @@ pub struct SimplifyReport {
     pub peak_memory_bytes: Option<u64>,
     /// Vertices removed.
     pub removed_vertices: usize,
-    /// `"subset"` or `"slide"` ([`SimplifyOptions::placement`]).
+    /// `"subset"`, `"slide"` or `"collapse"` ([`SimplifyOptions::placement`]).
     pub placement: &'static str,
     /// Removals that slid neighbours along their fibers (0 with `"subset"`).
     pub slid_removals: usize,
+    /// Removals by an edge collapse (only with `"collapse"`).
+    pub collapsed_removals: usize,
     /// Removal attempts.
     pub attempts: usize,
     /// Genus of the input (`None`: undefined).
@@ -288,6 +291,7 @@ impl SimplifyReport {
             "removed_vertices": self.removed_vertices,
             "placement": self.placement,
             "slid_removals": self.slid_removals,
+            "collapsed_removals": self.collapsed_removals,
             "attempts": self.attempts,
             "genus_in": self.genus_in,
             "genus_out": self.genus_out,
@@ -574,8 +578,10 @@ pub fn simplify_with(
         placement: match options.placement {
             Placement::Subset => "subset",
             Placement::Slide => "slide",
+            Placement::Collapse => "collapse",
         },
         slid_removals: stats.slid,
+        collapsed_removals: stats.collapsed,
         attempts: stats.attempts,
         genus_in: topo_in.genus,
         genus_out: topo_out.genus,

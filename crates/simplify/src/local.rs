@@ -95,6 +95,8 @@ pub struct Stats {
     pub candidate_tests: u64,
     /// Removals that slid neighbours along their fibers ([`Placement::Slide`]).
     pub slid: usize,
+    /// Removals by an edge collapse to a moved neighbour ([`Placement::Slide`]).
+    pub collapsed: usize,
 }
 
 /// The hole-filling strategy of [`Options`].
@@ -158,6 +160,12 @@ pub enum Placement {
     /// tangent plane; see [`LocalSimplifier::try_slide_remove`]. Output vertices then lie
     /// on their fibers, between the envelopes, not on the input.
     Slide,
+    /// [`Placement::Slide`], and a vertex that still cannot go is removed by an edge
+    /// collapse into a neighbour moved to a point chosen by memoryless quadrics (or the
+    /// edge's midpoint, or the neighbour's own position), every moved face through the same
+    /// filter ([`LocalSimplifier::try_collapse`]). Output vertices lie anywhere between the
+    /// envelopes; the guarantee is the same (the filter, then the certificate).
+    Collapse,
 }
 
 /// The fiber of every vertex (by vertex id): the segment from its inner envelope point to its
@@ -201,6 +209,9 @@ pub struct Policies<'p> {
     pub check_each_step: bool,
     /// With fibers, the slide phase ([`Placement::Slide`]) runs after the subset run.
     pub fibers: Option<VertexFibers<'p>>,
+    /// Edge collapses after the subset run ([`Placement::Collapse`]; with `fibers`, after
+    /// sliding).
+    pub collapse: bool,
 }
 
 /// Simplifies `mesh` in place by the local algorithm of section 5.2, with the validity test
@@ -286,7 +297,8 @@ pub fn simplify_local_sliding(
         stop,
         keep_border: !barriers.has_tubes(),
         check_each_step: options.check_each_step,
-        fibers: fibers.filter(|_| options.placement == Placement::Slide),
+        fibers: fibers.filter(|_| options.placement != Placement::Subset),
+        collapse: options.placement == Placement::Collapse,
     };
     run(mesh, &policies, seeds, visitor)
 }
@@ -370,8 +382,8 @@ fn run(
             }
         }
     }
-    if let Some(fibers) = policies.fibers {
-        slide_phase(&mut local, policies, &fibers, &mut stats, visitor)?;
+    if policies.fibers.is_some() || policies.collapse {
+        moving_phase(&mut local, policies, &mut stats, visitor)?;
     }
     stats.candidate_tests = local.candidate_tests;
     stats.vertices_after = local.mesh().num_vertices();
@@ -389,17 +401,19 @@ fn rejected(stats: &mut Stats, visitor: &mut dyn Visitor, v: VertexId, reason: R
     visitor.on_rejected(v, reason);
 }
 
-/// The slide phase ([`Placement::Slide`]): every live vertex in id order, first in first
-/// out, one at a time: the plain removal, else [`LocalSimplifier::try_slide_remove`]; after a
-/// removal the hole's vertices and the neighbours of slid vertices are queued again. The
-/// first time round, the plain removal is skipped: the subset run failed it last, and by the
-/// paper's rule (only neighbours are queued again) nothing around it changed since; only
-/// vertices queued again after a change try it. (A removal near a vertex but not next to it,
-/// across a thin part, can unblock it; the subset run gives those up too.)
-fn slide_phase(
+/// The phase after the subset run ([`Placement::Slide`], [`Placement::Collapse`]): every
+/// live vertex in id order, first in first out, one at a time: the plain removal, else
+/// [`LocalSimplifier::try_slide_remove`] (with fibers), else (with `policies.collapse`)
+/// [`LocalSimplifier::try_collapse`] on the positions of `collapse_candidates`, cheapest
+/// first, until one passes; after a removal the hole's vertices and the neighbours of moved
+/// vertices are queued again. The first time round, the plain removal is skipped: the subset
+/// run failed it last, and by the paper's rule (only neighbours are queued again) nothing
+/// around it changed since; only vertices queued again after a change try it. (A removal
+/// near a vertex but not next to it, across a thin part, can unblock it; the subset run
+/// gives those up too.)
+fn moving_phase(
     local: &mut LocalSimplifier<'_>,
     policies: &Policies<'_>,
-    fibers: &VertexFibers<'_>,
     stats: &mut Stats,
     visitor: &mut dyn Visitor,
 ) -> Result<(), SimplifyError> {
@@ -425,16 +439,25 @@ fn slide_phase(
         } else {
             Err(Rejection::NoValidFill)
         };
-        let result = match plain {
-            Err(Rejection::NoValidFill) => {
-                local.try_slide_remove(v, policies.filter, policies.filler, fibers)
+        let mut result = plain.map(|removal| (removal, Vec::new()));
+        if let (Err(Rejection::NoValidFill), Some(fibers)) = (&result, &policies.fibers) {
+            result = local.try_slide_remove(v, policies.filter, policies.filler, fibers);
+        }
+        let mut collapsed = false;
+        if result == Err(Rejection::NoValidFill) && policies.collapse {
+            for (_, w, p) in collapse_candidates(local.mesh(), v) {
+                if let Ok(removal) = local.try_collapse(v, w, p, policies.filter) {
+                    collapsed = true;
+                    result = Ok((removal, vec![w]));
+                    break;
+                }
             }
-            other => other.map(|removal| (removal, Vec::new())),
-        };
+        }
         match result {
             Ok((removal, slid)) => {
                 stats.removed += 1;
-                stats.slid += usize::from(!slid.is_empty());
+                stats.slid += usize::from(!slid.is_empty() && !collapsed);
+                stats.collapsed += usize::from(collapsed);
                 visitor.on_removed(v, &removal.faces);
                 let around = slid.iter().flat_map(|&u| local.mesh().vertex_neighbors(u));
                 let again: Vec<VertexId> = removal
@@ -460,6 +483,71 @@ fn slide_phase(
         }
     }
     Ok(())
+}
+
+/// At most this many (neighbour, position) pairs are tried per vertex by the collapse step.
+const COLLAPSE_TRIES: usize = 8;
+
+/// The positions an edge collapse of `v` may try, at most [`COLLAPSE_TRIES`], cheapest first
+/// by the quadric cost below: for each interior neighbour `w`, the point minimising the
+/// area-weighted squared distances to the planes of the current faces around `v` and `w`
+/// (memoryless quadrics, regularised towards the edge's midpoint so that flat and crease
+/// neighbourhoods have one answer), `w`'s own position (a half-edge collapse) and the
+/// midpoint. f64, a priority only: every position is tested exactly.
+fn collapse_candidates(m: &HalfEdgeMesh, v: VertexId) -> Vec<(f64, VertexId, DVec3)> {
+    use glam::DMat3;
+    if m.is_border_vertex(v) {
+        return Vec::new();
+    }
+    let planes = |x: VertexId| {
+        m.vertex_faces(x).map(|f| {
+            let [a, b, c] = m.face_vertices(f).map(|y| m.position(y));
+            let n2 = (b - a).cross(c - a);
+            let area = 0.5 * n2.length();
+            let n = if area > 0.0 {
+                n2 / (2.0 * area)
+            } else {
+                DVec3::ZERO
+            };
+            (f, area, n, -n.dot(a))
+        })
+    };
+    let mut out = Vec::new();
+    for w in m.vertex_neighbors(v) {
+        if m.is_border_vertex(w) {
+            continue;
+        }
+        let mut faces: Vec<_> = planes(v).chain(planes(w)).collect();
+        faces.sort_unstable_by_key(|x| x.0);
+        faces.dedup_by_key(|x| x.0);
+        let cost = |x: DVec3| -> f64 {
+            faces
+                .iter()
+                .map(|&(_, a, n, d)| a * (n.dot(x) + d).powi(2))
+                .sum()
+        };
+        let total: f64 = faces.iter().map(|x| x.1).sum();
+        let mid = 0.5 * (m.position(v) + m.position(w));
+        let lambda = 1e-3 * total;
+        let mut q = DMat3::from_diagonal(DVec3::splat(lambda));
+        let mut r = lambda * mid;
+        for &(_, a, n, d) in &faces {
+            q += DMat3::from_cols(n * n.x, n * n.y, n * n.z) * a;
+            r -= n * (a * d);
+        }
+        if q.determinant().abs() > 0.0 {
+            let x = q.inverse() * r;
+            if x.is_finite() {
+                out.push((cost(x), w, x));
+            }
+        }
+        let pw = m.position(w);
+        out.push((cost(pw), w, pw));
+        out.push((cost(mid), w, mid));
+    }
+    out.sort_by(|a, b| a.0.total_cmp(&b.0));
+    out.truncate(COLLAPSE_TRIES);
+    out
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -745,6 +833,48 @@ impl<'m> LocalSimplifier<'m> {
         outcome.map(|removal| (removal, moves.iter().map(|&(u, _, _)| u).collect()))
     }
 
+    /// Tries to remove `v` by collapsing its edge into the neighbour `w`, moved to `p`: the
+    /// hole `v` leaves is filled by the fan from `w` (a half-edge collapse when `p` is `w`'s
+    /// position), every triangle of the fan and every other face around the moved `w` through
+    /// `filter`. All or nothing, like [`Self::try_slide_remove`]. Border vertices, a `p` with
+    /// a coordinate outside the exact predicates' range, and edges that break the link
+    /// condition (an edge of the fan that exists elsewhere) are refused.
+    pub fn try_collapse(
+        &mut self,
+        v: VertexId,
+        w: VertexId,
+        p: DVec3,
+        filter: &dyn Filter,
+    ) -> Result<Removal, Rejection> {
+        let m = &*self.mesh;
+        if !m.contains_vertex(v) || !m.contains_vertex(w) || m.find_halfedge(v, w).is_none() {
+            return Err(Rejection::NotAVertex);
+        }
+        if m.is_border_vertex(v) || m.is_border_vertex(w) {
+            return Err(Rejection::NoValidFill);
+        }
+        if !p
+            .to_array()
+            .into_iter()
+            .all(|x| envelope_mesh::check_coordinate(x).is_ok())
+        {
+            return Err(Rejection::NoValidFill);
+        }
+        let pw = m.position(w);
+        let affected: Vec<FaceId> = m.vertex_faces(w).collect();
+        let moved = p != pw;
+        if moved {
+            self.move_vertices(&affected, std::iter::once((w, p)));
+        }
+        let outcome = self
+            .plan_slid(v, filter, &FanFrom(w), &affected)
+            .and_then(|plan| self.apply(v, plan));
+        if outcome.is_err() && moved {
+            self.move_vertices(&affected, std::iter::once((w, pw)));
+        }
+        outcome
+    }
+
     /// Sets vertex positions and re-indexes the `affected` faces (every live face around a
     /// moved vertex).
     fn move_vertices(
@@ -904,6 +1034,38 @@ impl<'m> LocalSimplifier<'m> {
             hole: plan.hole,
             faces,
         })
+    }
+}
+
+/// Fills a closed hole with the fan from one of its vertices (an edge collapse seen as a
+/// vertex removal): the triangles `(apex, a, b)` for every hole edge `a b` not at the apex,
+/// in hole order, each through the context's filter.
+struct FanFrom(VertexId);
+
+impl HoleFiller for FanFrom {
+    fn fill(&self, ctx: &mut FillContext<'_>) -> bool {
+        let hole = ctx.hole();
+        let n = hole.len();
+        let Some(k) = hole.vertices.iter().position(|&x| x == self.0) else {
+            return false;
+        };
+        if hole.open || n < 3 {
+            return false;
+        }
+        for i in 0..n {
+            let j = (i + 1) % n;
+            if i == k || j == k {
+                continue;
+            }
+            // Increasing positions: a rotation of (k, i, j), so the hole's orientation.
+            let mut t = [k, i, j];
+            t.sort_unstable();
+            if !ctx.accepts(t) {
+                return false;
+            }
+            ctx.place(t);
+        }
+        true
     }
 }
 

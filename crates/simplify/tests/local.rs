@@ -392,6 +392,7 @@ fn exhaustive_fills_where_the_single_pass_gets_stuck() {
             keep_border: false,
             check_each_step: true,
             fibers: None,
+            collapse: false,
         };
         simplify_local_with(&mut m, &policies, &mut ()).unwrap();
         assert_guarantees(&s, &m, &barriers);
@@ -474,6 +475,7 @@ fn stop_rule_and_visitor() {
         keep_border: true,
         check_each_step: false,
         fibers: None,
+        collapse: false,
     };
     let stats = simplify_local_with(&mut m, &policies, &mut count).unwrap();
     assert!(

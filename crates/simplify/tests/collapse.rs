@@ -1,0 +1,231 @@
+//! `Placement::Collapse`: after sliding, a stuck vertex goes by an edge collapse into a
+//! neighbour moved to a quadric point. Checked: fewer faces than sliding alone where the
+//! subset run is stuck, the mesh's sanity after every attempt, the certificate, determinism,
+//! a refused collapse restoring everything exactly, and the guards (border, non-edge, link).
+use envelope_mesh::{HalfEdgeMesh, TriangleSoup, VertexId, generate};
+use envelope_offset::{EnvelopeOptions, Envelopes, EpsilonField, build_envelopes};
+use envelope_simplify::{
+    Barriers, EnvelopeFilter, LocalSimplifier, Options, Placement, Rejection, SimplifyOptions,
+    Stats, VertexFibers, simplify, simplify_local_sliding,
+};
+use envelope_verify::Verdict;
+use glam::DVec3;
+
+/// A bumpy sphere: curvature everywhere.
+fn bumpy() -> TriangleSoup {
+    let mut s = generate::icosphere(3, 1.0);
+    for p in &mut s.positions {
+        let bump = 1.0 + 0.05 * (7.0 * p.x).sin() * (5.0 * p.y).cos();
+        *p *= bump;
+    }
+    s
+}
+
+fn envelopes(s: &TriangleSoup, eps: f64) -> Envelopes {
+    let env = build_envelopes(s, &EnvelopeOptions::new(EpsilonField::Constant(eps))).unwrap();
+    assert!(env.proof.holds());
+    env
+}
+
+fn barriers(env: &Envelopes) -> Barriers {
+    Barriers::new(vec![env.outer.clone(), env.inner.clone()], vec![]).unwrap()
+}
+
+fn run(s: &TriangleSoup, env: &Envelopes, placement: Placement) -> (HalfEdgeMesh, Stats) {
+    let fibers = VertexFibers {
+        inner: &env.inner.positions,
+        outer: &env.outer.positions,
+    };
+    let options = Options {
+        placement,
+        check_each_step: true,
+        ..Options::default()
+    };
+    let mut m = HalfEdgeMesh::from_soup(s).unwrap();
+    let stats = simplify_local_sliding(
+        &mut m,
+        &barriers(env),
+        &options,
+        None,
+        Some(fibers),
+        &mut (),
+    )
+    .unwrap();
+    (m, stats)
+}
+
+#[test]
+fn collapses_remove_what_sliding_leaves() {
+    let s = bumpy();
+    let env = envelopes(&s, 0.02);
+    let (slid, ss) = run(&s, &env, Placement::Slide);
+    let (collapsed, sc) = run(&s, &env, Placement::Collapse);
+    assert_eq!(ss.collapsed, 0);
+    assert!(sc.collapsed > 0, "{sc:?}");
+    assert!(
+        collapsed.num_faces() < slid.num_faces(),
+        "collapse {} faces, slide {}",
+        collapsed.num_faces(),
+        slid.num_faces()
+    );
+    // Genus 0 kept, closed.
+    let topo = collapsed.topology();
+    assert_eq!((topo.genus, topo.num_border_loops()), (Some(0), 0));
+    assert!(topo.consistently_oriented && topo.manifold);
+}
+
+#[test]
+fn collapse_output_is_certified_and_deterministic() {
+    let s = bumpy();
+    let eps = 0.02;
+    let options = SimplifyOptions {
+        placement: Placement::Collapse,
+        verify: true,
+        ..SimplifyOptions::new(EpsilonField::Constant(eps))
+    };
+    let (a, ra) = simplify(&s, &options, &mut ()).unwrap();
+    let (b, _) = simplify(&s, &options, &mut ()).unwrap();
+    assert_eq!(a, b);
+    assert_eq!(ra.placement, "collapse");
+    assert!(ra.collapsed_removals > 0, "{ra:?}");
+    let v = ra.verify.expect("verified");
+    assert_eq!(v.verdict, Verdict::Holds, "{v:?}");
+    assert!(v.approx_to_orig_upper <= eps && v.orig_to_approx_upper <= eps);
+    let slide = SimplifyOptions {
+        placement: Placement::Slide,
+        ..options
+    };
+    assert!(a.num_faces() < simplify(&s, &slide, &mut ()).unwrap().0.num_faces());
+}
+
+fn positions(m: &HalfEdgeMesh) -> Vec<(VertexId, DVec3)> {
+    m.vertices().map(|u| (u, m.position(u))).collect()
+}
+
+fn faces(m: &HalfEdgeMesh) -> Vec<[VertexId; 3]> {
+    m.faces().map(|f| m.face_vertices(f)).collect()
+}
+
+/// A refused collapse leaves every position, face and index exactly as they were; an
+/// accepted one removes `v`, moves `w` to `p` and nothing else.
+#[test]
+fn a_refused_collapse_changes_nothing() {
+    let s = bumpy();
+    let env = envelopes(&s, 0.01);
+    let b = barriers(&env);
+    let filter = EnvelopeFilter::new(&b);
+    let mut m = HalfEdgeMesh::from_soup(&s).unwrap();
+    let mut local = LocalSimplifier::new(&mut m, true);
+    let (mut refused, mut removed) = (0, 0);
+    for v in (0..s.num_vertices() as u32).map(VertexId) {
+        let Some(w) = local.mesh().vertex_neighbors(v).next() else {
+            continue;
+        };
+        let (pv, pw) = (local.mesh().position(v), local.mesh().position(w));
+        // Alternately a point far outside the envelopes (always refused) and the midpoint.
+        let far = v.0 % 2 == 0;
+        let p = if far { pw * 1.5 } else { 0.5 * (pv + pw) };
+        let (before, fb) = (positions(local.mesh()), faces(local.mesh()));
+        match local.try_collapse(v, w, p, &filter) {
+            Ok(removal) => {
+                assert!(!far, "a point 0.5 out was accepted at {v}");
+                removed += 1;
+                assert!(!local.mesh().contains_vertex(v));
+                assert_eq!(local.mesh().position(w), p);
+                assert!(
+                    removal
+                        .faces
+                        .iter()
+                        .all(|&f| local.mesh().face_vertices(f).contains(&w))
+                );
+                let after = positions(local.mesh());
+                let expected: Vec<_> = before
+                    .iter()
+                    .filter(|x| x.0 != v)
+                    .map(|&(u, q)| (u, if u == w { p } else { q }))
+                    .collect();
+                assert_eq!(after, expected);
+            }
+            Err(_) => {
+                refused += 1;
+                assert_eq!(positions(local.mesh()), before, "vertex {v}");
+                assert_eq!(faces(local.mesh()), fb, "vertex {v}");
+            }
+        }
+        local.sanity_check().unwrap();
+    }
+    assert!(
+        refused > 100 && removed > 10,
+        "{refused} refused, {removed} removed"
+    );
+}
+
+#[test]
+fn collapse_guards() {
+    let s = bumpy();
+    let env = envelopes(&s, 0.02);
+    let b = barriers(&env);
+    let filter = EnvelopeFilter::new(&b);
+    let mut m = HalfEdgeMesh::from_soup(&s).unwrap();
+    let mut local = LocalSimplifier::new(&mut m, true);
+    let v = VertexId(0);
+    let w = local.mesh().vertex_neighbors(v).next().unwrap();
+    let far = local
+        .mesh()
+        .vertices()
+        .find(|&u| u != v && local.mesh().find_halfedge(v, u).is_none())
+        .unwrap();
+    let p = local.mesh().position(w);
+    // Not an edge.
+    assert_eq!(
+        local.try_collapse(v, far, p, &filter).unwrap_err(),
+        Rejection::NotAVertex
+    );
+    // A coordinate outside the predicates' range.
+    assert!(
+        local
+            .try_collapse(v, w, DVec3::new(1e200, 0.0, 0.0), &filter)
+            .is_err()
+    );
+    assert!(
+        local
+            .try_collapse(v, w, DVec3::new(f64::NAN, 0.0, 0.0), &filter)
+            .is_err()
+    );
+    local.sanity_check().unwrap();
+
+    // A border vertex is never collapsed (its tube would not be checked).
+    let open = generate::open_cylinder(1.0, 1.0, 16, 4);
+    let mut c = HalfEdgeMesh::from_soup(&open).unwrap();
+    let mut local = LocalSimplifier::new(&mut c, false);
+    let border = local
+        .mesh()
+        .vertices()
+        .find(|&u| local.mesh().is_border_vertex(u))
+        .unwrap();
+    let n = local.mesh().vertex_neighbors(border).next().unwrap();
+    let pn = local.mesh().position(n);
+    let none = Barriers::none();
+    assert!(
+        local
+            .try_collapse(border, n, pn, &EnvelopeFilter::new(&none))
+            .is_err()
+    );
+}
+
+/// The link condition: on a tetrahedron every edge collapse would leave two faces on the
+/// same three vertices; refused by the topology guards with no barrier at all.
+#[test]
+fn a_tetrahedron_keeps_its_vertices() {
+    let mut m = HalfEdgeMesh::from_soup(&generate::tetrahedron()).unwrap();
+    let mut local = LocalSimplifier::new(&mut m, true);
+    let none = Barriers::none();
+    let filter = EnvelopeFilter::new(&none);
+    for v in (0..4).map(VertexId) {
+        for w in (0..4).map(VertexId).filter(|&w| w != v) {
+            let p = local.mesh().position(w);
+            assert!(local.try_collapse(v, w, p, &filter).is_err(), "{v} -> {w}");
+        }
+    }
+    assert_eq!(local.mesh().num_faces(), 4);
+}
