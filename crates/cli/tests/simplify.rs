@@ -241,16 +241,17 @@ fn bad_input_and_arguments_exit_2_and_leave_out_alone() {
     );
 }
 
-/// `--placement slide` (section 8): certified, fewer faces than the default subset placement
-/// on a sphere (curvature everywhere), some output vertices off the input, and the report
-/// says so; the default report says `subset` with no slid removal.
+/// `--placement slide` (section 8) and `collapse`: certified, fewer faces than the default
+/// subset placement on a sphere (curvature everywhere), some output vertices off the input,
+/// and the report says so; the default report says `subset` with no slid or collapsed
+/// removal.
 #[test]
 fn slide_placement_moves_vertices_and_says_so() {
     let dir = tempfile::tempdir().unwrap();
     let sphere = generate::icosphere(4, 1.0);
     let input = write(dir.path(), "sphere.off", &sphere);
     let mut faces = Vec::new();
-    for placement in ["subset", "slide"] {
+    for placement in ["subset", "slide", "collapse"] {
         let output = dir.path().join(format!("{placement}.off"));
         let report = dir.path().join(format!("{placement}.json"));
         let out = envelope(&[
@@ -277,12 +278,15 @@ fn slide_placement_moves_vertices_and_says_so() {
             .filter(|p| !sphere.positions.contains(p))
             .count();
         let slid = r["slid_removals"].as_u64().unwrap();
-        if placement == "subset" {
-            assert_eq!((off_input, slid), (0, 0));
-        } else {
-            assert!(off_input > 0 && slid > 0, "{off_input} {slid}");
+        let collapsed = r["collapsed_removals"].as_u64().unwrap();
+        match placement {
+            "subset" => assert_eq!((off_input, slid, collapsed), (0, 0, 0)),
+            "slide" => assert!(off_input > 0 && slid > 0 && collapsed == 0),
+            _ => assert!(off_input > 0 && collapsed > 0, "{off_input} {collapsed}"),
         }
         faces.push(soup.num_faces());
     }
-    assert!(faces[1] < faces[0], "{faces:?}");
+    // On this sphere collapse ends within a few faces of slide (the order of the moves
+    // differs); on the corpus it is far below (crates/simplify/README.md).
+    assert!(faces[1] < faces[0] && faces[2] < faces[0], "{faces:?}");
 }

@@ -18,10 +18,11 @@
 //! closing edge `last -> first` is new and becomes a border edge; the filter is told so in
 //! [`CandidateProfile::border_edges`] and tests it against the border tubes.
 
-use crate::filter::{Approximation, CandidateProfile, Filter};
+use crate::filter::{Approximation, CandidateProfile, Filter, position_in};
 use crate::grid::FaceGrid;
 use crate::policy::aspect_ratio;
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
+use glam::DVec3;
 use std::collections::HashMap;
 
 /// The boundary of a hole left by removing a vertex's fan.
@@ -71,6 +72,9 @@ pub struct FillContext<'a> {
     hole: &'a Hole,
     /// Faces of `grid` the filter must ignore ([`Self::excluding`]).
     excluded: &'a [FaceId],
+    /// Planned positions and the faces around them ([`Self::moving`]).
+    moved: &'a [(VertexId, DVec3)],
+    extra: &'a [[VertexId; 3]],
     placed: Vec<[VertexId; 3]>,
     /// Candidates already rejected during this fill, by [`Self::slot`]. A rejection is final
     /// for the whole fill: the mesh and grid do not change while a hole is filled, the placed
@@ -97,6 +101,8 @@ impl<'a> FillContext<'a> {
             filter,
             hole,
             excluded: &[],
+            moved: &[],
+            extra: &[],
             placed: Vec::new(),
             rejected: Vec::new(),
             tests: 0,
@@ -109,6 +115,21 @@ impl<'a> FillContext<'a> {
     pub fn excluding(mut self, faces: &'a [FaceId]) -> Self {
         self.excluded = faces;
         self
+    }
+
+    /// The same context with vertices at planned positions (see [`Approximation::moved`]):
+    /// `extra` are the faces around them that stay, and every grid face around them must be
+    /// excluded too.
+    #[must_use]
+    pub fn moving(mut self, moved: &'a [(VertexId, DVec3)], extra: &'a [[VertexId; 3]]) -> Self {
+        self.moved = moved;
+        self.extra = extra;
+        self
+    }
+
+    /// Where `v` is: its planned position, else the mesh's.
+    fn position(&self, v: VertexId) -> DVec3 {
+        position_in(self.mesh, self.moved, v)
     }
 
     /// Index of the triangle `t` (hole positions) in `rejected`.
@@ -132,7 +153,7 @@ impl<'a> FillContext<'a> {
     /// Aspect ratio of the triangle on hole positions `t` (a priority).
     #[must_use]
     pub fn aspect(&self, t: [usize; 3]) -> f64 {
-        aspect_ratio(self.triangle(t).map(|v| self.mesh.position(v)))
+        aspect_ratio(self.triangle(t).map(|v| self.position(v)))
     }
 
     /// Topology guards only (see the module docs).
@@ -181,13 +202,15 @@ impl<'a> FillContext<'a> {
         let triangle = self.triangle(t);
         let profile = CandidateProfile {
             triangle,
-            corners: triangle.map(|v| self.mesh.position(v)),
+            corners: triangle.map(|v| self.position(v)),
             border_edges: [0, 1, 2].map(|k| self.hole.closing_edge(t[k], t[(k + 1) % 3])),
             approximation: Approximation {
                 mesh: self.mesh,
                 grid: self.grid,
                 placed: if with_placed { &self.placed } else { &[] },
                 excluded: self.excluded,
+                moved: self.moved,
+                extra: self.extra,
             },
         };
         self.filter.accepts(&profile)
@@ -310,7 +333,7 @@ impl Greedy {
     /// whose triangle is rejected, or more, all on one line (exact).
     fn dooms(poly: &[usize], t: [usize; 3], ctx: &mut FillContext<'_>) -> bool {
         let subs = sub_holes(poly, t);
-        let pos = |i: usize| ctx.mesh.position(ctx.hole.vertices[i]);
+        let pos = |i: usize| ctx.position(ctx.hole.vertices[i]);
         let on_a_line = |s: &Vec<usize>| {
             s.len() > 3
                 && s[2..]
@@ -500,7 +523,7 @@ impl HoleFiller for Exhaustive {
                     tri[..x].iter().all(|&t| {
                         *apart.entry((t, s)).or_insert_with(|| {
                             let (p, q) = (ctx.triangle(s), ctx.triangle(t));
-                            let pos = |g: [VertexId; 3]| g.map(|v| ctx.mesh.position(v));
+                            let pos = |g: [VertexId; 3]| g.map(|v| ctx.position(v));
                             !crate::filter::meet(p, pos(p), q, pos(q))
                         })
                     })

@@ -41,6 +41,13 @@ pub struct Approximation<'a> {
     /// Faces of `grid` that are not part of the approximation (the fan of the vertex being
     /// removed, while its removal is only planned).
     pub excluded: &'a [FaceId],
+    /// Vertices planned at other positions than the mesh's (a planned slide or collapse),
+    /// each at most once. Every face of `grid` around one of them must be in `excluded` (its
+    /// indexed box is stale); those that stay in the approximation are in `extra`.
+    pub moved: &'a [(VertexId, DVec3)],
+    /// Triangles of the approximation outside `grid` (the faces around `moved` vertices, at
+    /// their planned positions), tested one by one.
+    pub extra: &'a [[VertexId; 3]],
 }
 
 /// Exact: closed triangles `f` and `g` (vertex ids, positions `pf`, `pg`) meet away from
@@ -49,19 +56,53 @@ pub(crate) fn meet(f: [VertexId; 3], pf: [DVec3; 3], g: [VertexId; 3], pg: [DVec
     indexed_triangles_intersect(pf, f.map(|v| v.0), pg, g.map(|v| v.0))
 }
 
-impl Approximation<'_> {
-    /// True when the candidate `t` (corners `p`) meets a live face or a placed triangle away
-    /// from shared corners. Exact; conservative boxes.
+impl<'a> Approximation<'a> {
+    /// The live faces of `mesh` indexed by `grid`, nothing placed, excluded or moved.
+    #[must_use]
+    pub fn of_mesh(mesh: &'a HalfEdgeMesh, grid: &'a FaceGrid) -> Self {
+        Self {
+            mesh,
+            grid,
+            placed: &[],
+            excluded: &[],
+            moved: &[],
+            extra: &[],
+        }
+    }
+
+    /// Where `v` is in this approximation: its planned position when it is `moved`, else
+    /// the mesh's.
+    #[must_use]
+    pub fn position(&self, v: VertexId) -> DVec3 {
+        position_in(self.mesh, self.moved, v)
+    }
+
+    /// True when the candidate `t` (corners `p`) meets a live face, an extra or a placed
+    /// triangle away from shared corners. Exact; conservative boxes.
     #[must_use]
     pub fn intersects(&self, t: [VertexId; 3], p: [DVec3; 3]) -> bool {
-        let pos = |g: [VertexId; 3]| g.map(|v| self.mesh.position(v));
-        if self.placed.iter().any(|&g| meet(t, p, g, pos(g))) {
+        let pos = |g: [VertexId; 3]| g.map(|v| self.position(v));
+        let bounds = Aabb::from_triangle(p);
+        // Boxes of exact corners: closed triangles that meet have overlapping boxes.
+        let near = |q: [DVec3; 3]| Aabb::from_triangle(q).overlaps(&bounds);
+        if self.placed.iter().chain(self.extra).any(|&g| {
+            let q = pos(g);
+            near(q) && meet(t, p, g, q)
+        }) {
             return true;
         }
-        self.grid.any_overlapping(&Aabb::from_triangle(p), |f, g| {
+        self.grid.any_overlapping(&bounds, |f, g| {
             !self.excluded.contains(&f) && meet(t, p, g, pos(g))
         })
     }
+}
+
+/// `v`'s planned position in `moved`, else its position in `mesh`.
+pub(crate) fn position_in(mesh: &HalfEdgeMesh, moved: &[(VertexId, DVec3)], v: VertexId) -> DVec3 {
+    moved
+        .iter()
+        .find(|m| m.0 == v)
+        .map_or_else(|| mesh.position(v), |m| m.1)
 }
 
 /// Everything a [`Filter`] may look at about one candidate triangle.

@@ -402,15 +402,21 @@ fn rejected(stats: &mut Stats, visitor: &mut dyn Visitor, v: VertexId, reason: R
 }
 
 /// The phase after the subset run ([`Placement::Slide`], [`Placement::Collapse`]): every
-/// live vertex in id order, first in first out, one at a time: the plain removal, else
-/// [`LocalSimplifier::try_slide_remove`] (with fibers), else (with `policies.collapse`)
-/// [`LocalSimplifier::try_collapse`] on the positions of `collapse_candidates`, cheapest
-/// first, until one passes; after a removal the hole's vertices and the neighbours of moved
-/// vertices are queued again. The first time round, the plain removal is skipped: the subset
-/// run failed it last, and by the paper's rule (only neighbours are queued again) nothing
-/// around it changed since; only vertices queued again after a change try it. (A removal
-/// near a vertex but not next to it, across a thin part, can unblock it; the subset run
-/// gives those up too.)
+/// live vertex in id order, first in first out: the plain removal, else the slide of
+/// [`LocalSimplifier::try_slide_remove`] (with fibers), else (with `policies.collapse`) the
+/// collapse of [`LocalSimplifier::try_collapse`] on the positions of `collapse_candidates`,
+/// cheapest first, until one passes; after a removal the hole's vertices and the neighbours
+/// of moved vertices are queued again. The first time round, the plain removal is skipped:
+/// the subset run failed it last, and by the paper's rule (only neighbours are queued again)
+/// nothing around it changed since; only vertices queued again after a change try it. (A
+/// removal near a vertex but not next to it, across a thin part, can unblock it; the subset
+/// run gives those up too.)
+///
+/// Batched like the subset run, with the box of [`moving_box`] (the two-ring and the
+/// neighbours' fibers: every face a slide or collapse of the vertex reads or changes) in
+/// place of the one-ring's; a slid or collapsed position outside that box is not tried, so
+/// the box holds. With `check_each_step`, one vertex at a time (same plans, other re-queue
+/// order).
 fn moving_phase(
     local: &mut LocalSimplifier<'_>,
     policies: &Policies<'_>,
@@ -428,61 +434,107 @@ fn moving_phase(
             .max()
             .unwrap_or(0)
     ];
-    while let Some(v) = queue.pop() {
-        if policies.stop.should_stop(local.mesh().num_faces()) {
+    let fibers = policies.fibers.as_ref();
+    let ways = Ways {
+        filter: policies.filter,
+        filler: policies.filler,
+        fibers,
+        collapse: policies.collapse,
+    };
+    loop {
+        let batch = if policies.check_each_step {
+            queue.pop().into_iter().collect()
+        } else {
+            independent_batch_within(&mut queue, local.mesh(), |m, v| moving_box(m, v, fibers))
+        };
+        if batch.is_empty() {
             break;
         }
-        stats.attempts += 1;
-        visitor.on_attempt(v);
-        let plain = if std::mem::take(&mut changed[v.index()]) {
-            local.try_remove_vertex(v, policies.filter, policies.filler)
-        } else {
-            Err(Rejection::NoValidFill)
-        };
-        let mut result = plain.map(|removal| (removal, Vec::new()));
-        if let (Err(Rejection::NoValidFill), Some(fibers)) = (&result, &policies.fibers) {
-            result = local.try_slide_remove(v, policies.filter, policies.filler, fibers);
-        }
-        let mut collapsed = false;
-        if result == Err(Rejection::NoValidFill) && policies.collapse {
-            for (_, w, p) in collapse_candidates(local.mesh(), v) {
-                if let Ok(removal) = local.try_collapse(v, w, p, policies.filter) {
-                    collapsed = true;
-                    result = Ok((removal, vec![w]));
-                    break;
-                }
+        let jobs: Vec<(VertexId, bool)> = batch
+            .iter()
+            .map(|&v| (v, std::mem::take(&mut changed[v.index()])))
+            .collect();
+        let plans: Vec<_> = {
+            let local = &*local;
+            if jobs.len() == 1 {
+                vec![local.plan_stuck(jobs[0].0, jobs[0].1, &ways)]
+            } else {
+                jobs.par_iter()
+                    .map(|&(v, plain)| local.plan_stuck(v, plain, &ways))
+                    .collect()
             }
-        }
-        match result {
-            Ok((removal, slid)) => {
-                stats.removed += 1;
-                stats.slid += usize::from(!slid.is_empty() && !collapsed);
-                stats.collapsed += usize::from(collapsed);
-                visitor.on_removed(v, &removal.faces);
-                let around = slid.iter().flat_map(|&u| local.mesh().vertex_neighbors(u));
-                let again: Vec<VertexId> = removal
-                    .hole
-                    .vertices
-                    .iter()
-                    .copied()
-                    .chain(around)
-                    .collect();
-                for w in again {
-                    if local.mesh().contains_vertex(w) {
-                        changed[w.index()] = true;
-                        queue.push(local.mesh(), &Fifo, w);
+        };
+        for (&v, (plan, tests)) in batch.iter().zip(plans) {
+            if policies.stop.should_stop(local.mesh().num_faces()) {
+                return Ok(());
+            }
+            stats.attempts += 1;
+            visitor.on_attempt(v);
+            local.candidate_tests += tests;
+            let result = plan.and_then(|(plan, way)| {
+                let moved: Vec<VertexId> = plan.moves.iter().map(|m| m.0).collect();
+                local.apply(v, plan).map(|removal| (removal, way, moved))
+            });
+            match result {
+                Ok((removal, way, moved)) => {
+                    stats.removed += 1;
+                    stats.slid += usize::from(way == Way::Slid);
+                    stats.collapsed += usize::from(way == Way::Collapsed);
+                    visitor.on_removed(v, &removal.faces);
+                    let around = moved.iter().flat_map(|&u| local.mesh().vertex_neighbors(u));
+                    let again: Vec<VertexId> = removal
+                        .hole
+                        .vertices
+                        .iter()
+                        .copied()
+                        .chain(around)
+                        .collect();
+                    for w in again {
+                        if local.mesh().contains_vertex(w) {
+                            changed[w.index()] = true;
+                            queue.push(local.mesh(), &Fifo, w);
+                        }
                     }
                 }
+                Err(reason) => rejected(stats, visitor, v, reason),
             }
-            Err(reason) => rejected(stats, visitor, v, reason),
-        }
-        if policies.check_each_step {
-            local
-                .sanity_check()
-                .map_err(|message| SimplifyError::SanityCheck { after: v, message })?;
+            if policies.check_each_step {
+                local
+                    .sanity_check()
+                    .map_err(|message| SimplifyError::SanityCheck { after: v, message })?;
+            }
         }
     }
     Ok(())
+}
+
+/// What the moving phase may try (the thread-safe part of [`Policies`]).
+struct Ways<'p> {
+    filter: &'p dyn Filter,
+    filler: &'p dyn HoleFiller,
+    fibers: Option<&'p VertexFibers<'p>>,
+    collapse: bool,
+}
+
+/// How a removal of the moving phase went.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Way {
+    Plain,
+    Slid,
+    Collapsed,
+}
+
+/// The box of `v`'s two-ring and of its neighbours' fibers: every face that a slide or a
+/// collapse of `v` reads or changes lies in it, when the slid and collapsed positions do.
+fn moving_box(m: &HalfEdgeMesh, v: VertexId, fibers: Option<&VertexFibers<'_>>) -> Aabb {
+    let mut points = vec![m.position(v)];
+    for u in m.vertex_neighbors(v) {
+        points.extend(m.vertex_neighbors(u).map(|x| m.position(x)));
+        if let Some((a, d)) = fibers.and_then(|f| f.segment(u)) {
+            points.extend([a, a + d]);
+        }
+    }
+    Aabb::from_points(&points)
 }
 
 /// At most this many (neighbour, position) pairs are tried per vertex by the collapse step.
@@ -659,6 +711,24 @@ const BATCH_LIMIT: usize = 16;
 /// appended. Skipped vertices keep their places. The batches depend on the queue and the
 /// mesh only, never on the number of threads, so the output does not either.
 fn independent_batch(queue: &mut RemovalQueue, mesh: &HalfEdgeMesh) -> Vec<VertexId> {
+    independent_batch_within(queue, mesh, one_ring_box)
+}
+
+/// The box of `v` and its neighbours.
+fn one_ring_box(mesh: &HalfEdgeMesh, v: VertexId) -> Aabb {
+    mesh.vertex_neighbors(v)
+        .fold(Aabb::from_points(&[mesh.position(v)]), |b, w| {
+            b.union(&Aabb::from_points(&[mesh.position(w)]))
+        })
+}
+
+/// [`independent_batch`] with another box per vertex, which must hold everything a plan of
+/// it reads or its removal changes.
+fn independent_batch_within(
+    queue: &mut RemovalQueue,
+    mesh: &HalfEdgeMesh,
+    reach: impl Fn(&HalfEdgeMesh, VertexId) -> Aabb,
+) -> Vec<VertexId> {
     let mut batch = Vec::new();
     let mut skipped = Vec::new();
     let mut boxes: Vec<Aabb> = Vec::new();
@@ -667,11 +737,7 @@ fn independent_batch(queue: &mut RemovalQueue, mesh: &HalfEdgeMesh) -> Vec<Verte
             break;
         };
         let v = e.v;
-        let b = mesh
-            .vertex_neighbors(v)
-            .fold(Aabb::from_points(&[mesh.position(v)]), |b, w| {
-                b.union(&Aabb::from_points(&[mesh.position(w)]))
-            });
+        let b = reach(mesh, v);
         let apart = !boxes.iter().any(|x| x.overlaps(&b));
         boxes.push(b);
         if apart {
@@ -766,8 +832,8 @@ impl<'m> LocalSimplifier<'m> {
     /// perpendicular to `v`'s fiber, kept within `[0.05, 0.95]` of the fiber. Then the hole
     /// is filled as in [`Self::try_remove_vertex`] (the filling sees the slid positions),
     /// and every other face around a slid vertex, at its new position, must pass `filter`
-    /// against the approximation with the filling in it. All or nothing: on any refusal the
-    /// positions come back exactly. Returns the removal and the slid vertices.
+    /// against the approximation with the filling in it. All or nothing: the slide is only
+    /// planned (the mesh is edited once it passed). Returns the removal and the slid vertices.
     ///
     /// Choices (not in the paper, which only sketches the idea): half-way (a chord over a
     /// curved patch then errs on both sides instead of one), the 60 degrees, the range, and
@@ -779,6 +845,20 @@ impl<'m> LocalSimplifier<'m> {
         filler: &dyn HoleFiller,
         fibers: &VertexFibers<'_>,
     ) -> Result<(Removal, Vec<VertexId>), Rejection> {
+        let moves = self.slide_moves(v, fibers)?;
+        let (plan, tests) = self.plan_moved(v, moves, filter, filler);
+        self.candidate_tests += tests;
+        let plan = plan?;
+        let slid = plan.moves.iter().map(|m| m.0).collect();
+        self.apply(v, plan).map(|removal| (removal, slid))
+    }
+
+    /// The positions [`Self::try_slide_remove`] gives `v`'s neighbours (read only).
+    fn slide_moves(
+        &self,
+        v: VertexId,
+        fibers: &VertexFibers<'_>,
+    ) -> Result<Vec<(VertexId, DVec3)>, Rejection> {
         let m = &*self.mesh;
         if !m.contains_vertex(v) || m.is_isolated(v) {
             return Err(Rejection::NotAVertex);
@@ -788,7 +868,7 @@ impl<'m> LocalSimplifier<'m> {
         };
         let nv = dv.normalize();
         let pv = m.position(v);
-        let mut moves: Vec<(VertexId, DVec3, DVec3)> = Vec::new();
+        let mut moves = Vec::new();
         for u in m.vertex_neighbors(v) {
             if m.is_border_vertex(u) {
                 continue;
@@ -805,32 +885,14 @@ impl<'m> LocalSimplifier<'m> {
             let s_plane = (pv - a).dot(nv) / dn;
             let s = (0.5 * (s_now + s_plane)).clamp(SLIDE_RANGE, 1.0 - SLIDE_RANGE);
             let q = a + d * s;
-            // The exact predicates' range (a cancellation can leave a coordinate below it).
-            let in_range = q
-                .to_array()
-                .into_iter()
-                .all(|x| envelope_mesh::check_coordinate(x).is_ok());
-            if (s - s_now).abs() > 1e-3 && in_range && q != pu {
-                moves.push((u, pu, q));
+            if (s - s_now).abs() > 1e-3 && in_range(q) && q != pu {
+                moves.push((u, q));
             }
         }
         if moves.is_empty() {
             return Err(Rejection::NoValidFill);
         }
-        let mut affected: Vec<FaceId> = moves
-            .iter()
-            .flat_map(|&(u, _, _)| m.vertex_faces(u))
-            .collect();
-        affected.sort_unstable();
-        affected.dedup();
-        self.move_vertices(&affected, moves.iter().map(|&(u, _, q)| (u, q)));
-        let outcome = self
-            .plan_slid(v, filter, filler, &affected)
-            .and_then(|plan| self.apply(v, plan));
-        if outcome.is_err() {
-            self.move_vertices(&affected, moves.iter().map(|&(u, p, _)| (u, p)));
-        }
-        outcome.map(|removal| (removal, moves.iter().map(|&(u, _, _)| u).collect()))
+        Ok(moves)
     }
 
     /// Tries to remove `v` by collapsing its edge into the neighbour `w`, moved to `p`: the
@@ -846,33 +908,82 @@ impl<'m> LocalSimplifier<'m> {
         p: DVec3,
         filter: &dyn Filter,
     ) -> Result<Removal, Rejection> {
+        let (plan, tests) = self.plan_collapse(v, w, p, filter);
+        self.candidate_tests += tests;
+        self.apply(v, plan?)
+    }
+
+    /// The plan of [`Self::try_collapse`] (read only), and the filter calls it made.
+    fn plan_collapse(
+        &self,
+        v: VertexId,
+        w: VertexId,
+        p: DVec3,
+        filter: &dyn Filter,
+    ) -> (Result<Plan, Rejection>, u64) {
         let m = &*self.mesh;
         if !m.contains_vertex(v) || !m.contains_vertex(w) || m.find_halfedge(v, w).is_none() {
-            return Err(Rejection::NotAVertex);
+            return (Err(Rejection::NotAVertex), 0);
         }
-        if m.is_border_vertex(v) || m.is_border_vertex(w) {
-            return Err(Rejection::NoValidFill);
+        if m.is_border_vertex(v) || m.is_border_vertex(w) || !in_range(p) {
+            return (Err(Rejection::NoValidFill), 0);
         }
-        if !p
-            .to_array()
-            .into_iter()
-            .all(|x| envelope_mesh::check_coordinate(x).is_ok())
-        {
-            return Err(Rejection::NoValidFill);
+        let moves = if p == m.position(w) {
+            Vec::new()
+        } else {
+            vec![(w, p)]
+        };
+        self.plan_moved(v, moves, filter, &FanFrom(w))
+    }
+
+    /// The moving phase's plan for `v` (read only): the plain removal when `plain`, else or
+    /// then the slide, then the collapses (see `moving_phase`), each position inside
+    /// [`moving_box`]. Also returns the filter calls.
+    fn plan_stuck(
+        &self,
+        v: VertexId,
+        plain: bool,
+        ways: &Ways<'_>,
+    ) -> (Result<(Plan, Way), Rejection>, u64) {
+        let (filter, filler) = (ways.filter, ways.filler);
+        let mut tests = 0;
+        if plain {
+            let (plan, t) = self.plan(v, filter, filler);
+            tests += t;
+            match plan {
+                Ok(plan) => return (Ok((plan, Way::Plain)), tests),
+                Err(Rejection::NoValidFill) => {}
+                Err(other) => return (Err(other), tests),
+            }
         }
-        let pw = m.position(w);
-        let affected: Vec<FaceId> = m.vertex_faces(w).collect();
-        let moved = p != pw;
-        if moved {
-            self.move_vertices(&affected, std::iter::once((w, p)));
+        let m = &*self.mesh;
+        if !m.contains_vertex(v) || m.is_isolated(v) {
+            return (Err(Rejection::NotAVertex), tests);
         }
-        let outcome = self
-            .plan_slid(v, filter, &FanFrom(w), &affected)
-            .and_then(|plan| self.apply(v, plan));
-        if outcome.is_err() && moved {
-            self.move_vertices(&affected, std::iter::once((w, pw)));
+        let fibers = ways.fibers;
+        let reach = moving_box(m, v, fibers);
+        if let Some(moves) = fibers.and_then(|f| self.slide_moves(v, f).ok()) {
+            if moves.iter().all(|&(_, q)| reach.contains(q)) {
+                let (plan, t) = self.plan_moved(v, moves, filter, filler);
+                tests += t;
+                if let Ok(plan) = plan {
+                    return (Ok((plan, Way::Slid)), tests);
+                }
+            }
         }
-        outcome
+        if ways.collapse {
+            for (_, w, p) in collapse_candidates(m, v) {
+                if !reach.contains(p) {
+                    continue;
+                }
+                let (plan, t) = self.plan_collapse(v, w, p, filter);
+                tests += t;
+                if let Ok(plan) = plan {
+                    return (Ok((plan, Way::Collapsed)), tests);
+                }
+            }
+        }
+        (Err(Rejection::NoValidFill), tests)
     }
 
     /// Sets vertex positions and re-indexes the `affected` faces (every live face around a
@@ -894,43 +1005,6 @@ impl<'m> LocalSimplifier<'m> {
         }
     }
 
-    /// The plan of `v`'s removal with slid neighbours, and the check of every `affected`
-    /// face outside `v`'s fan against the approximation with the filling placed.
-    fn plan_slid(
-        &mut self,
-        v: VertexId,
-        filter: &dyn Filter,
-        filler: &dyn HoleFiller,
-        affected: &[FaceId],
-    ) -> Result<Plan, Rejection> {
-        let (plan, tests) = self.plan(v, filter, filler);
-        self.candidate_tests += tests;
-        let plan = plan?;
-        let m = &*self.mesh;
-        for &f in affected.iter().filter(|f| !plan.fan.contains(f)) {
-            let triangle = m.face_vertices(f);
-            let mut excluded = plan.fan.clone();
-            excluded.push(f);
-            let profile = CandidateProfile {
-                triangle,
-                corners: triangle.map(|x| m.position(x)),
-                // The edges of a slid vertex are interior; the third edge did not move.
-                border_edges: [false; 3],
-                approximation: Approximation {
-                    mesh: m,
-                    grid: &self.grid,
-                    placed: &plan.placed,
-                    excluded: &excluded,
-                },
-            };
-            self.candidate_tests += 1;
-            if !filter.accepts(&profile) {
-                return Err(Rejection::NoValidFill);
-            }
-        }
-        Ok(plan)
-    }
-
     /// Everything [`Self::try_remove_vertex`] decides, without editing anything: the checks,
     /// the hole (as `remove_vertex_fan` would leave it) and its filling, with the fan
     /// excluded from the approximation instead of removed. Shared access only, so plans of
@@ -942,14 +1016,29 @@ impl<'m> LocalSimplifier<'m> {
         filter: &dyn Filter,
         filler: &dyn HoleFiller,
     ) -> (Result<Plan, Rejection>, u64) {
+        self.plan_moved(v, Vec::new(), filter, filler)
+    }
+
+    /// [`Self::plan`] with vertices at planned positions (`moves`, each vertex once): the
+    /// faces around them are taken out of the grid's view and tested at their planned
+    /// positions (the filling against them, then each of them that stays against the
+    /// approximation with the filling in it).
+    fn plan_moved(
+        &self,
+        v: VertexId,
+        moves: Vec<(VertexId, DVec3)>,
+        filter: &dyn Filter,
+        filler: &dyn HoleFiller,
+    ) -> (Result<Plan, Rejection>, u64) {
         let mut tests = 0;
-        let plan = self.plan_counted(v, filter, filler, &mut tests);
+        let plan = self.plan_counted(v, moves, filter, filler, &mut tests);
         (plan, tests)
     }
 
     fn plan_counted(
         &self,
         v: VertexId,
+        moves: Vec<(VertexId, DVec3)>,
         filter: &dyn Filter,
         filler: &dyn HoleFiller,
         tests: &mut u64,
@@ -989,7 +1078,21 @@ impl<'m> LocalSimplifier<'m> {
         if sorted.len() != hole.len() {
             return Err(Rejection::RepeatedNeighbour);
         }
-        let mut ctx = FillContext::new(m, &self.grid, filter, &hole).excluding(&fan);
+        // Faces around a moved vertex: stale in the grid; those outside the fan stay, at
+        // their planned positions.
+        let mut excluded = fan.clone();
+        let mut stay = Vec::new();
+        for &(u, _) in &moves {
+            for f in m.vertex_faces(u) {
+                if !excluded.contains(&f) {
+                    excluded.push(f);
+                    stay.push(m.face_vertices(f));
+                }
+            }
+        }
+        let mut ctx = FillContext::new(m, &self.grid, filter, &hole)
+            .excluding(&excluded)
+            .moving(&moves, &stay);
         let filled = filler.fill(&mut ctx);
         *tests = ctx.tests;
         let placed = ctx.placed().to_vec();
@@ -997,25 +1100,74 @@ impl<'m> LocalSimplifier<'m> {
             return Err(Rejection::NoValidFill);
         }
         debug_assert_eq!(placed.len() + 2, hole.len());
-        Ok(Plan { hole, fan, placed })
-    }
-
-    /// Carries out a plan made by [`Self::plan`] on the mesh as it was then: removes the fan,
-    /// adds the filling (the mesh's `add_faces` is the last guard), updates the grid.
-    fn apply(&mut self, v: VertexId, plan: Plan) -> Result<Removal, Rejection> {
-        let cp = self.mesh.begin();
-        match self.mesh.remove_vertex_fan(v) {
-            Ok(ring) => debug_assert_eq!(ring, plan.hole.vertices),
-            Err(_) => {
-                self.mesh.rollback(cp);
-                return Err(Rejection::NonManifold);
+        for (k, &t) in stay.iter().enumerate() {
+            let others: Vec<[VertexId; 3]> = stay
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != k)
+                .map(|(_, &g)| g)
+                .collect();
+            let approximation = Approximation {
+                mesh: m,
+                grid: &self.grid,
+                placed: &placed,
+                excluded: &excluded,
+                moved: &moves,
+                extra: &others,
+            };
+            let profile = CandidateProfile {
+                triangle: t,
+                corners: t.map(|x| approximation.position(x)),
+                // The edges of a moved vertex are interior; the third edge did not move.
+                border_edges: [false; 3],
+                approximation,
+            };
+            *tests += 1;
+            if !filter.accepts(&profile) {
+                return Err(Rejection::NoValidFill);
             }
         }
-        let faces = match self.mesh.add_faces(&plan.placed) {
+        Ok(Plan {
+            hole,
+            fan,
+            placed,
+            moves,
+        })
+    }
+
+    /// Carries out a plan made by [`Self::plan`] on the mesh as it was then: moves its
+    /// vertices, removes the fan, adds the filling (the mesh's `add_faces` is the last
+    /// guard), updates the grid; on a refusal everything comes back exactly.
+    fn apply(&mut self, v: VertexId, plan: Plan) -> Result<Removal, Rejection> {
+        let mut affected: Vec<FaceId> = plan
+            .moves
+            .iter()
+            .flat_map(|&(u, _)| self.mesh.vertex_faces(u))
+            .collect();
+        affected.sort_unstable();
+        affected.dedup();
+        let back: Vec<(VertexId, DVec3)> = plan
+            .moves
+            .iter()
+            .map(|&(u, _)| (u, self.mesh.position(u)))
+            .collect();
+        self.move_vertices(&affected, plan.moves.iter().copied());
+        let cp = self.mesh.begin();
+        let refused = match self.mesh.remove_vertex_fan(v) {
+            Ok(ring) => {
+                debug_assert_eq!(ring, plan.hole.vertices);
+                self.mesh
+                    .add_faces(&plan.placed)
+                    .map_err(Rejection::MeshRefused)
+            }
+            Err(_) => Err(Rejection::NonManifold),
+        };
+        let faces = match refused {
             Ok(faces) => faces,
-            Err(e) => {
+            Err(reason) => {
                 self.mesh.rollback(cp);
-                return Err(Rejection::MeshRefused(e));
+                self.move_vertices(&affected, back.into_iter());
+                return Err(reason);
             }
         };
         self.mesh
@@ -1035,6 +1187,14 @@ impl<'m> LocalSimplifier<'m> {
             faces,
         })
     }
+}
+
+/// Every coordinate of `p` in the exact predicates' range (a cancellation can leave one
+/// below it).
+fn in_range(p: DVec3) -> bool {
+    p.to_array()
+        .into_iter()
+        .all(|x| envelope_mesh::check_coordinate(x).is_ok())
 }
 
 /// Fills a closed hole with the fan from one of its vertices (an edge collapse seen as a
@@ -1074,4 +1234,6 @@ struct Plan {
     hole: Hole,
     fan: Vec<FaceId>,
     placed: Vec<[VertexId; 3]>,
+    /// Vertices to move first (a slide or a collapse), each once.
+    moves: Vec<(VertexId, DVec3)>,
 }

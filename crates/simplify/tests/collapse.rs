@@ -229,3 +229,46 @@ fn a_tetrahedron_keeps_its_vertices() {
     }
     assert_eq!(local.mesh().num_faces(), 4);
 }
+
+/// The moving phase is batched like the subset run (plans in parallel, carried out in queue
+/// order): the same mesh and counts for 1 and 3 threads, and the same guarantees as the
+/// one-at-a-time run with every sanity check.
+#[test]
+fn the_moving_phase_does_not_depend_on_the_thread_count() {
+    let s = bumpy();
+    let env = envelopes(&s, 0.02);
+    let b = barriers(&env);
+    let fibers = VertexFibers {
+        inner: &env.inner.positions,
+        outer: &env.outer.positions,
+    };
+    let options = Options {
+        placement: Placement::Collapse,
+        ..Options::default()
+    };
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let mut m = HalfEdgeMesh::from_soup(&s).unwrap();
+        let stats = pool
+            .install(|| simplify_local_sliding(&mut m, &b, &options, None, Some(fibers), &mut ()))
+            .unwrap();
+        m.sanity_check().unwrap();
+        (m.to_soup(), stats)
+    };
+    let (one, s1) = run(1);
+    let (three, s3) = run(3);
+    assert!(s1.collapsed > 0 && s1.slid > 0, "{s1:?}");
+    assert_eq!(one, three);
+    assert_eq!(s1, s3);
+    // The one-at-a-time run (other re-queue order) ends within a few faces of it.
+    let (sequential, _) = run_checked(&s, &env);
+    let (a, b) = (one.num_faces() as f64, sequential.num_faces() as f64);
+    assert!((a - b).abs() <= 0.1 * b, "batched {a}, one at a time {b}");
+}
+
+fn run_checked(s: &TriangleSoup, env: &Envelopes) -> (HalfEdgeMesh, Stats) {
+    run(s, env, Placement::Collapse)
+}
