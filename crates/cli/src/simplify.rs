@@ -330,6 +330,15 @@ fn print_summary(args: &Args, r: &SimplifyReport) {
 }
 
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
+    if matches!(args.method, AlgorithmArg::Global)
+        && !matches!(args.placement, PlacementArg::Subset)
+    {
+        return Err(
+            "--placement slide and collapse move vertices in the local algorithm's \
+                    phase, which --method global does not run (use --method local or hybrid)"
+                .into(),
+        );
+    }
     let (soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
     let format = Format::from_path(&args.output).ok_or_else(|| {
         format!(

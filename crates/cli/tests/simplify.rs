@@ -214,6 +214,18 @@ fn bad_input_and_arguments_exit_2_and_leave_out_alone() {
             "--viewpoint",
             "1,2",
         ],
+        // The global method has no phase that moves vertices.
+        vec![
+            "simplify",
+            &good,
+            out,
+            "--epsilon",
+            "1%",
+            "--method",
+            "global",
+            "--placement",
+            "collapse",
+        ],
     ];
     for args in &cases {
         let o = envelope(args);
@@ -226,6 +238,22 @@ fn bad_input_and_arguments_exit_2_and_leave_out_alone() {
     }
     let o = envelope(&["simplify", &bad, out, "--epsilon", "1%"]);
     assert!(stderr(&o).contains("not acceptable"), "{}", stderr(&o));
+    let o = envelope(&[
+        "simplify",
+        &good,
+        out,
+        "--epsilon",
+        "1%",
+        "--method",
+        "global",
+        "--placement",
+        "slide",
+    ]);
+    assert!(
+        stderr(&o).contains("--method local or hybrid"),
+        "{}",
+        stderr(&o)
+    );
     let o = envelope(&[
         "simplify",
         &good,

@@ -50,7 +50,8 @@ pub struct SimplifyOptions {
     /// Where output vertices may lie (default: the input vertices, as in the paper's 5.2;
     /// [`Placement::Slide`]: the local step then slides stuck neighbourhoods along the
     /// fibers, section 8; [`Placement::Collapse`]: and then collapses edges of what is still
-    /// stuck).
+    /// stuck). Only steps that run the local algorithm's phase use it (the local and hybrid
+    /// methods, not the global one; the CLI refuses that combination).
     pub placement: Placement,
     /// Vertices per border-tube ring (`None`: no tubes, border vertices are then kept).
     pub tube_segments: Option<u32>,
