@@ -96,7 +96,7 @@ pub struct Stats {
     pub candidate_tests: u64,
     /// Removals that slid neighbours along their fibers ([`Placement::Slide`]).
     pub slid: usize,
-    /// Removals by an edge collapse to a moved neighbour ([`Placement::Slide`]).
+    /// Removals by an edge collapse to a moved neighbour ([`Placement::Collapse`]).
     pub collapsed: usize,
 }
 
@@ -348,14 +348,9 @@ fn run(
         if batch.is_empty() {
             break;
         }
-        let plans: Vec<_> = if batch.len() == 1 {
-            vec![local.plan(batch[0], policies.filter, policies.filler)]
-        } else {
+        let plans = {
             let local = &local;
-            batch
-                .par_iter()
-                .map(|&v| local.plan(v, policies.filter, policies.filler))
-                .collect()
+            plan_each(&batch, |&v| local.plan(v, policies.filter, policies.filler))
         };
         // Commit in queue order: the same calls, in the same order, as one at a time.
         for (&v, (plan, tests)) in batch.iter().zip(plans) {
@@ -390,6 +385,15 @@ fn run(
     stats.vertices_after = local.mesh().num_vertices();
     stats.faces_after = local.mesh().num_faces();
     Ok(stats)
+}
+
+/// The plans of one batch, in its order: in parallel, or inline for a single one (the
+/// read-only plans of a batch do not see each other, so the order of planning is free).
+fn plan_each<T: Sync, R: Send>(batch: &[T], plan: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    match batch {
+        [one] => vec![plan(one)],
+        _ => batch.par_iter().map(&plan).collect(),
+    }
 }
 
 /// Counts a failed attempt at `v` and tells the visitor.
@@ -455,15 +459,9 @@ fn moving_phase(
             .iter()
             .map(|&v| (v, std::mem::take(&mut changed[v.index()])))
             .collect();
-        let plans: Vec<_> = {
+        let plans = {
             let local = &*local;
-            if jobs.len() == 1 {
-                vec![local.plan_stuck(jobs[0].0, jobs[0].1, &ways)]
-            } else {
-                jobs.par_iter()
-                    .map(|&(v, plain)| local.plan_stuck(v, plain, &ways))
-                    .collect()
-            }
+            plan_each(&jobs, |&(v, plain)| local.plan_stuck(v, plain, &ways))
         };
         for (&v, (plan, tests)) in batch.iter().zip(plans) {
             if policies.stop.should_stop(local.mesh().num_faces()) {
@@ -565,12 +563,13 @@ fn collapse_candidates(m: &HalfEdgeMesh, v: VertexId) -> Vec<(f64, VertexId, DVe
             (f, area, n, -n.dot(a))
         })
     };
+    let around_v: Vec<_> = planes(v).collect();
     let mut out = Vec::new();
     for w in m.vertex_neighbors(v) {
         if m.is_border_vertex(w) {
             continue;
         }
-        let mut faces: Vec<_> = planes(v).chain(planes(w)).collect();
+        let mut faces: Vec<_> = around_v.iter().copied().chain(planes(w)).collect();
         faces.sort_unstable_by_key(|x| x.0);
         faces.dedup_by_key(|x| x.0);
         let cost = |x: DVec3| -> f64 {
