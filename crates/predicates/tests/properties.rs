@@ -170,3 +170,70 @@ fn reference_sq_dist(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
     }
     best
 }
+
+/// A point `v + i u + j w` of a tilted plane through `v` (integer coordinates: exact).
+fn in_plane(v: DVec3, u: DVec3, w: DVec3, (i, j): (i32, i32)) -> DVec3 {
+    v + u * f64::from(i) + w * f64::from(j)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+    /// Coplanar faces sharing one vertex (the 2-D shortcut of `adjacent_triangles_intersect`)
+    /// against an independent answer: they meet beyond `v` iff a point just off `v` along one
+    /// of the four edges at `v` lies in both closed triangles (`point_in_triangle`; the
+    /// offset `(x - v) / 65536` is exact on these integer coordinates and well inside both
+    /// triangles' reach from `v`).
+    #[test]
+    fn coplanar_faces_at_a_vertex_meet_as_their_sectors_do(
+        u in (-2i32..=2, -2i32..=2, -2i32..=2),
+        w in (-2i32..=2, -2i32..=2, -2i32..=2),
+        ij in prop::collection::vec((-4i32..=4, -4i32..=4), 4),
+    ) {
+        let d = |(x, y, z): (i32, i32, i32)| DVec3::new(x.into(), y.into(), z.into());
+        let (u, w) = (d(u), d(w));
+        prop_assume!(u.cross(w) != DVec3::ZERO);
+        let v = DVec3::new(3.0, -1.0, 2.0);
+        let p: Vec<DVec3> = ij.iter().map(|&k| in_plane(v, u, w, k)).collect();
+        let (t1, t2) = ([v, p[0], p[1]], [v, p[2], p[3]]);
+        prop_assume!(!g::collinear::<K>(v, p[0], p[1]) && !g::collinear::<K>(v, p[2], p[3]));
+        let near = |x: DVec3| v + (x - v) / 65536.0;
+        let reference = p.iter().any(|&x| {
+            let q = near(x);
+            g::point_in_triangle::<K>(q, t1) != g::TriangleLocation::Outside
+                && g::point_in_triangle::<K>(q, t2) != g::TriangleLocation::Outside
+        });
+        let got = g::adjacent_triangles_intersect::<K>(t1, t2, g::Shared::Vertex(0, 0));
+        prop_assert_eq!(got, reference, "t1 {:?} t2 {:?}", t1, t2);
+        // Symmetric, and the same with the vertex elsewhere in the triangles.
+        prop_assert_eq!(g::adjacent_triangles_intersect::<K>(t2, t1, g::Shared::Vertex(0, 0)), got);
+        let r2 = [t2[1], t2[2], v];
+        prop_assert_eq!(g::adjacent_triangles_intersect::<K>(t1, r2, g::Shared::Vertex(0, 2)), got);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+    /// Coplanar triangles (the 2-D shortcut of `triangles_intersect`) against the general
+    /// characterisation: two closed triangles meet iff an edge of one meets the other
+    /// (`segment_triangle`, which decides coplanar segments on its own path).
+    #[test]
+    fn coplanar_triangles_meet_iff_an_edge_meets(
+        u in (-2i32..=2, -2i32..=2, -2i32..=2),
+        w in (-2i32..=2, -2i32..=2, -2i32..=2),
+        ij in prop::collection::vec((-4i32..=4, -4i32..=4), 6),
+    ) {
+        let d = |(x, y, z): (i32, i32, i32)| DVec3::new(x.into(), y.into(), z.into());
+        let (u, w) = (d(u), d(w));
+        prop_assume!(u.cross(w) != DVec3::ZERO);
+        let v = DVec3::new(-1.0, 2.0, 5.0);
+        let p: Vec<DVec3> = ij.iter().map(|&k| in_plane(v, u, w, k)).collect();
+        let (t1, t2) = ([p[0], p[1], p[2]], [p[3], p[4], p[5]]);
+        let edge_meets = |a: [DVec3; 3], b: [DVec3; 3]| {
+            (0..3).any(|i| g::segment_triangle::<K>(a[i], a[(i + 1) % 3], b).intersects())
+        };
+        let reference = edge_meets(t1, t2) || edge_meets(t2, t1);
+        prop_assert_eq!(g::triangles_intersect::<K>(t1, t2), reference, "{:?} {:?}", t1, t2);
+        prop_assert_eq!(g::triangles_intersect::<K>(t2, t1), reference);
+        prop_assert_eq!(g::triangles_intersect::<K>([t1[1], t1[2], t1[0]], [t2[0], t2[2], t2[1]]), reference);
+    }
+}

@@ -162,11 +162,45 @@ pub fn triangles_intersect<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool {
     if strictly_one_side(s2) {
         return false;
     }
+    if s2.iter().all(|s| s.is_degenerate()) {
+        // `t2` in the plane of `t1` (when `t1` is not degenerate): a 2-D question.
+        if let Some(meet) = coplanar_triangles_meet::<K>(t1, t2) {
+            return meet;
+        }
+    }
     let s1 = t1.map(|v| K::orient3d(t2[0], t2[1], t2[2], v));
     if strictly_one_side(s1) {
         return false;
     }
     edges_meet::<K>(t1, t2, s1) || edges_meet::<K>(t2, t1, s2)
+}
+
+/// For `t2` in the plane of `t1`: whether the closed triangles meet; `None` when either is
+/// degenerate (the general path decides).
+///
+/// In the coordinate projection along which `t1` is not degenerate the plane maps one-to-one.
+/// Two closed convex polygons are disjoint iff a line through an edge of one has the other
+/// strictly on its outer side (separating axis theorem in the plane), which exact 2-D
+/// orientations decide.
+fn coplanar_triangles_meet<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3]) -> Option<bool> {
+    let (axis, o1) = normal_axis::<K>(t1[0], t1[1], t1[2])?;
+    let (p1, p2) = (t1.map(|v| proj(v, axis)), t2.map(|v| proj(v, axis)));
+    let o2 = K::orient2d(p2[0], p2[1], p2[2]);
+    if o2.is_degenerate() {
+        return None;
+    }
+    let outer = |o: Orientation| match o {
+        Orientation::Positive => Orientation::Negative,
+        _ => Orientation::Positive,
+    };
+    // Some edge of `a` (orientation `o`) has all of `b` strictly outside.
+    let separates = |a: [glam::DVec2; 3], o: Orientation, b: [glam::DVec2; 3]| {
+        (0..3).any(|i| {
+            let (x, y) = (a[i], a[(i + 1) % 3]);
+            b.iter().all(|&q| K::orient2d(x, y, q) == outer(o))
+        })
+    };
+    Some(!separates(p1, o1, p2) && !separates(p2, o2, p1))
 }
 
 /// Some edge of `a` meets the closed triangle `b`; `sides[i]` is `orient3d(b, a[i])`.
@@ -251,6 +285,13 @@ fn meets_beyond_vertex<K: Kernel>(v: DVec3, [a1, b1]: [DVec3; 2], [a2, b2]: [DVe
     if !s[0].is_degenerate() && s[0] == s[1] {
         return false;
     }
+    if s[0].is_degenerate() && s[1].is_degenerate() {
+        // Both faces in one plane (when the first is not degenerate): a 2-D question,
+        // answered without the exact zeros the general path would compute again.
+        if let Some(o) = coplanar_sectors_meet::<K>(v, [a1, b1], [a2, b2]) {
+            return o;
+        }
+    }
     let s = [a1, b1].map(|x| K::orient3d(v, a2, b2, x));
     if !s[0].is_degenerate() && s[0] == s[1] {
         return false;
@@ -265,6 +306,40 @@ fn meets_beyond_vertex<K: Kernel>(v: DVec3, [a1, b1]: [DVec3; 2], [a2, b2]: [DVe
         (true, _) => spoke_meets::<K>(v, a1, t2, d2) || spoke_meets::<K>(v, b1, t2, d2),
         (false, true) => spoke_meets::<K>(v, a2, t1, false) || spoke_meets::<K>(v, b2, t1, false),
     }
+}
+
+/// For `a2`, `b2` in the plane of `[v, a1, b1]`: whether `[v, a1, b1] ∩ [v, a2, b2] != {v}`,
+/// `None` when either triangle is degenerate (the general path decides).
+///
+/// Near `v` each triangle is its sector (the cone at `v` spanned by its two edges, of angle
+/// strictly between 0 and pi), and each lies inside its sector; so the triangles meet beyond
+/// `v` iff the sectors do, iff a boundary ray of one lies in the other (the intersection of
+/// two such sectors, when it is more than `v`, is a sector bounded by rays of theirs). In
+/// the coordinate projection along which `[v, a1, b1]` is not degenerate the plane maps
+/// one-to-one, so the 2-D orientations decide exactly.
+fn coplanar_sectors_meet<K: Kernel>(
+    v: DVec3,
+    [a1, b1]: [DVec3; 2],
+    [a2, b2]: [DVec3; 2],
+) -> Option<bool> {
+    let (axis, o1) = normal_axis::<K>(v, a1, b1)?;
+    let p = |x: DVec3| proj(x, axis);
+    let (v, a1, b1, a2, b2) = (p(v), p(a1), p(b1), p(a2), p(b2));
+    let o2 = K::orient2d(v, a2, b2);
+    if o2.is_degenerate() {
+        return None;
+    }
+    // The closed sector (v; a, b) of orientation o contains the ray from v through x (x != v).
+    let in_sector = |a, b, o: Orientation, x| {
+        let ok = |s: Orientation| s == o || s.is_degenerate();
+        ok(K::orient2d(v, a, x)) && ok(K::orient2d(v, x, b))
+    };
+    Some(
+        in_sector(a1, b1, o1, a2)
+            || in_sector(a1, b1, o1, b2)
+            || in_sector(a2, b2, o2, a1)
+            || in_sector(a2, b2, o2, b1),
+    )
 }
 
 /// `[v, a] ∩ t != {v}` for a triangle `t = [v, x, y]` (degenerate when `t_degenerate`).
