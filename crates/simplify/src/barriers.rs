@@ -363,7 +363,7 @@ fn pin_ids(t: [DVec3; 3], b: [DVec3; 3], mask: u8) -> Option<[u32; 3]> {
 /// both sides, so a pair is only declared apart when it is. It only prunes work; the
 /// decisions are the exact predicates'.
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct SlabFilter {
+struct SlabFilter {
     /// The normal, then the three in-plane edge normals.
     axes: [DVec3; 4],
     /// `|axis|_1`.
@@ -375,7 +375,7 @@ pub(crate) struct SlabFilter {
 }
 
 impl SlabFilter {
-    pub(crate) fn new(t: [DVec3; 3]) -> Self {
+    fn new(t: [DVec3; 3]) -> Self {
         let n = (t[1] - t[0]).cross(t[2] - t[0]);
         let axes = [
             n,
@@ -416,7 +416,7 @@ impl SlabFilter {
     }
 
     /// The test for the three corners of a triangle `q` on all four axes.
-    pub(crate) fn separates_points(&self, q: [DVec3; 3]) -> bool {
+    fn separates_points(&self, q: [DVec3; 3]) -> bool {
         let mag = q.iter().fold(0.0, |m: f64, p| m.max(p.abs().max_element()));
         (0..4).any(|k| {
             let Some(slack) = self.slack(k, mag) else {

@@ -22,7 +22,6 @@
 //! around it are frozen) and never unsafe. Barrier contact is never excused by position.
 
 use crate::Barriers;
-use crate::barriers::SlabFilter;
 use crate::grid::FaceGrid;
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
@@ -86,24 +85,14 @@ impl<'a> Approximation<'a> {
         let bounds = Aabb::from_triangle(p);
         // Boxes of exact corners: closed triangles that meet have overlapping boxes.
         let near = |q: [DVec3; 3]| Aabb::from_triangle(q).overlaps(&bounds);
-        // A face sharing no vertex with `t` that a slab of either triangle certainly
-        // separates from it does not meet it: the conservative f64 test only skips the exact
-        // one (which would say the same), most often for faces in `t`'s own plane, where the
-        // exact orientations are zeros and cost the most.
-        let slab = SlabFilter::new(p);
-        let apart = |g: [VertexId; 3], q: [DVec3; 3]| {
-            !g.iter().any(|v| t.contains(v))
-                && (slab.separates_points(q) || SlabFilter::new(q).separates_points(p))
-        };
-        let hits = |g: [VertexId; 3], q: [DVec3; 3]| !apart(g, q) && meet(t, p, g, q);
         if self.placed.iter().chain(self.extra).any(|&g| {
             let q = pos(g);
-            near(q) && hits(g, q)
+            near(q) && meet(t, p, g, q)
         }) {
             return true;
         }
         self.grid.any_overlapping(&bounds, |f, g| {
-            !self.excluded.contains(&f) && hits(g, pos(g))
+            !self.excluded.contains(&f) && meet(t, p, g, pos(g))
         })
     }
 }
