@@ -171,9 +171,22 @@ fn reference_sq_dist(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
     best
 }
 
-/// A point `v + i u + j w` of a tilted plane through `v` (integer coordinates: exact).
-fn in_plane(v: DVec3, u: DVec3, w: DVec3, (i, j): (i32, i32)) -> DVec3 {
-    v + u * f64::from(i) + w * f64::from(j)
+/// `n` points `v + i u + j w` of a plane through `v` spanned by small integer vectors `u`, `w`
+/// (not parallel), with `i, j` in `-4..=4`: integer coordinates, so every orientation is exact
+/// and many are exactly zero.
+fn plane_points(v: DVec3, n: usize) -> impl Strategy<Value = Vec<DVec3>> {
+    let int3 = || (-2i32..=2, -2i32..=2, -2i32..=2);
+    let d = |(x, y, z): (i32, i32, i32)| DVec3::new(x.into(), y.into(), z.into());
+    (int3(), int3())
+        .prop_map(move |(u, w)| (d(u), d(w)))
+        .prop_filter("a plane", |(u, w)| u.cross(*w) != DVec3::ZERO)
+        .prop_flat_map(move |(u, w)| {
+            prop::collection::vec((-4i32..=4, -4i32..=4), n).prop_map(move |ij| {
+                ij.iter()
+                    .map(|&(i, j)| v + u * f64::from(i) + w * f64::from(j))
+                    .collect()
+            })
+        })
 }
 
 proptest! {
@@ -185,15 +198,9 @@ proptest! {
     /// triangles' reach from `v`).
     #[test]
     fn coplanar_faces_at_a_vertex_meet_as_their_sectors_do(
-        u in (-2i32..=2, -2i32..=2, -2i32..=2),
-        w in (-2i32..=2, -2i32..=2, -2i32..=2),
-        ij in prop::collection::vec((-4i32..=4, -4i32..=4), 4),
+        p in plane_points(DVec3::new(3.0, -1.0, 2.0), 4),
     ) {
-        let d = |(x, y, z): (i32, i32, i32)| DVec3::new(x.into(), y.into(), z.into());
-        let (u, w) = (d(u), d(w));
-        prop_assume!(u.cross(w) != DVec3::ZERO);
         let v = DVec3::new(3.0, -1.0, 2.0);
-        let p: Vec<DVec3> = ij.iter().map(|&k| in_plane(v, u, w, k)).collect();
         let (t1, t2) = ([v, p[0], p[1]], [v, p[2], p[3]]);
         prop_assume!(!g::collinear::<K>(v, p[0], p[1]) && !g::collinear::<K>(v, p[2], p[3]));
         let near = |x: DVec3| v + (x - v) / 65536.0;
@@ -217,16 +224,7 @@ proptest! {
     /// characterisation: two closed triangles meet iff an edge of one meets the other
     /// (`segment_triangle`, which decides coplanar segments on its own path).
     #[test]
-    fn coplanar_triangles_meet_iff_an_edge_meets(
-        u in (-2i32..=2, -2i32..=2, -2i32..=2),
-        w in (-2i32..=2, -2i32..=2, -2i32..=2),
-        ij in prop::collection::vec((-4i32..=4, -4i32..=4), 6),
-    ) {
-        let d = |(x, y, z): (i32, i32, i32)| DVec3::new(x.into(), y.into(), z.into());
-        let (u, w) = (d(u), d(w));
-        prop_assume!(u.cross(w) != DVec3::ZERO);
-        let v = DVec3::new(-1.0, 2.0, 5.0);
-        let p: Vec<DVec3> = ij.iter().map(|&k| in_plane(v, u, w, k)).collect();
+    fn coplanar_triangles_meet_iff_an_edge_meets(p in plane_points(DVec3::new(-1.0, 2.0, 5.0), 6)) {
         let (t1, t2) = ([p[0], p[1], p[2]], [p[3], p[4], p[5]]);
         let edge_meets = |a: [DVec3; 3], b: [DVec3; 3]| {
             (0..3).any(|i| g::segment_triangle::<K>(a[i], a[(i + 1) % 3], b).intersects())
