@@ -1,6 +1,6 @@
 //! Segment–triangle and triangle–triangle intersection of closed simplices (exact).
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::basic::{
     TriangleLocation, collinear, locate_2d, locate_coplanar, normal_axis, proj, segments_intersect,
@@ -183,24 +183,38 @@ pub fn triangles_intersect<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool {
 /// strictly on its outer side (separating axis theorem in the plane), which exact 2-D
 /// orientations decide.
 fn coplanar_triangles_meet<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3]) -> Option<bool> {
+    let ((p1, o1), (p2, o2)) = projected_pair::<K>(t1, t2)?;
+    Some(!edge_separates::<K>(p1, o1, p2, true) && !edge_separates::<K>(p2, o2, p1, true))
+}
+
+/// A projected triangle with its 2-D orientation.
+type Projected = ([DVec2; 3], Orientation);
+
+/// `t1` and `t2` in the coordinate projection along which `t1` is not degenerate, each with
+/// its 2-D orientation; `None` when either is degenerate there. For `t2` in the plane of
+/// `t1` the projection is one-to-one on that plane.
+fn projected_pair<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3]) -> Option<(Projected, Projected)> {
     let (axis, o1) = normal_axis::<K>(t1[0], t1[1], t1[2])?;
     let (p1, p2) = (t1.map(|v| proj(v, axis)), t2.map(|v| proj(v, axis)));
     let o2 = K::orient2d(p2[0], p2[1], p2[2]);
-    if o2.is_degenerate() {
-        return None;
-    }
-    let outer = |o: Orientation| match o {
-        Orientation::Positive => Orientation::Negative,
-        _ => Orientation::Positive,
-    };
-    // Some edge of `a` (orientation `o`) has all of `b` strictly outside.
-    let separates = |a: [glam::DVec2; 3], o: Orientation, b: [glam::DVec2; 3]| {
-        (0..3).any(|i| {
-            let (x, y) = (a[i], a[(i + 1) % 3]);
-            b.iter().all(|&q| K::orient2d(x, y, q) == outer(o))
+    (!o2.is_degenerate()).then_some(((p1, o1), (p2, o2)))
+}
+
+/// Whether some edge of the 2-D triangle `a` (orientation `o`, not degenerate) has all of
+/// `b` on its outer side: strictly (`strict`: then the closed triangles are apart), or on
+/// the closed outer half-plane (then their interiors are).
+fn edge_separates<K: Kernel>(a: [DVec2; 3], o: Orientation, b: [DVec2; 3], strict: bool) -> bool {
+    (0..3).any(|i| {
+        let (x, y) = (a[i], a[(i + 1) % 3]);
+        b.iter().all(|&q| {
+            let side = K::orient2d(x, y, q);
+            if strict {
+                side.is_opposite(o)
+            } else {
+                side != o
+            }
         })
-    };
-    Some(!separates(p1, o1, p2) && !separates(p2, o2, p1))
+    })
 }
 
 /// Some edge of `a` meets the closed triangle `b`; `sides[i]` is `orient3d(b, a[i])`.
@@ -409,26 +423,16 @@ fn meets_beyond_edge<K: Kernel>(u: DVec3, w: DVec3, a: DVec3, b: DVec3) -> bool 
 /// assert!(!triangles_overlap_with_area(t, [DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0)]));
 /// ```
 pub fn triangles_overlap_with_area<K: Kernel>(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool {
-    let Some((axis, s1)) = normal_axis::<K>(t1[0], t1[1], t1[2]) else {
-        return false;
-    };
+    // A degenerate `t1` passes the plane test (every orientation is zero) and is refused
+    // by the projection.
     if t2
         .iter()
         .any(|&v| !K::orient3d(t1[0], t1[1], t1[2], v).is_degenerate())
     {
         return false;
     }
-    let p1 = t1.map(|v| proj(v, axis));
-    let p2 = t2.map(|v| proj(v, axis));
-    let s2 = K::orient2d(p2[0], p2[1], p2[2]);
-    if s2.is_degenerate() {
+    let Some(((p1, s1), (p2, s2))) = projected_pair::<K>(t1, t2) else {
         return false;
-    }
-    let separated = |a: [glam::DVec2; 3], sa: Orientation, b: [glam::DVec2; 3]| {
-        (0..3).any(|i| {
-            let (x, y) = (a[i], a[(i + 1) % 3]);
-            b.iter().all(|&v| K::orient2d(x, y, v) != sa)
-        })
     };
-    !separated(p1, s1, p2) && !separated(p2, s2, p1)
+    !edge_separates::<K>(p1, s1, p2, false) && !edge_separates::<K>(p2, s2, p1, false)
 }
