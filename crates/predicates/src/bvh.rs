@@ -281,8 +281,20 @@ impl Bvh {
         if self.nodes.is_empty() {
             return;
         }
-        let mut stack = vec![0u32];
-        while let Some(n) = stack.pop() {
+        // A fixed stack for the usual depths, spilling to the heap beyond (no allocation
+        // per query).
+        let mut stack = [0u32; 64];
+        let mut len = 1;
+        let mut spill = Vec::new();
+        loop {
+            let n = if len > 0 {
+                len -= 1;
+                stack[len]
+            } else if let Some(n) = spill.pop() {
+                n
+            } else {
+                break;
+            };
             let node = &self.nodes[n as usize];
             if !node.bounds.overlaps(query) {
                 continue;
@@ -293,9 +305,13 @@ impl Bvh {
                         f(self.items[k]);
                     }
                 }
+            } else if len + 2 <= stack.len() {
+                stack[len] = node.b;
+                stack[len + 1] = node.a;
+                len += 2;
             } else {
-                stack.push(node.b);
-                stack.push(node.a);
+                spill.push(node.b);
+                spill.push(node.a);
             }
         }
     }

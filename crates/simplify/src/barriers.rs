@@ -8,13 +8,33 @@ use envelope_predicates::{
     SegmentTriangle, indexed_triangles_intersect, segment_triangle, triangles_intersect,
 };
 use glam::DVec3;
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
+use std::sync::atomic::{AtomicU64, Ordering};
 use thiserror::Error;
 
+/// How many recent blockers each thread tries before anything else (see [`Barriers::blocks`]).
+const RECENT: usize = 8;
+
 thread_local! {
-    /// See [`Barriers::blocks`]: an index into whichever `Barriers` this thread queried
-    /// last (checked against the length; a stale or foreign index only costs one test).
-    static LAST_BLOCKER: Cell<usize> = const { Cell::new(usize::MAX) };
+    /// See [`Barriers::blocks`]: indices of the barrier triangles that blocked this thread's
+    /// latest queries, most recent first, into whichever `Barriers` the thread queried (a
+    /// stale or foreign index is checked against the length and only costs one test).
+    static RECENT_BLOCKERS: Cell<[u32; RECENT]> = const { Cell::new([u32::MAX; RECENT]) };
+    /// See [`Barriers::scoped`]: this thread's current scope, if any.
+    static SCOPE: RefCell<Scope> = RefCell::new(Scope::default());
+}
+
+/// Distinct ids for [`Barriers`] values (a clone keeps its id: it holds the same triangles).
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
+
+/// The barrier triangles whose boxes overlap `region`, for the `Barriers` with id `owner`
+/// (0: no scope); gathered at the first query that needs them (`gathered`).
+#[derive(Debug, Default)]
+struct Scope {
+    owner: u64,
+    region: Option<Aabb>,
+    gathered: bool,
+    items: Vec<(Aabb, u32)>,
 }
 
 /// What a barrier triangle constrains.
@@ -79,6 +99,9 @@ pub struct Barriers {
     pinned: Vec<u8>,
     bvh: Option<Bvh>,
     has_tubes: bool,
+    /// This value's id for [`Barriers::scoped`] (0 for [`Barriers::none`], which has nothing
+    /// to gather).
+    id: u64,
 }
 
 impl Barriers {
@@ -147,6 +170,7 @@ impl Barriers {
             pinned,
             bvh,
             has_tubes,
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
         })
     }
 
@@ -220,6 +244,12 @@ impl Barriers {
 
     /// True when the closed triangle `t` touches an envelope or wall triangle, or when one of the
     /// closed segments `t[i] t[i+1]` with `border_edges[i]` touches a tube triangle. Exact.
+    ///
+    /// Where it looks, which changes only the order of the tests and never the answer: first
+    /// the triangles that blocked this thread's latest queries (the candidates of one hole
+    /// are tested in a row and are mostly blocked by the few envelope triangles around the
+    /// removed vertex), then, when `t`'s box lies in the region of a [`Self::scoped`] call
+    /// running on this thread, the triangles gathered there, else the BVH.
     #[must_use]
     pub fn blocks(&self, t: [DVec3; 3], border_edges: [bool; 3]) -> bool {
         let Some(bvh) = &self.bvh else {
@@ -230,13 +260,117 @@ impl Barriers {
         };
         let query = Aabb::from_triangle(t);
         let plane = SlabFilter::new(t);
-        // The item that blocked this thread's previous query first: the candidates of one
-        // hole are tested in a row and are mostly blocked by the same envelope triangle. Only
-        // the order of the tests changes, not the answer.
-        let last = LAST_BLOCKER.get();
-        if last < self.triangles.len() && self.item_blocks(last, &query, &plane, t, border_edges) {
+        let meets = |i: u32| {
+            let i = i as usize;
+            i < self.triangles.len()
+                && self.boxes[i].overlaps(&query)
+                && self.item_meets(i, &plane, t, border_edges)
+        };
+        let mut recent = RECENT_BLOCKERS.get();
+        if let Some(j) = recent.iter().position(|&i| meets(i)) {
+            recent[..=j].rotate_right(1);
+            RECENT_BLOCKERS.set(recent);
             return true;
         }
+        let untried = |i: u32| !recent.contains(&i) && meets(i);
+        let found = SCOPE
+            .with_borrow_mut(|s| {
+                let region = s.region.filter(|r| {
+                    s.owner == self.id && r.contains(query.min) && r.contains(query.max)
+                })?;
+                if !s.gathered {
+                    s.gathered = true;
+                    let items = &mut s.items;
+                    bvh.for_each_overlapping(&region, |i| {
+                        items.push((self.boxes[i as usize], i));
+                    });
+                }
+                Some(
+                    s.items
+                        .iter()
+                        .find(|(b, i)| b.overlaps(&query) && untried(*i))
+                        .map(|&(_, i)| i),
+                )
+            })
+            .unwrap_or_else(|| self.first_blocker(bvh, root, &query, &plane, &untried));
+        match found {
+            Some(i) => {
+                recent.rotate_right(1);
+                recent[0] = i;
+                RECENT_BLOCKERS.set(recent);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Runs `f` with a scope for [`Self::blocks`] on this thread: the triangles whose boxes
+    /// overlap the closed box `region` are gathered once, and every query whose box lies in
+    /// `region` (and is asked of `self`) scans them instead of walking the BVH. A triangle
+    /// that meets such a query has a box overlapping the query's, hence `region`'s, so the
+    /// answers are exactly those without the scope; only the work changes. The local
+    /// simplifier scopes each hole to the box of its vertices, where all its candidates lie.
+    /// Scopes nest (the inner one applies until it returns).
+    ///
+    /// ```
+    /// use envelope_mesh::generate;
+    /// use envelope_predicates::bvh::Aabb;
+    /// use envelope_simplify::Barriers;
+    /// use glam::DVec3;
+    /// let b = Barriers::new(vec![generate::icosphere(2, 1.0)], vec![]).unwrap();
+    /// let t = [DVec3::new(0.9, 0.0, 0.0), DVec3::new(1.1, 0.1, 0.0), DVec3::new(1.0, -0.1, 0.1)];
+    /// let far = [DVec3::ZERO, DVec3::new(0.1, 0.0, 0.0), DVec3::new(0.0, 0.1, 0.0)];
+    /// let region = Aabb::from_points(&[DVec3::splat(-0.5), DVec3::splat(1.5)]);
+    /// b.scoped(&region, || {
+    ///     assert!(b.blocks(t, [false; 3])); // crosses the sphere: found among the gathered
+    ///     assert!(!b.blocks(far, [false; 3])); // inside, clear of it
+    /// });
+    /// ```
+    pub fn scoped<R>(&self, region: &Aabb, f: impl FnOnce() -> R) -> R {
+        if self.bvh.is_none() || self.id == 0 {
+            return f();
+        }
+        // Reuse the thread's buffer unless an enclosing scope is using it.
+        let mut items = SCOPE.with_borrow_mut(|s| {
+            if s.owner == 0 {
+                std::mem::take(&mut s.items)
+            } else {
+                Vec::new()
+            }
+        });
+        items.clear();
+        let scope = Scope {
+            owner: self.id,
+            region: Some(*region),
+            gathered: false,
+            items,
+        };
+        /// Puts the enclosing scope back when `f` returns or unwinds.
+        struct Restore(Option<Scope>);
+        impl Drop for Restore {
+            fn drop(&mut self) {
+                if let Some(mut outer) = self.0.take() {
+                    let inner = SCOPE.replace(Scope::default());
+                    if outer.owner == 0 {
+                        outer.items = inner.items;
+                    }
+                    SCOPE.set(outer);
+                }
+            }
+        }
+        let _restore = Restore(Some(SCOPE.replace(scope)));
+        f()
+    }
+
+    /// The first triangle under `root` that blocks the query and passes `untried`.
+    fn first_blocker(
+        &self,
+        bvh: &Bvh,
+        root: envelope_predicates::bvh::NodeId,
+        query: &Aabb,
+        plane: &SlabFilter,
+        untried: &dyn Fn(u32) -> bool,
+    ) -> Option<u32> {
         // Depth-first with a fixed stack: the tree's depth is at most 64 (median splits).
         let mut stack = [root; 64];
         let mut len = 1;
@@ -244,7 +378,7 @@ impl Barriers {
             len -= 1;
             let n = stack[len];
             let bounds = bvh.bounds(n);
-            if !bounds.overlaps(&query) || plane.separates(&bounds) {
+            if !bounds.overlaps(query) || plane.separates(&bounds) {
                 continue;
             }
             match bvh.kind(n) {
@@ -255,63 +389,32 @@ impl Barriers {
                 }
                 NodeKind::Interior(a, b) => {
                     // Deeper than any median-split tree gets: finish these subtrees apart.
-                    if [a, b]
+                    if let Some(i) = [a, b]
                         .into_iter()
-                        .any(|c| self.blocks_below(bvh, c, t, border_edges))
+                        .find_map(|c| self.first_blocker(bvh, c, query, plane, untried))
                     {
-                        return true;
+                        return Some(i);
                     }
                 }
                 NodeKind::Leaf(items) => {
-                    if let Some(&i) = items.iter().find(|&&i| {
-                        i as usize != last
-                            && self.item_blocks(i as usize, &query, &plane, t, border_edges)
-                    }) {
-                        LAST_BLOCKER.set(i as usize);
-                        return true;
+                    if let Some(&i) = items.iter().find(|&&i| untried(i)) {
+                        return Some(i);
                     }
                 }
             }
         }
-        false
+        None
     }
 
-    /// [`Self::blocks`] restricted to the subtree under `node` (recursive; a fallback).
-    fn blocks_below(
-        &self,
-        bvh: &Bvh,
-        node: envelope_predicates::bvh::NodeId,
-        t: [DVec3; 3],
-        border_edges: [bool; 3],
-    ) -> bool {
-        let query = Aabb::from_triangle(t);
-        let plane = SlabFilter::new(t);
-        let bounds = bvh.bounds(node);
-        if !bounds.overlaps(&query) || plane.separates(&bounds) {
-            return false;
-        }
-        match bvh.kind(node) {
-            NodeKind::Interior(a, b) => [a, b]
-                .into_iter()
-                .any(|c| self.blocks_below(bvh, c, t, border_edges)),
-            NodeKind::Leaf(items) => items
-                .iter()
-                .any(|&i| self.item_blocks(i as usize, &query, &plane, t, border_edges)),
-        }
-    }
-
-    /// Whether barrier triangle `i` blocks the candidate `t` (box `query`, filter `plane`).
-    fn item_blocks(
+    /// Whether barrier triangle `i`, whose box overlaps the candidate `t`'s, blocks it
+    /// (`plane`: `t`'s filter).
+    fn item_meets(
         &self,
         i: usize,
-        query: &Aabb,
         plane: &SlabFilter,
         t: [DVec3; 3],
         border_edges: [bool; 3],
     ) -> bool {
-        if !self.boxes[i].overlaps(query) {
-            return false;
-        }
         let b = self.triangles[i];
         match self.kinds[i] {
             BarrierKind::Envelope | BarrierKind::Wall => {
@@ -507,12 +610,16 @@ mod tests {
         }
 
         /// `blocks` answers what the brute force over every barrier triangle answers, whatever
-        /// the previous query left as the thread's first item to test (`LAST_BLOCKER`).
+        /// the previous queries left as the thread's recent blockers (`RECENT_BLOCKERS`), and
+        /// inside a scope whatever its region (queries inside it, outside it, across it), also
+        /// nested in another scope, before and after the inner one.
         #[test]
-        fn blocks_is_the_brute_force_answer_whatever_the_hint(
+        fn blocks_is_the_brute_force_answer_whatever_the_hints(
             barrier in prop::collection::vec([point(), point(), point()], 1..12),
             queries in prop::collection::vec([point(), point(), point()], 1..8),
-            hint in 0usize..16,
+            hint in prop::array::uniform8(0u32..16),
+            regions in [point(), point(), point(), point()],
+            scoping in 0u8..3,
         ) {
             let soup = TriangleSoup::new(
                 barrier.iter().flatten().copied().collect(),
@@ -521,10 +628,33 @@ mod tests {
                     .collect(),
             );
             let b = Barriers::new(vec![soup], Vec::new()).unwrap();
-            LAST_BLOCKER.set(hint);
-            for q in queries {
-                let brute = barrier.iter().any(|&t| triangles_intersect(q, t));
-                prop_assert_eq!(b.blocks(q, [false; 3]), brute, "{:?}", q);
+            let other = Barriers::new(vec![roof()], Vec::new()).unwrap();
+            RECENT_BLOCKERS.set(hint);
+            let ask = |qs: &[[DVec3; 3]]| -> Result<(), TestCaseError> {
+                for &q in qs {
+                    let brute = barrier.iter().any(|&t| triangles_intersect(q, t));
+                    prop_assert_eq!(b.blocks(q, [false; 3]), brute, "{:?}", q);
+                }
+                Ok(())
+            };
+            let outer = Aabb::from_points(&regions[..2]);
+            let inner = Aabb::from_points(&regions[2..]);
+            let (first, rest) = queries.split_at(queries.len() / 2);
+            match scoping {
+                0 => ask(&queries)?,
+                1 => b.scoped(&outer, || ask(&queries))?,
+                _ => b.scoped(&outer, || {
+                    ask(first)?;
+                    // Another value's scope must not be used for `b`; `b`'s inner one is.
+                    other.scoped(&inner, || {
+                        for &q in rest {
+                            let _ = other.blocks(q, [false; 3]); // gathers `other`'s
+                        }
+                        ask(rest)?;
+                        b.scoped(&inner, || ask(rest))
+                    })?;
+                    ask(&queries)
+                })?,
             }
         }
 

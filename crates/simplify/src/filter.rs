@@ -127,6 +127,16 @@ pub struct CandidateProfile<'a> {
 pub trait Filter: Sync {
     /// Whether the candidate may be placed.
     fn accepts(&self, profile: &CandidateProfile<'_>) -> bool;
+
+    /// A hint: the candidates asked about until `run` returns have their corners in the
+    /// closed box `region` (the local simplifier gives each hole the box of its vertices). A
+    /// filter may prepare for that once; the envelope filter gathers the barrier triangles
+    /// there ([`Barriers::scoped`]). The answers must be those without the hint, also for a
+    /// candidate outside `region`. By default it runs `run`.
+    fn within(&self, region: &Aabb, run: &mut dyn FnMut()) {
+        let _ = region;
+        run();
+    }
 }
 
 /// Accepts everything; the default base of [`EnvelopeFilter`].
@@ -183,5 +193,10 @@ impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
         self.base.accepts(p)
             && !self.barriers.refuses(p.corners, p.border_edges)
             && !p.approximation.intersects(p.triangle, p.corners)
+    }
+
+    fn within(&self, region: &Aabb, run: &mut dyn FnMut()) {
+        self.barriers
+            .scoped(region, || self.base.within(region, run));
     }
 }

@@ -68,6 +68,9 @@ pub struct FaceGrid {
     /// Per face id: its corners' ids (`INVALID` when not stored) and its exact box.
     tris: Vec<[VertexId; 3]>,
     boxes: Vec<Aabb>,
+    /// Per face id: the lowest cell of its box (where a query that starts below it meets it
+    /// first).
+    lows: Vec<[i32; 3]>,
     live: usize,
     extent_sum: f64,
 }
@@ -104,6 +107,7 @@ impl FaceGrid {
             cells: HashMap::default(),
             tris: Vec::new(),
             boxes: Vec::new(),
+            lows: Vec::new(),
             live: 0,
             extent_sum: 0.0,
         };
@@ -156,6 +160,7 @@ impl FaceGrid {
         if self.tris.len() <= i {
             self.tris.resize(i + 1, [VertexId::INVALID; 3]);
             self.boxes.resize(i + 1, Aabb::EMPTY);
+            self.lows.resize(i + 1, [0; 3]);
         }
         assert!(!self.tris[i][0].is_valid(), "face {f} stored twice");
         self.tris[i] = tri;
@@ -163,6 +168,7 @@ impl FaceGrid {
         self.live += 1;
         self.extent_sum += max_extent(&b);
         let (lo, hi) = self.range(&b);
+        self.lows[i] = lo;
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
                 for z in lo[2]..=hi[2] {
@@ -230,7 +236,7 @@ impl FaceGrid {
                             continue;
                         }
                         // Visit only in the first cell of the overlap of both ranges.
-                        let (lo, _) = self.range(b);
+                        let lo = self.lows[f.index()];
                         if [x, y, z] != [lo[0].max(qlo[0]), lo[1].max(qlo[1]), lo[2].max(qlo[2])] {
                             continue;
                         }

@@ -40,7 +40,7 @@
 //! the whole batch. Other orders take one vertex at a time.
 
 use crate::fill::{FillContext, Hole, HoleFiller};
-use crate::filter::{Approximation, CandidateProfile, Filter};
+use crate::filter::{Approximation, CandidateProfile, Filter, position_in};
 use crate::grid::FaceGrid;
 use crate::policy::{
     Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor,
@@ -1093,7 +1093,16 @@ impl<'m> LocalSimplifier<'m> {
         let mut ctx = FillContext::new(m, &self.grid, filter, &hole)
             .excluding(&excluded)
             .moving(&moves, &stay);
-        let filled = filler.fill(&mut ctx);
+        // Every candidate of the filling has its corners among the hole's vertices.
+        let corners: Vec<DVec3> = hole
+            .vertices
+            .iter()
+            .map(|&u| position_in(m, &moves, u))
+            .collect();
+        let mut filled = false;
+        filter.within(&Aabb::from_points(&corners), &mut || {
+            filled = filler.fill(&mut ctx);
+        });
         *tests = ctx.tests;
         let placed = ctx.placed().to_vec();
         if !filled {
