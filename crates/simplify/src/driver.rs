@@ -7,6 +7,7 @@
 //! simplify
 //!   accept_input        envelope-check: no error-class degeneracy (else DriverError::Unacceptable)
 //!   build_envelopes     envelope-offset: outer, inner, tubes, exact non-intersection proof
+//!                       (run beside accept_input, whose verdict is taken first)
 //!   border_walls        walls joining outer and inner envelope along each input border loop
 //!   Barriers            outer + inner as envelopes, tubes as tubes, walls as full barriers
 //!   simplify_local      section 5.2 with the 5.1 validity test
@@ -472,24 +473,33 @@ pub fn simplify_with(
 ) -> Result<(TriangleSoup, SimplifyReport), DriverError> {
     let start = Instant::now();
     progress.stage(Stage::Check);
-    let problems = input_problems(soup);
+    progress.stage(Stage::Envelopes);
+    // The input check and the envelopes run side by side (much of the check is sequential);
+    // the check's verdict comes first, whatever the envelopes made of a refused input.
+    let (problems, (env, env_seconds)) = rayon::join(
+        || input_problems(soup),
+        || {
+            let t_env = Instant::now();
+            let env = options
+                .epsilon
+                .evaluate(&soup.positions)
+                .map_err(DriverError::from)
+                .and_then(|field| {
+                    let env_options = EnvelopeOptions {
+                        method: options.method,
+                        tube_segments: options.tube_segments,
+                        ..EnvelopeOptions::new(EpsilonField::PerVertex(field))
+                    };
+                    Ok(build_envelopes(soup, &env_options)?)
+                });
+            (env, t_env.elapsed().as_secs_f64())
+        },
+    );
     if !problems.is_empty() {
         return Err(DriverError::Unacceptable(problems));
     }
+    let env = env?;
     let topo_in = analyze(soup);
-
-    progress.stage(Stage::Envelopes);
-    let t_env = Instant::now();
-    let env_options = EnvelopeOptions {
-        method: options.method,
-        tube_segments: options.tube_segments,
-        // Evaluated once here: the field may be a closure, which cannot be cloned.
-        ..EnvelopeOptions::new(EpsilonField::PerVertex(
-            options.epsilon.evaluate(&soup.positions)?,
-        ))
-    };
-    let env = build_envelopes(soup, &env_options)?;
-    let env_seconds = t_env.elapsed().as_secs_f64();
     let fractions = env.achieved_fractions();
     let envelope = EnvelopeReport {
         method: match options.method {
