@@ -92,6 +92,8 @@ struct Args {
     envelope: Option<PathBuf>,
     /// `--placement` for our simplifier (`subset`, the default, `slide` or `collapse`).
     placement: Option<String>,
+    /// `--method` for our simplifier (`local`, the default, `global` or `hybrid`).
+    method: Option<String>,
 }
 
 fn main() -> ExitCode {
@@ -121,7 +123,8 @@ fn usage() -> ExitCode {
     eprintln!(
         "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--until NAME] [--epsilons 1/64%,...,1%] \
          [--tools envelope,cgal,openmesh,meshopt] [--timeout S] [--oracle-cpu S] [--oracle-gib G] \
-         [--json PATH] [--keep DIR] [--envelope PATH] [--placement subset|slide|collapse]\n\
+         [--json PATH] [--keep DIR] [--envelope PATH] [--placement subset|slide|collapse] \
+         [--method local|global|hybrid]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
     );
     ExitCode::FAILURE
@@ -151,6 +154,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
         keep: None,
         envelope: None,
         placement: None,
+        method: None,
         max_faces: None,
         from: None,
         until: None,
@@ -195,6 +199,12 @@ fn parse_args(argv: &[String]) -> Option<Args> {
                 a.placement = Some(p.clone())
                     .filter(|p| ["subset", "slide", "collapse"].contains(&p.as_str()));
                 a.placement.as_ref()?;
+            }
+            "--method" => {
+                let m = it.next()?;
+                a.method =
+                    Some(m.clone()).filter(|m| ["local", "global", "hybrid"].contains(&m.as_str()));
+                a.method.as_ref()?;
             }
             "--max-faces" => a.max_faces = Some(it.next()?.parse().ok()?),
             "--from" => a.from = Some(it.next()?.clone()),
@@ -270,7 +280,7 @@ struct Programs {
     cgal: Option<PathBuf>,
     openmesh: Option<PathBuf>,
     envelope: Result<PathBuf, String>,
-    /// Extra arguments of our `simplify` (`--placement`).
+    /// Extra arguments of our `simplify` (`--placement`, `--method`).
     envelope_args: Vec<OsString>,
     me: PathBuf,
 }
@@ -295,7 +305,9 @@ fn locate_programs(args: &Args) -> Programs {
         envelope_args: args
             .placement
             .iter()
-            .flat_map(|p| ["--placement".into(), p.into()])
+            .map(|p| ("--placement", p))
+            .chain(args.method.iter().map(|m| ("--method", m)))
+            .flat_map(|(k, v)| [k.into(), v.into()])
             .collect(),
         me: std::env::current_exe().expect("current exe"),
     }
