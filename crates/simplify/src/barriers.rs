@@ -27,12 +27,12 @@ thread_local! {
 /// Distinct ids for [`Barriers`] values (a clone keeps its id: it holds the same triangles).
 static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
-/// The barrier triangles whose boxes overlap `region`, for the `Barriers` with id `owner`
-/// (0: no scope); gathered at the first query that needs them (`gathered`).
+/// A thread's scope: `active` is the id of the `Barriers` it is for and the region (`None`:
+/// no scope); `items` the triangles whose boxes overlap the region, gathered at the first
+/// query that needs them (`gathered`).
 #[derive(Debug, Default)]
 struct Scope {
-    owner: u64,
-    region: Option<Aabb>,
+    active: Option<(u64, Aabb)>,
     gathered: bool,
     items: Vec<(Aabb, u32)>,
 }
@@ -275,8 +275,8 @@ impl Barriers {
         let untried = |i: u32| !recent.contains(&i) && meets(i);
         let found = SCOPE
             .with_borrow_mut(|s| {
-                let region = s.region.filter(|r| {
-                    s.owner == self.id && r.contains(query.min) && r.contains(query.max)
+                let (_, region) = s.active.filter(|&(owner, r)| {
+                    owner == self.id && r.contains(query.min) && r.contains(query.max)
                 })?;
                 if !s.gathered {
                     s.gathered = true;
@@ -332,7 +332,7 @@ impl Barriers {
         }
         // Reuse the thread's buffer unless an enclosing scope is using it.
         let mut items = SCOPE.with_borrow_mut(|s| {
-            if s.owner == 0 {
+            if s.active.is_none() {
                 std::mem::take(&mut s.items)
             } else {
                 Vec::new()
@@ -340,8 +340,7 @@ impl Barriers {
         });
         items.clear();
         let scope = Scope {
-            owner: self.id,
-            region: Some(*region),
+            active: Some((self.id, *region)),
             gathered: false,
             items,
         };
@@ -351,7 +350,7 @@ impl Barriers {
             fn drop(&mut self) {
                 if let Some(mut outer) = self.0.take() {
                     let inner = SCOPE.replace(Scope::default());
-                    if outer.owner == 0 {
+                    if outer.active.is_none() {
                         outer.items = inner.items;
                     }
                     SCOPE.set(outer);
