@@ -16,7 +16,10 @@
 //! a cross-section plane or a patch, by bisection and the quadratic formula). The result is
 //! not trusted: [`crate::build_envelopes`] follows it with the exact proof, and halves the
 //! epsilon of every vertex of an offending envelope face until the proof holds (see the
-//! crate docs). The paper's octree is replaced by the BVH of `envelope-predicates`.
+//! crate docs). The paper's octree is replaced by the BVH of `envelope-predicates`; a
+//! triangle the BVH returns is skipped without clipping when it lies apart from the convex
+//! hull of the prism's six corners, or farther from `t`'s box than the closest candidate so
+//! far (both with a margin, see `PRUNE_TOLERANCE`; the offsets are the same either way).
 use envelope_mesh::TriangleSoup;
 use envelope_predicates::bvh::{Aabb, Bvh};
 use glam::DVec3;
@@ -44,6 +47,7 @@ pub(crate) fn analytical_eps(
                 let b = Aabb::from_triangle(v).union(&Aabb::from_triangle(top));
                 let scale = b.min.abs().max(b.max.abs()).max_element();
                 let b = b.inflated(scale * 1e-12);
+                let t_box = Aabb::from_triangle(v);
                 let mut delta = f64::INFINITY;
                 bvh.for_each_overlapping(&b, |g| {
                     let gf = faces[g as usize];
@@ -51,6 +55,16 @@ pub(crate) fn analytical_eps(
                         return;
                     }
                     let tg = gf.map(|i| soup.positions[i as usize]);
+                    // Two shortcuts that skip only triangles whose candidate points could not
+                    // lower `delta` (see `PRUNE_TOLERANCE`): every point of `tg` is farther
+                    // from `t` than the gap between their boxes, and the prism lies in the
+                    // convex hull of its six corners.
+                    let g_box = Aabb::from_triangle(tg);
+                    let g_scale = g_box.min.abs().max(g_box.max.abs()).max_element();
+                    let tol = PRUNE_TOLERANCE * scale.max(g_scale);
+                    if box_gap(&t_box, &g_box) > delta + tol || hull_misses(v, top, tg, tol) {
+                        return;
+                    }
                     delta = delta.min(closest_in_prism(v, d, tg));
                 });
                 out[k] = delta / 2.0;
@@ -67,6 +81,61 @@ pub(crate) fn analytical_eps(
         }
     }
     (plus, minus)
+}
+
+/// Margin of the two shortcuts of [`analytical_eps`], relative to the largest coordinate
+/// magnitude of the prism's box and of the other triangle: a triangle is skipped only when it is apart from the prism's
+/// hull, or from `t`'s box by more than the current `delta`, by more than this. It is far
+/// above both the rounding of the f64 projections (about 1e-15 relative) and the slack that
+/// [`closest_in_prism`] allows its candidate points (1e-9 of a parameter, 1e-12 of a
+/// barycentric coordinate; an edge is at most 2 sqrt(3) times that magnitude), so
+/// the shortcuts change no `delta` that [`closest_in_prism`] would find. They are f64
+/// constructions like the rest of this module and, like it, are not trusted: the exact proof
+/// follows.
+const PRUNE_TOLERANCE: f64 = 1e-8;
+
+/// Euclidean distance between two boxes (0 when they overlap; f64).
+fn box_gap(a: &Aabb, b: &Aabb) -> f64 {
+    let gap = (a.min - b.max).max(b.min - a.max).max(DVec3::ZERO);
+    gap.length()
+}
+
+/// True when triangle `g` is apart, by more than `tol`, from the convex hull of the prism's
+/// six corners `t` and `top` (which holds the prism: every point of it is a convex
+/// combination of the corners). Separating axes: the normals of `t`, `top` and `g`, and the
+/// in-plane normals of the edges of `t` and of `top`; each is normalised, so `tol` is a
+/// length. f64; used only to skip work (see [`PRUNE_TOLERANCE`]).
+fn hull_misses(t: [DVec3; 3], top: [DVec3; 3], g: [DVec3; 3], tol: f64) -> bool {
+    let hull = [t[0], t[1], t[2], top[0], top[1], top[2]];
+    let apart = |axis: DVec3| {
+        let len = axis.length();
+        if !(len > 0.0 && len.is_finite()) {
+            return false;
+        }
+        let a = axis / len;
+        let (mut hlo, mut hhi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for p in hull {
+            let x = a.dot(p);
+            hlo = hlo.min(x);
+            hhi = hhi.max(x);
+        }
+        let (mut glo, mut ghi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for p in g {
+            let x = a.dot(p);
+            glo = glo.min(x);
+            ghi = ghi.max(x);
+        }
+        glo > hhi + tol || ghi < hlo - tol
+    };
+    let normal = |c: [DVec3; 3]| (c[1] - c[0]).cross(c[2] - c[0]);
+    let (nt, ntop) = (normal(t), normal(top));
+    if apart(nt) || apart(ntop) || apart(normal(g)) {
+        return true;
+    }
+    (0..3).any(|i| {
+        let j = (i + 1) % 3;
+        apart((t[j] - t[i]).cross(nt)) || apart((top[j] - top[i]).cross(ntop))
+    })
 }
 
 /// Distance from `t` of the closest point of triangle `g` inside the prism of `t` with
@@ -328,5 +397,64 @@ mod tests {
         ];
         let delta = closest_in_prism(T, d, g);
         assert!((1.0..1.1).contains(&delta), "{delta}");
+    }
+
+    /// The two shortcuts of `analytical_eps` skip only triangles that `closest_in_prism` finds
+    /// no point of (or none closer than a known `delta`): random prisms (diverging,
+    /// converging and tilted corner directions) against random triangles near them, many of
+    /// them clipped, many just outside.
+    #[test]
+    fn shortcuts_skip_only_triangles_that_cannot_lower_delta() {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut skipped, mut met) = (0, 0);
+        for _ in 0..20_000 {
+            let mut p = |s: f64| {
+                let (x, y, z) = (next(), next(), next());
+                DVec3::new(x - 0.5, y - 0.5, z - 0.5) * s
+            };
+            let t = [p(2.0), p(2.0), p(2.0)];
+            let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+            if n == DVec3::ZERO {
+                continue;
+            }
+            let h = 0.05 + p(2.0).x.abs();
+            let d = [(n + p(1.2)) * h, (n + p(1.2)) * h, (n + p(1.2)) * h];
+            let top = [t[0] + d[0], t[1] + d[1], t[2] + d[2]];
+            let c = (t[0] + t[1] + t[2] + top[0] + top[1] + top[2]) / 6.0;
+            let g = [c + p(3.0), c + p(3.0), c + p(3.0)];
+            let delta = closest_in_prism(t, d, g);
+            if delta.is_finite() {
+                met += 1;
+            }
+            let scale = [t, top, g]
+                .iter()
+                .flatten()
+                .map(|q| q.abs().max_element())
+                .fold(0.0, f64::max);
+            let tol = PRUNE_TOLERANCE * scale;
+            if hull_misses(t, top, g, tol) {
+                skipped += 1;
+                assert_eq!(
+                    delta,
+                    f64::INFINITY,
+                    "skipped a clipped triangle: {t:?} {d:?} {g:?}"
+                );
+            }
+            let gap = box_gap(&Aabb::from_triangle(t), &Aabb::from_triangle(g));
+            assert!(
+                gap <= delta + tol,
+                "box gap {gap} above the distance {delta}"
+            );
+        }
+        assert!(
+            skipped > 2_000 && met > 2_000,
+            "skipped {skipped}, met {met}"
+        );
     }
 }

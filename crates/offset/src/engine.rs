@@ -48,6 +48,38 @@ pub(crate) struct Scene<'a> {
     pub bvh: Bvh,
     /// Pairs `(star face, other face)` never tested.
     pub exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
+    /// The box of every face at its current positions, kept up to date by [`commit`] (a
+    /// mover's star holds every face with one of its vertices, so only those change).
+    pub boxes: Vec<Aabb>,
+}
+
+impl<'a> Scene<'a> {
+    /// A scene over `faces` at `positions`, with the swept box of every face.
+    pub fn new(
+        positions: Vec<DVec3>,
+        alias: Vec<u32>,
+        faces: Vec<[u32; 3]>,
+        swept: Vec<Aabb>,
+        exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
+    ) -> Self {
+        let boxes = faces
+            .iter()
+            .map(|f| Aabb::from_triangle(f.map(|i| positions[i as usize])))
+            .collect();
+        Scene {
+            bvh: Bvh::new(&swept),
+            positions,
+            alias,
+            faces,
+            swept,
+            exempt,
+            boxes,
+        }
+    }
+
+    fn face_box(&self, f: u32) -> Aabb {
+        Aabb::from_triangle(self.faces[f as usize].map(|i| self.positions[i as usize]))
+    }
 }
 
 /// Step-size policy.
@@ -241,14 +273,23 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
         })
         .collect();
     let all = star.iter().fold(Aabb::EMPTY, |b, s| b.union(&s.3));
+    // `m.star` and `m.cands` are both sorted: walk them together to tell star faces (at the
+    // proposed positions) from the others (at the scene's, whose boxes are kept).
+    let mut next_star = 0;
     for &g in &m.cands {
+        while next_star < m.star.len() && m.star[next_star] < g {
+            next_star += 1;
+        }
+        let g_in_star = m.star.get(next_star) == Some(&g);
+        if !g_in_star && !scene.boxes[g as usize].overlaps(&all) {
+            continue;
+        }
         let gv = scene.faces[g as usize];
         let tg = gv.map(pos);
         let bg = Aabb::from_triangle(tg);
         if !bg.overlaps(&all) {
             continue;
         }
-        let g_in_star = m.star.contains(&g);
         let ag = gv.map(alias);
         let pg = Planar::new(tg);
         for (f, pf, af, bf) in &star {
@@ -277,6 +318,9 @@ fn commit(scene: &mut Scene<'_>, m: &mut Mover, t: f64, policy: StepPolicy) {
         let v = m.verts[k] as usize;
         scene.positions[v] = p;
         scene.alias[v] = v as u32;
+    }
+    for &f in &m.star {
+        scene.boxes[f as usize] = scene.face_box(f);
     }
     m.t = t;
     m.steps += 1;
@@ -372,6 +416,9 @@ pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPoli
         if !positive(m.target - m.t) || !positive(m.step) {
             m.done = true;
         }
+    }
+    for m in movers.iter_mut() {
+        m.star.sort_unstable(); // for the walk in `check`; the star's order decides nothing
     }
     let batches = batches(movers, &scene.faces, scene.positions.len());
     let frozen: &Scene<'_> = scene;

@@ -44,7 +44,7 @@ mod proof;
 mod tubes;
 
 use envelope_mesh::{TriangleSoup, VertexId, analyze};
-use envelope_predicates::bvh::{Aabb, Bvh};
+use envelope_predicates::bvh::Aabb;
 use glam::DVec3;
 
 pub use field::{
@@ -622,14 +622,7 @@ fn numerical_eps_ordered(
     }
     let boxes = engine::swept_face_boxes(&faces, &sweep);
     let never = |_: u32, _: u32| false;
-    let mut scene = Scene {
-        positions,
-        alias,
-        faces,
-        bvh: Bvh::new(&boxes),
-        swept: boxes,
-        exempt: &never,
-    };
+    let mut scene = Scene::new(positions, alias, faces, boxes, &never);
     let policy = StepPolicy {
         k: params.k,
         max_halvings: params.max_halvings,

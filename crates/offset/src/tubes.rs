@@ -255,14 +255,13 @@ pub(crate) fn build_tubes(
     let boxes = engine::swept_face_boxes(&layout.faces, &sweep);
     let ex = |f: u32, g: u32| exempt(input.faces, nf3, &layout.seg, f, g);
     let alias: Vec<u32> = (0..layout.positions.len() as u32).collect();
-    let mut scene = Scene {
-        positions: layout.positions.clone(),
+    let mut scene = Scene::new(
+        layout.positions.clone(),
         alias,
-        faces: layout.faces.clone(),
-        bvh: Bvh::new(&boxes),
-        swept: boxes,
-        exempt: &ex,
-    };
+        layout.faces.clone(),
+        boxes,
+        &ex,
+    );
     engine::grow(&mut scene, &mut movers, policy);
     layout.positions = scene.positions;
     let contacts = tube_contacts(&layout, input);
