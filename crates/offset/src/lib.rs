@@ -125,6 +125,11 @@ pub struct EnvelopeOptions {
     pub tube_segments: Option<u32>,
     /// Maximum rounds of "halve offending vertices, re-prove".
     pub max_repair_rounds: u32,
+    /// The caller has proved the input free of self-intersections (as `envelope-check`'s
+    /// exact pairwise test does, and `envelope simplify` refuses an input that fails it):
+    /// the proof then skips input-input pairs. With `false` (the default) it tests them, and
+    /// an intersecting input shows as input-input contacts.
+    pub input_free_of_intersections: bool,
 }
 
 impl EnvelopeOptions {
@@ -137,6 +142,7 @@ impl EnvelopeOptions {
             numerical: NumericalParams::default(),
             tube_segments: Some(8),
             max_repair_rounds: 30,
+            input_free_of_intersections: false,
         }
     }
 }
@@ -256,8 +262,17 @@ pub fn build_envelopes(
     let diagonal = soup.diagonal();
     let analytical = || analytical::analytical_eps(soup, &vf, &normals, &targets);
     let numerical = || numerical_eps(soup, &normals, &targets, &options.numerical, diagonal, None);
-    let prove = |(p, m): (Vec<f64>, Vec<f64>)| {
-        prove_and_repair(soup, &normals, &faces, p, m, options.max_repair_rounds)
+    let input_free = options.input_free_of_intersections;
+    let prove = |(p, m): (Vec<f64>, Vec<f64>), proved: Option<&Proved>| {
+        let base = proved.filter(|b| b.proof.contacts.is_empty());
+        prove_and_repair(
+            soup,
+            &normals,
+            &faces,
+            (p, m),
+            (input_free, base),
+            options.max_repair_rounds,
+        )
     };
     let (
         method,
@@ -269,14 +284,14 @@ pub fn build_envelopes(
             mut proof,
         },
     ) = match options.method {
-        Method::Analytical => (Method::Analytical, prove(analytical())),
-        Method::Numerical => (Method::Numerical, prove(numerical())),
+        Method::Analytical => (Method::Analytical, prove(analytical(), None)),
+        Method::Numerical => (Method::Numerical, prove(numerical(), None)),
         Method::Auto => {
             let short = |e: &[f64]| e.iter().zip(&targets).any(|(x, r)| x < r);
-            let a = prove(analytical());
+            let a = prove(analytical(), None);
             if !a.proof.holds() {
                 // Repair gave up: numerical from scratch, and the better of the two.
-                let n = prove(numerical());
+                let n = prove(numerical(), None);
                 if n.proof.holds() || n.total() > a.total() {
                     (Method::Numerical, n)
                 } else {
@@ -284,15 +299,19 @@ pub fn build_envelopes(
                 }
             } else if short(&a.eps_plus) || short(&a.eps_minus) {
                 // Clipping or repair cut some offsets: grow those numerically from the
-                // proved analytical envelopes (the others stay), and prove the result.
-                let n = prove(numerical_eps(
-                    soup,
-                    &normals,
-                    &targets,
-                    &options.numerical,
-                    diagonal,
-                    Some((&a.eps_plus, &a.eps_minus)),
-                ));
+                // proved analytical envelopes (the others stay), and prove the result (the
+                // pairs of faces that did not move were proved with the analytical ones).
+                let n = prove(
+                    numerical_eps(
+                        soup,
+                        &normals,
+                        &targets,
+                        &options.numerical,
+                        diagonal,
+                        Some((&a.eps_plus, &a.eps_minus)),
+                    ),
+                    Some(&a),
+                );
                 if n.proof.holds() && n.total() >= a.total() {
                     (Method::Numerical, n)
                 } else {
@@ -357,12 +376,16 @@ impl Proved {
 
 /// Step 6: places the envelope vertices, proves them exactly, and halves the offsets of
 /// every vertex of an offending face until the proof holds (at most `max_rounds` rounds).
+///
+/// `known`: whether the input is known free of self-intersections, and a configuration over
+/// the same input that was proved without any contact; the first proof then tests only the
+/// pairs with a face that differs from it (see [`proof::Known`]); repair rounds test all.
 fn prove_and_repair(
     soup: &TriangleSoup,
     normals: &[DVec3],
     faces: &[[u32; 3]],
-    mut eps_plus: Vec<f64>,
-    mut eps_minus: Vec<f64>,
+    (mut eps_plus, mut eps_minus): (Vec<f64>, Vec<f64>),
+    (input_free, base): (bool, Option<&Proved>),
     max_rounds: u32,
 ) -> Proved {
     let place = |eps: &[f64], s: f64| -> Vec<DVec3> {
@@ -375,11 +398,36 @@ fn prove_and_repair(
     };
     let mut outer = place(&eps_plus, 1.0);
     let mut inner = place(&eps_minus, -1.0);
+    // Envelope faces whose three vertices sit where, and with the offset, they had in `base`
+    // (the offset decides the vertex index of a pinned corner, see `prove_envelopes`).
+    let unchanged = |env: &[DVec3], eps: &[f64], b_env: &[DVec3], b_eps: &[f64]| -> Vec<bool> {
+        let same = |v: u32| {
+            let v = v as usize;
+            env[v].to_array().map(f64::to_bits) == b_env[v].to_array().map(f64::to_bits)
+                && eps[v].to_bits() == b_eps[v].to_bits()
+        };
+        faces.iter().map(|f| f.iter().all(|&v| same(v))).collect()
+    };
+    let base_unchanged = base.map(|b| {
+        [
+            unchanged(&outer, &eps_plus, &b.outer, &b.eps_plus),
+            unchanged(&inner, &eps_minus, &b.inner, &b.eps_minus),
+        ]
+    });
+    let first = proof::Known {
+        input_free,
+        unchanged: base_unchanged.as_ref().map(|[o, i]| [&o[..], &i[..]]),
+    };
+    let every = proof::Known {
+        input_free,
+        unchanged: None,
+    };
     let mut proof = Proof {
         contacts: proof::prove_envelopes(
             &soup.positions,
             [(&outer, &eps_plus), (&inner, &eps_minus)],
             faces,
+            &first,
         ),
         ..Proof::default()
     };
@@ -422,6 +470,7 @@ fn prove_and_repair(
             &soup.positions,
             [(&outer, &eps_plus), (&inner, &eps_minus)],
             faces,
+            &every,
         );
     }
     proof.repaired_vertices = repaired.iter().filter(|&&r| r).count();
@@ -638,4 +687,99 @@ fn numerical_eps_ordered(
         }
     }
     (plus, minus)
+}
+
+#[cfg(test)]
+mod proof_tests {
+    use super::*;
+    use envelope_mesh::generate;
+
+    fn prepared(soup: &TriangleSoup) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        let vf = VertexFaces::new(soup.num_vertices(), &soup.faces);
+        let normals = normals::vertex_normals_with(soup, &vf).normals;
+        let faces = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
+        (normals, faces)
+    }
+
+    /// The proof against a proved configuration tests the pairs with a changed face: it
+    /// finds an envelope vertex pushed through the input, and finds nothing when nothing
+    /// changed (the same answer as the full proof in both cases).
+    #[test]
+    fn proof_against_a_proved_configuration_finds_what_changed() {
+        let sphere = generate::icosphere(2, 1.0);
+        let (normals, faces) = prepared(&sphere);
+        let n = sphere.num_vertices();
+        let eps = vec![0.02; n];
+        let base = prove_and_repair(
+            &sphere,
+            &normals,
+            &faces,
+            (eps.clone(), eps.clone()),
+            (false, None),
+            0,
+        );
+        assert!(base.proof.contacts.is_empty());
+        let same = prove_and_repair(
+            &sphere,
+            &normals,
+            &faces,
+            (eps.clone(), eps.clone()),
+            (true, Some(&base)),
+            0,
+        );
+        assert!(same.proof.contacts.is_empty());
+        // Vertex 7's outer offset negative: its outer vertex goes through the input.
+        let mut pushed = eps.clone();
+        pushed[7] = -0.05;
+        for known in [(false, None), (true, Some(&base))] {
+            let p = prove_and_repair(
+                &sphere,
+                &normals,
+                &faces,
+                (pushed.clone(), eps.clone()),
+                known,
+                0,
+            );
+            assert!(
+                p.proof
+                    .contacts
+                    .iter()
+                    .any(|c| c.a.0 == Surface::Input && c.b.0 == Surface::Outer),
+                "{:?}",
+                p.proof.contacts
+            );
+        }
+    }
+
+    /// Two interpenetrating spheres in one soup (manifold, oriented, self-intersecting):
+    /// input-input contacts are reported unless the caller says the input was checked.
+    #[test]
+    fn input_pairs_are_tested_unless_known_free() {
+        let a = generate::icosphere(1, 1.0);
+        let mut positions = a.positions.clone();
+        let shift = positions.len() as u32;
+        positions.extend(a.positions.iter().map(|&p| p + DVec3::new(0.9, 0.1, 0.05)));
+        let mut soup_faces = a.faces.clone();
+        soup_faces.extend(a.faces.iter().map(|f| f.map(|v| VertexId(v.0 + shift))));
+        let soup = TriangleSoup::new(positions, soup_faces);
+        let (normals, faces) = prepared(&soup);
+        let eps = vec![0.01; soup.num_vertices()];
+        let input_pairs = |input_free: bool| {
+            prove_and_repair(
+                &soup,
+                &normals,
+                &faces,
+                (eps.clone(), eps.clone()),
+                (input_free, None),
+                0,
+            )
+            .proof
+            .contacts
+            .iter()
+            .filter(|c| c.a.0 == Surface::Input && c.b.0 == Surface::Input)
+            .count()
+        };
+        assert!(input_pairs(false) > 0);
+        assert_eq!(input_pairs(true), 0);
+    }
 }

@@ -4,13 +4,14 @@
 //! indices between the three* (so an envelope touching the input counts as intersecting),
 //! except where an offset is exactly zero (a pinned vertex, see
 //! [`crate::Envelopes::pinned`]: there the envelope vertex is the input vertex), and
-//! [`envelope_predicates::self_intersections`] (BVH candidates, exact adjacency-aware tests on
+//! `envelope_predicates::self_intersections` (BVH candidates, exact adjacency-aware tests on
 //! the f64 vertices) lists every meeting pair. Each pair is reported with the surfaces it
 //! joins, so the one run answers "each alone" (outer-outer, inner-inner, input-input) and
 //! "with each other" (outer-input, inner-input, outer-inner) at once. Tubes are proved
 //! separately (see [`crate::tubes`]).
 use envelope_mesh::FaceId;
-use envelope_predicates::self_intersections;
+use envelope_predicates::bvh::Bvh;
+use envelope_predicates::faces_intersect;
 use glam::DVec3;
 
 /// Which surface a face belongs to.
@@ -64,6 +65,20 @@ impl Proof {
     }
 }
 
+/// What is already known about the pairs [`prove_envelopes`] would test; each item only
+/// skips pairs whose answer ("apart") is known, so the contacts found are the same.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Known<'a> {
+    /// The input is proved free of self-intersections (the caller checked it, see
+    /// [`crate::EnvelopeOptions::input_free_of_intersections`]): input-input pairs are skipped.
+    pub input_free: bool,
+    /// `unchanged[k][f]` (`k` = 0 outer, 1 inner): envelope face `f` has the positions and
+    /// vertex indices it had in a configuration that was proved (no contact at all). A pair
+    /// of unchanged faces (the input's never change) is then the same pair as in that proof,
+    /// with the same answer, and is skipped.
+    pub unchanged: Option<[&'a [bool]; 2]>,
+}
+
 /// Exact contacts among input, outer and inner (same connectivity `faces`), each envelope
 /// given with its offsets.
 ///
@@ -71,10 +86,15 @@ impl Proof {
 /// point): it gets the input's index, so faces around it may meet the input's faces there
 /// and only there (adjacency-aware test), as a pinched envelope must. Every other envelope
 /// vertex has its own index, and touching the input counts.
+///
+/// `skip(i, j)` names pairs (face indices of the one soup: input `0..nf`, outer `nf..2nf`,
+/// inner `2nf..3nf`) that need no test because their answer is already known to be "apart";
+/// see [`Known`].
 pub(crate) fn prove_envelopes(
     input: &[DVec3],
     envelopes: [(&[DVec3], &[f64]); 2],
     faces: &[[u32; 3]],
+    known: &Known<'_>,
 ) -> Vec<Contact> {
     let n = input.len() as u32;
     let nf = faces.len() as u32;
@@ -101,7 +121,19 @@ pub(crate) fn prove_envelopes(
         };
         (s, FaceId(f % nf))
     };
-    self_intersections(&positions, &all)
+    let changed = |f: u32| match (f / nf, known.unchanged) {
+        (0, _) => false,
+        (_, None) => true,
+        (k, Some(u)) => !u[k as usize - 1][(f % nf) as usize],
+    };
+    let skip = |i: u32, j: u32| {
+        let (ci, cj) = (changed(i), changed(j));
+        (!ci && !cj && known.unchanged.is_some()) || (known.input_free && i < nf && j < nf)
+    };
+    Bvh::from_triangles(&positions, &all)
+        .self_pairs_where(|i, j| {
+            !skip(i, j) && faces_intersect(&positions, all[i as usize], all[j as usize])
+        })
         .into_iter()
         .map(|(a, b)| Contact {
             a: which(a),

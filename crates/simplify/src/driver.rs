@@ -488,6 +488,9 @@ pub fn simplify_with(
                     let env_options = EnvelopeOptions {
                         method: options.method,
                         tube_segments: options.tube_segments,
+                        // The check beside (`input_problems`) tests every input pair
+                        // exactly and refuses an intersecting input before these are used.
+                        input_free_of_intersections: true,
                         ..EnvelopeOptions::new(EpsilonField::PerVertex(field))
                     };
                     Ok(build_envelopes(soup, &env_options)?)
