@@ -1,5 +1,8 @@
 //! `envelope simplify` against its peers on the same meshes and tolerances, in one run:
-//! * `envelope`: `envelope simplify IN OUT --epsilon E --report R.json --quiet`;
+//! * `envelope`: `envelope simplify IN OUT --epsilon E --report R.json --quiet` (plus
+//!   `--placement` and `--method` when given);
+//! * `envelope-hybrid`: the same with `--method hybrid --placement collapse`, the configuration
+//!   with the fewest faces;
 //! * `cgal`: CGAL 5.5 `edge_collapse` with `Polyhedral_envelope_filter` (`benches/peers`);
 //! * `openmesh`: OpenMesh 9 `DecimaterT` with `ModQuadricT` + `ModHausdorffT` (`benches/peers`);
 //! * `meshopt`: meshoptimizer's `simplify` (the `meshopt` crate), target 0 triangles,
@@ -19,7 +22,7 @@
 //! ```sh
 //! benches/peers/build.sh && cargo build --release -p envelope-cli
 //! cargo run --release -p envelope-benches --bin peers -- [--quick] [--meshes a,b]
-//!     [--epsilons 1/64%,1%] [--tools envelope,cgal,openmesh,meshopt] [--timeout S]
+//!     [--epsilons 1/64%,1%] [--tools envelope,envelope-hybrid,cgal,openmesh,meshopt] [--timeout S]
 //!     [--oracle-cpu S] [--oracle-gib G] [--json PATH] [--keep DIR] [--envelope PATH]
 //! ```
 //! Prints one markdown table; writes the raw results as JSON (default
@@ -50,21 +53,35 @@ const HAUSDORFF_BOUND: f64 = 0.01;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Tool {
     Envelope,
+    /// Ours in the configuration with the fewest faces: `--method hybrid --placement collapse`.
+    EnvelopeHybrid,
     Cgal,
     OpenMesh,
     Meshopt,
 }
 
 impl Tool {
-    const ALL: [Tool; 4] = [Tool::Envelope, Tool::Cgal, Tool::OpenMesh, Tool::Meshopt];
+    const ALL: [Tool; 5] = [
+        Tool::Envelope,
+        Tool::EnvelopeHybrid,
+        Tool::Cgal,
+        Tool::OpenMesh,
+        Tool::Meshopt,
+    ];
 
     fn name(self) -> &'static str {
         match self {
             Tool::Envelope => "envelope",
+            Tool::EnvelopeHybrid => "envelope-hybrid",
             Tool::Cgal => "cgal",
             Tool::OpenMesh => "openmesh",
             Tool::Meshopt => "meshopt",
         }
+    }
+
+    /// One of our configurations (the others are the peers).
+    fn ours(self) -> bool {
+        matches!(self, Tool::Envelope | Tool::EnvelopeHybrid)
     }
 
     fn parse(s: &str) -> Option<Tool> {
@@ -122,7 +139,7 @@ fn main() -> ExitCode {
 fn usage() -> ExitCode {
     eprintln!(
         "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--until NAME] [--epsilons 1/64%,...,1%] \
-         [--tools envelope,cgal,openmesh,meshopt] [--timeout S] [--oracle-cpu S] [--oracle-gib G] \
+         [--tools envelope,envelope-hybrid,cgal,openmesh,meshopt] [--timeout S] [--oracle-cpu S] [--oracle-gib G] \
          [--json PATH] [--keep DIR] [--envelope PATH] [--placement subset|slide|collapse] \
          [--method local|global|hybrid]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
@@ -476,7 +493,7 @@ fn run_tool(
     let e = format!("{eps:e}");
     let report = dir.join(format!("{tag}.report.json"));
     let cmd: Vec<OsString> = match tool {
-        Tool::Envelope => match &progs.envelope {
+        Tool::Envelope | Tool::EnvelopeHybrid => match &progs.envelope {
             Ok(b) => [
                 b.into(),
                 "simplify".into(),
@@ -489,7 +506,13 @@ fn run_tool(
                 "--quiet".into(),
             ]
             .into_iter()
-            .chain(progs.envelope_args.iter().cloned())
+            .chain(if tool == Tool::Envelope {
+                progs.envelope_args.clone()
+            } else {
+                ["--method", "hybrid", "--placement", "collapse"]
+                    .map(OsString::from)
+                    .to_vec()
+            })
             .collect(),
             Err(m) => return Run::status(Status::Unavailable(m.clone())),
         },
@@ -525,7 +548,7 @@ fn run_tool(
         return r;
     }
     let reported = match tool {
-        Tool::Envelope => report_seconds(&report).map(|(s, cert)| {
+        Tool::Envelope | Tool::EnvelopeHybrid => report_seconds(&report).map(|(s, cert)| {
             r.cert_seconds = cert;
             s
         }),
@@ -627,7 +650,7 @@ fn run(args: &Args) -> Result<(), String> {
         });
     let progs = locate_programs(args);
     if let Err(m) = &progs.envelope {
-        if args.tools.contains(&Tool::Envelope) {
+        if args.tools.iter().any(|t| t.ours()) {
             eprintln!("warning: {m}; its rows are marked n/a");
         }
     }
@@ -809,16 +832,11 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
             head.push(format!("{} {c}", t.name()));
         }
     }
-    let ours = tools.contains(&Tool::Envelope);
-    let peers: Vec<Tool> = tools
-        .iter()
-        .copied()
-        .filter(|t| *t != Tool::Envelope)
-        .collect();
-    if ours {
+    let (ours, peers): (Vec<Tool>, Vec<Tool>) = tools.iter().partition(|t| t.ours());
+    for o in &ours {
         for p in &peers {
-            head.push(format!("faces ours/{}", p.name()));
-            head.push(format!("speed {}/ours", p.name()));
+            head.push(format!("faces {}/{}", o.name(), p.name()));
+            head.push(format!("speed {}/{}", p.name(), o.name()));
         }
     }
     let _ = writeln!(s, "| {} |", head.join(" | "));
@@ -863,7 +881,7 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
                 }
             }
         }
-        if ours {
+        for &ours_tool in &ours {
             let get = |t: Tool| {
                 row.runs
                     .iter()
@@ -871,7 +889,7 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
                     .map(|(_, r)| r)
                     .filter(|r| r.status == Status::Ok)
             };
-            let o = get(Tool::Envelope);
+            let o = get(ours_tool);
             for p in &peers {
                 let (fr, sr) = match (o, get(*p)) {
                     (Some(o), Some(q)) => (
