@@ -40,14 +40,14 @@ pub(crate) fn analytical_eps(
         .par_iter()
         .map(|f| {
             let v = f.map(|i| soup.positions[i as usize]);
+            let t_box = Aabb::from_triangle(v);
             let mut out = [f64::INFINITY; 2];
             for (k, side) in [1.0, -1.0].into_iter().enumerate() {
                 let d = f.map(|i| normals[i as usize] * (2.0 * side * requested[i as usize]));
                 let top = [v[0] + d[0], v[1] + d[1], v[2] + d[2]];
-                let b = Aabb::from_triangle(v).union(&Aabb::from_triangle(top));
+                let b = t_box.union(&Aabb::from_triangle(top));
                 let scale = b.min.abs().max(b.max.abs()).max_element();
                 let b = b.inflated(scale * 1e-12);
-                let t_box = Aabb::from_triangle(v);
                 let mut delta = f64::INFINITY;
                 bvh.for_each_overlapping(&b, |g| {
                     let gf = faces[g as usize];
@@ -405,13 +405,8 @@ mod tests {
     /// them clipped, many just outside.
     #[test]
     fn shortcuts_skip_only_triangles_that_cannot_lower_delta() {
-        let mut state = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut bits = crate::xorshift(0x2545_F491_4F6C_DD1D);
+        let mut next = move || (bits() >> 11) as f64 / (1u64 << 53) as f64;
         let (mut skipped, mut met) = (0, 0);
         for _ in 0..20_000 {
             let mut p = |s: f64| {

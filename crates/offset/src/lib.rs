@@ -43,6 +43,17 @@ mod normals;
 mod proof;
 mod tubes;
 
+/// Marsaglia's xorshift64 from `seed` (the randomized unit tests of this crate).
+#[cfg(test)]
+fn xorshift(mut state: u64) -> impl FnMut() -> u64 {
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    }
+}
+
 use envelope_mesh::{TriangleSoup, VertexId, analyze};
 use envelope_predicates::bvh::Aabb;
 use glam::DVec3;

@@ -87,9 +87,9 @@ pub(crate) struct Known<'a> {
 /// and only there (adjacency-aware test), as a pinched envelope must. Every other envelope
 /// vertex has its own index, and touching the input counts.
 ///
-/// `skip(i, j)` names pairs (face indices of the one soup: input `0..nf`, outer `nf..2nf`,
-/// inner `2nf..3nf`) that need no test because their answer is already known to be "apart";
-/// see [`Known`].
+/// `known` says which pairs need no test because their answer is already known to be
+/// "apart" (see [`Known`]); the faces of the one soup are input `0..nf`, outer `nf..2nf`,
+/// inner `2nf..3nf`.
 pub(crate) fn prove_envelopes(
     input: &[DVec3],
     envelopes: [(&[DVec3], &[f64]); 2],
@@ -121,15 +121,14 @@ pub(crate) fn prove_envelopes(
         };
         (s, FaceId(f % nf))
     };
-    let changed = |f: u32| match (f / nf, known.unchanged) {
-        (0, _) => false,
-        (_, None) => true,
-        (k, Some(u)) => !u[k as usize - 1][(f % nf) as usize],
+    // Same as in the proved configuration (the input's faces always are).
+    let settled = |f: u32| {
+        known
+            .unchanged
+            .is_some_and(|u| f < nf || u[(f / nf - 1) as usize][(f % nf) as usize])
     };
-    let skip = |i: u32, j: u32| {
-        let (ci, cj) = (changed(i), changed(j));
-        (!ci && !cj && known.unchanged.is_some()) || (known.input_free && i < nf && j < nf)
-    };
+    let skip =
+        |i: u32, j: u32| (settled(i) && settled(j)) || (known.input_free && i < nf && j < nf);
     Bvh::from_triangles(&positions, &all)
         .self_pairs_where(|i, j| {
             !skip(i, j) && faces_intersect(&positions, all[i as usize], all[j as usize])
