@@ -253,6 +253,13 @@ impl Bvh {
         self.items.is_empty()
     }
 
+    /// The item ids in leaf order: a depth-first walk of the leaves, so items that are close
+    /// in space tend to be close in this list.
+    #[must_use]
+    pub fn leaf_order(&self) -> &[u32] {
+        &self.items
+    }
+
     /// The root node, if any.
     #[must_use]
     pub fn root(&self) -> Option<NodeId> {

@@ -34,7 +34,17 @@ static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 struct Scope {
     active: Option<(u64, Aabb)>,
     gathered: bool,
-    items: Vec<(Aabb, u32)>,
+    items: Vec<Gathered>,
+}
+
+/// A barrier triangle gathered by a scope: its box, corners and kind copied next to each
+/// other, so a scan reads one short contiguous list instead of four long arrays at random.
+#[derive(Clone, Copy, Debug)]
+struct Gathered {
+    bounds: Aabb,
+    corners: [DVec3; 3],
+    index: u32,
+    kind: BarrierKind,
 }
 
 /// What a barrier triangle constrains.
@@ -158,7 +168,20 @@ impl Barriers {
                 kinds.push(kind);
             }
         }
+        // Stored in the leaf order of a first tree, then indexed by a second one, so that the
+        // triangles a query visits lie near each other in memory (ids are this order's).
         let boxes: Vec<Aabb> = triangles.iter().map(|&t| Aabb::from_triangle(t)).collect();
+        let (triangles, kinds, boxes) = if boxes.is_empty() {
+            (triangles, kinds, boxes)
+        } else {
+            let order = Bvh::new(&boxes).leaf_order().to_vec();
+            let pick = |i: &u32| *i as usize;
+            (
+                order.iter().map(|i| triangles[pick(i)]).collect(),
+                order.iter().map(|i| kinds[pick(i)]).collect::<Vec<_>>(),
+                order.iter().map(|i| boxes[pick(i)]).collect::<Vec<_>>(),
+            )
+        };
         let bvh = (!boxes.is_empty()).then(|| Bvh::new(&boxes));
         let slabs = triangles.iter().map(|&t| SlabFilter::new(t)).collect();
         let pinned = vec![0; triangles.len()];
@@ -227,7 +250,8 @@ impl Barriers {
         self.has_tubes
     }
 
-    /// Barrier triangle `i` and its kind.
+    /// Barrier triangle `i` and its kind (`0..num_triangles()`, in an order of this type's
+    /// choosing: spatially coherent, not the order of the surfaces given).
     #[must_use]
     pub fn triangle(&self, i: usize) -> ([DVec3; 3], BarrierKind) {
         (self.triangles[i], self.kinds[i])
@@ -264,7 +288,7 @@ impl Barriers {
             let i = i as usize;
             i < self.triangles.len()
                 && self.boxes[i].overlaps(&query)
-                && self.item_meets(i, &plane, t, border_edges)
+                && self.item_meets(i, self.triangles[i], self.kinds[i], &plane, t, border_edges)
         };
         let mut recent = RECENT_BLOCKERS.get();
         if let Some(j) = recent.iter().position(|&i| meets(i)) {
@@ -282,14 +306,31 @@ impl Barriers {
                     s.gathered = true;
                     let items = &mut s.items;
                     bvh.for_each_overlapping(&region, |i| {
-                        items.push((self.boxes[i as usize], i));
+                        let k = i as usize;
+                        items.push(Gathered {
+                            bounds: self.boxes[k],
+                            corners: self.triangles[k],
+                            index: i,
+                            kind: self.kinds[k],
+                        });
                     });
                 }
                 Some(
                     s.items
                         .iter()
-                        .find(|(b, i)| b.overlaps(&query) && untried(*i))
-                        .map(|&(_, i)| i),
+                        .find(|g| {
+                            g.bounds.overlaps(&query)
+                                && !recent.contains(&g.index)
+                                && self.item_meets(
+                                    g.index as usize,
+                                    g.corners,
+                                    g.kind,
+                                    &plane,
+                                    t,
+                                    border_edges,
+                                )
+                        })
+                        .map(|g| g.index),
                 )
             })
             .unwrap_or_else(|| self.first_blocker(bvh, root, &query, &plane, &untried));
@@ -405,17 +446,18 @@ impl Barriers {
         None
     }
 
-    /// Whether barrier triangle `i`, whose box overlaps the candidate `t`'s, blocks it
-    /// (`plane`: `t`'s filter).
+    /// Whether barrier triangle `i` (corners `b`, kind `kind`), whose box overlaps the
+    /// candidate `t`'s, blocks it (`plane`: `t`'s filter).
     fn item_meets(
         &self,
         i: usize,
+        b: [DVec3; 3],
+        kind: BarrierKind,
         plane: &SlabFilter,
         t: [DVec3; 3],
         border_edges: [bool; 3],
     ) -> bool {
-        let b = self.triangles[i];
-        match self.kinds[i] {
+        match kind {
             BarrierKind::Envelope | BarrierKind::Wall => {
                 !plane.separates_points(b)
                     && !self.slabs[i].separates_points(t)
