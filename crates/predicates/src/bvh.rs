@@ -253,11 +253,27 @@ impl Bvh {
         self.items.is_empty()
     }
 
-    /// The item ids in leaf order: a depth-first walk of the leaves, so items that are close
-    /// in space tend to be close in this list.
+    /// The same tree with its items renumbered in leaf order (a depth-first walk of the
+    /// leaves, so items close in space get close ids), and the old id of each new one. A
+    /// caller that stores its items in that order visits memory coherently.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let boxes: Vec<Aabb> = [5.0, 0.0, 9.0, 1.0]
+    ///     .map(|x| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 0.5)]))
+    ///     .to_vec();
+    /// let (tree, old) = Bvh::new(&boxes).into_leaf_order();
+    /// let renumbered: Vec<Aabb> = old.iter().map(|&i| boxes[i as usize]).collect();
+    /// let q = Aabb::from_points(&[DVec3::splat(9.2)]);
+    /// assert_eq!(tree.overlapping(&q).len(), 1);
+    /// assert_eq!(renumbered[tree.overlapping(&q)[0] as usize], boxes[2]);
+    /// ```
     #[must_use]
-    pub fn leaf_order(&self) -> &[u32] {
-        &self.items
+    pub fn into_leaf_order(mut self) -> (Bvh, Vec<u32>) {
+        let n = self.items.len() as u32;
+        let old = std::mem::replace(&mut self.items, (0..n).collect());
+        (self, old)
     }
 
     /// The root node, if any.

@@ -8,6 +8,7 @@ use envelope_predicates::{
     SegmentTriangle, indexed_triangles_intersect, segment_triangle, triangles_intersect,
 };
 use glam::DVec3;
+use rayon::prelude::*;
 use std::cell::{Cell, RefCell};
 use std::sync::atomic::{AtomicU64, Ordering};
 use thiserror::Error;
@@ -168,22 +169,25 @@ impl Barriers {
                 kinds.push(kind);
             }
         }
-        // Stored in the leaf order of a first tree, then indexed by a second one, so that the
-        // triangles a query visits lie near each other in memory (ids are this order's).
-        let boxes: Vec<Aabb> = triangles.iter().map(|&t| Aabb::from_triangle(t)).collect();
-        let (triangles, kinds, boxes) = if boxes.is_empty() {
-            (triangles, kinds, boxes)
+        // Stored in the leaf order of the tree, so that the triangles a query visits lie
+        // near each other in memory (ids are this order's).
+        let boxes: Vec<Aabb> = triangles
+            .par_iter()
+            .map(|&t| Aabb::from_triangle(t))
+            .collect();
+        let (bvh, triangles, kinds, boxes) = if boxes.is_empty() {
+            (None, triangles, kinds, boxes)
         } else {
-            let order = Bvh::new(&boxes).leaf_order().to_vec();
+            let (bvh, old) = Bvh::new(&boxes).into_leaf_order();
             let pick = |i: &u32| *i as usize;
             (
-                order.iter().map(|i| triangles[pick(i)]).collect(),
-                order.iter().map(|i| kinds[pick(i)]).collect::<Vec<_>>(),
-                order.iter().map(|i| boxes[pick(i)]).collect::<Vec<_>>(),
+                Some(bvh),
+                old.iter().map(|i| triangles[pick(i)]).collect::<Vec<_>>(),
+                old.iter().map(|i| kinds[pick(i)]).collect::<Vec<_>>(),
+                old.iter().map(|i| boxes[pick(i)]).collect::<Vec<_>>(),
             )
         };
-        let bvh = (!boxes.is_empty()).then(|| Bvh::new(&boxes));
-        let slabs = triangles.iter().map(|&t| SlabFilter::new(t)).collect();
+        let slabs = triangles.par_iter().map(|&t| SlabFilter::new(t)).collect();
         let pinned = vec![0; triangles.len()];
         Ok(Self {
             triangles,

@@ -18,7 +18,7 @@
 //! closing edge `last -> first` is new and becomes a border edge; the filter is told so in
 //! [`CandidateProfile::border_edges`] and tests it against the border tubes.
 
-use crate::filter::{Approximation, CandidateProfile, Filter, position_in};
+use crate::filter::{Approximation, CandidateProfile, Filter, Nearby, position_in};
 use crate::grid::FaceGrid;
 use crate::policy::aspect_ratio;
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
@@ -75,6 +75,8 @@ pub struct FillContext<'a> {
     /// Planned positions and the faces around them ([`Self::moving`]).
     moved: &'a [(VertexId, DVec3)],
     extra: &'a [[VertexId; 3]],
+    /// The grid's faces near the hole ([`Self::near`]).
+    nearby: Option<&'a Nearby>,
     placed: Vec<[VertexId; 3]>,
     /// Candidates already rejected during this fill, by [`Self::slot`]. A rejection is final
     /// for the whole fill: the mesh and grid do not change while a hole is filled, the placed
@@ -103,6 +105,7 @@ impl<'a> FillContext<'a> {
             excluded: &[],
             moved: &[],
             extra: &[],
+            nearby: None,
             placed: Vec::new(),
             rejected: Vec::new(),
             tests: 0,
@@ -124,6 +127,14 @@ impl<'a> FillContext<'a> {
     pub fn moving(mut self, moved: &'a [(VertexId, DVec3)], extra: &'a [[VertexId; 3]]) -> Self {
         self.moved = moved;
         self.extra = extra;
+        self
+    }
+
+    /// The same context with the grid's faces near the hole gathered into `nearby` (see
+    /// [`Nearby`]; its region should hold every hole vertex at its planned position).
+    #[must_use]
+    pub fn near(mut self, nearby: &'a Nearby) -> Self {
+        self.nearby = Some(nearby);
         self
     }
 
@@ -211,6 +222,7 @@ impl<'a> FillContext<'a> {
                 excluded: self.excluded,
                 moved: self.moved,
                 extra: self.extra,
+                nearby: self.nearby,
             },
         };
         self.filter.accepts(&profile)

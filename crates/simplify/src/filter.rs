@@ -27,6 +27,7 @@ use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
 use envelope_predicates::indexed_triangles_intersect;
 use glam::DVec3;
+use std::cell::OnceCell;
 
 /// The current approximation a candidate is tested against: the live faces of the mesh
 /// (indexed by a [`FaceGrid`]) plus triangles placed earlier in the same hole filling.
@@ -48,6 +49,49 @@ pub struct Approximation<'a> {
     /// Triangles of the approximation outside `grid` (the faces around `moved` vertices, at
     /// their planned positions), tested one by one.
     pub extra: &'a [[VertexId; 3]],
+    /// The grid's faces near the candidates, gathered once (see [`Nearby`]); `None`: every
+    /// query asks the grid.
+    pub nearby: Option<&'a Nearby>,
+}
+
+/// The faces of a [`FaceGrid`] whose boxes overlap a region, gathered at the first query
+/// that needs them and scanned by every later query whose box lies in the region, instead
+/// of walking the grid's cells (the local simplifier has one per hole: all of the hole's
+/// candidates have their corners there). A face that meets such a query has a box
+/// overlapping the query's, hence the region's, so the answers are those of the grid. It
+/// belongs to one grid in one state: the grid must not change while it is in use, and it
+/// must be used with one grid only.
+#[derive(Debug)]
+pub struct Nearby {
+    region: Aabb,
+    faces: OnceCell<Vec<(Aabb, FaceId, [VertexId; 3])>>,
+}
+
+impl Nearby {
+    /// Nothing gathered yet, for queries in the closed box `region`.
+    #[must_use]
+    pub fn new(region: Aabb) -> Self {
+        Self {
+            region,
+            faces: OnceCell::new(),
+        }
+    }
+
+    /// The gathered faces when `query` lies in the region (gathering them from `grid` the
+    /// first time), else `None`.
+    fn faces(&self, grid: &FaceGrid, query: &Aabb) -> Option<&[(Aabb, FaceId, [VertexId; 3])]> {
+        if !(self.region.contains(query.min) && self.region.contains(query.max)) {
+            return None;
+        }
+        Some(self.faces.get_or_init(|| {
+            let mut faces = Vec::new();
+            grid.any_overlapping(&self.region, |f, g| {
+                faces.push((grid.bounds(f), f, g));
+                false
+            });
+            faces
+        }))
+    }
 }
 
 /// Exact: closed triangles `f` and `g` (vertex ids, positions `pf`, `pg`) meet away from
@@ -67,6 +111,7 @@ impl<'a> Approximation<'a> {
             excluded: &[],
             moved: &[],
             extra: &[],
+            nearby: None,
         }
     }
 
@@ -91,9 +136,14 @@ impl<'a> Approximation<'a> {
         }) {
             return true;
         }
-        self.grid.any_overlapping(&bounds, |f, g| {
-            !self.excluded.contains(&f) && meet(t, p, g, pos(g))
-        })
+        let hit =
+            |f: FaceId, g: [VertexId; 3]| !self.excluded.contains(&f) && meet(t, p, g, pos(g));
+        match self.nearby.and_then(|n| n.faces(self.grid, &bounds)) {
+            Some(faces) => faces
+                .iter()
+                .any(|&(b, f, g)| b.overlaps(&bounds) && hit(f, g)),
+            None => self.grid.any_overlapping(&bounds, hit),
+        }
     }
 }
 
@@ -198,5 +248,59 @@ impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
     fn within(&self, region: &Aabb, run: &mut dyn FnMut()) {
         self.barriers
             .scoped(region, || self.base.within(region, run));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use envelope_mesh::generate;
+    use proptest::prelude::*;
+
+    fn coord() -> impl Strategy<Value = f64> {
+        (-12i32..=12).prop_map(|k| f64::from(k) / 8.0)
+    }
+
+    fn point() -> impl Strategy<Value = DVec3> {
+        (coord(), coord(), coord()).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        /// `intersects` with a [`Nearby`] answers what the grid answers, whatever the region
+        /// (holding the query, missing it, across it), for candidates with corners at mesh
+        /// vertices (shared ids: the adjacency-aware test) or elsewhere, with and without
+        /// excluded faces, and one `Nearby` reused by several queries.
+        #[test]
+        fn nearby_gives_the_grids_answers(
+            region in [point(), point()],
+            queries in prop::collection::vec(
+                prop::array::uniform3((0u32..60, point())), 1..10),
+            excluded in prop::collection::vec(0u32..80, 0..6),
+        ) {
+            let soup = generate::icosphere(1, 1.0);
+            let mesh = HalfEdgeMesh::from_soup(&soup).unwrap();
+            let grid = FaceGrid::from_mesh(&mesh);
+            let excluded: Vec<FaceId> = excluded.into_iter().map(FaceId).collect();
+            let plain = Approximation { excluded: &excluded, ..Approximation::of_mesh(&mesh, &grid) };
+            let nearby = Nearby::new(Aabb::from_points(&region));
+            let hinted = Approximation { nearby: Some(&nearby), ..plain };
+            for q in queries {
+                // Ids below the mesh's 42 vertices are corners at those vertices; the others
+                // are new vertices at the drawn points.
+                let ids = q.map(|(k, _)| if k < 42 { VertexId(k) } else { VertexId(1000 + k) });
+                if ids[0] == ids[1] || ids[1] == ids[2] || ids[0] == ids[2] {
+                    continue;
+                }
+                let corners = [0, 1, 2].map(|i| {
+                    if ids[i].index() < 42 { mesh.position(ids[i]) } else { q[i].1 }
+                });
+                prop_assert_eq!(
+                    hinted.intersects(ids, corners),
+                    plain.intersects(ids, corners),
+                    "{:?} {:?}", ids, corners
+                );
+            }
+        }
     }
 }

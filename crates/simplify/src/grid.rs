@@ -206,6 +206,11 @@ impl FaceGrid {
         self.extent_sum -= max_extent(&b);
     }
 
+    /// The box stored for face `f` (meaningful while `f` is stored).
+    pub(crate) fn bounds(&self, f: FaceId) -> Aabb {
+        self.boxes[f.index()]
+    }
+
     /// The corners of stored face `f`, if stored.
     #[must_use]
     pub fn get(&self, f: FaceId) -> Option<[VertexId; 3]> {

@@ -33,7 +33,7 @@ pub use driver::{
     simplify, simplify_with,
 };
 pub use fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
-pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, NoFilter};
+pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, Nearby, NoFilter};
 pub use grid::FaceGrid;
 pub use local::{
     HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Placement, Policies, Removal,
