@@ -61,6 +61,24 @@ pub struct Approximation<'a> {
 /// overlapping the query's, hence the region's, so the answers are those of the grid. It
 /// belongs to one grid in one state: the grid must not change while it is in use, and it
 /// must be used with one grid only.
+///
+/// ```
+/// use envelope_mesh::{HalfEdgeMesh, VertexId, generate};
+/// use envelope_predicates::bvh::Aabb;
+/// use envelope_simplify::{Approximation, FaceGrid, Nearby};
+/// use glam::DVec3;
+/// let mesh = HalfEdgeMesh::from_soup(&generate::icosphere(1, 1.0)).unwrap();
+/// let grid = FaceGrid::from_mesh(&mesh);
+/// let plain = Approximation::of_mesh(&mesh, &grid);
+/// let nearby = Nearby::new(Aabb::from_points(&[DVec3::splat(-2.0), DVec3::splat(2.0)]));
+/// let hinted = Approximation { nearby: Some(&nearby), ..plain };
+/// // A new triangle through the sphere's surface, and one inside it.
+/// let ids = [VertexId(100), VertexId(101), VertexId(102)];
+/// let across = [DVec3::ZERO, DVec3::new(1.5, 0.0, 0.0), DVec3::new(0.0, 1.5, 0.0)];
+/// let inside = across.map(|p| p * 0.2);
+/// assert!(hinted.intersects(ids, across) && plain.intersects(ids, across));
+/// assert!(!hinted.intersects(ids, inside) && !plain.intersects(ids, inside));
+/// ```
 #[derive(Debug)]
 pub struct Nearby {
     region: Aabb,
