@@ -106,19 +106,47 @@ fn exempt(input_faces: &[[u32; 3]], nf3: u32, seg: &[([u32; 2], u32)], f: u32, g
     face.contains(&a) || face.contains(&b)
 }
 
-fn tube_contacts(layout: &Layout, input: &TubeInput<'_>) -> Vec<Contact> {
+/// The tree over the input and envelope faces of `layout` (the first `3F`), which the tube
+/// stage never moves: built once, queried by every [`tube_contacts`].
+fn surface_tree(layout: &Layout, nf3: u32) -> Bvh {
+    Bvh::from_triangles(&layout.positions, &layout.faces[..nf3 as usize])
+}
+
+/// The meeting face pairs (global ids, sorted) of [`tube_contacts`].
+fn tube_pairs(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<(u32, u32)> {
     let nf3 = 3 * input.faces.len() as u32;
-    let bvh = Bvh::from_triangles(&layout.positions, &layout.faces);
-    let pairs = bvh.self_pairs_where(|i, j| {
-        (i >= nf3 || j >= nf3)
-            && !exempt(input.faces, nf3, &layout.seg, i, j)
+    let tubes = Bvh::from_triangles(&layout.positions, &layout.faces[nf3 as usize..]);
+    let meets = |i: u32, j: u32| {
+        !exempt(input.faces, nf3, &layout.seg, i, j)
             && envelope_predicates::faces_intersect(
                 &layout.positions,
                 layout.faces[i as usize],
                 layout.faces[j as usize],
             )
-    });
+    };
+    let mut pairs: Vec<(u32, u32)> = tubes
+        .self_pairs_where(|a, b| meets(a + nf3, b + nf3))
+        .into_iter()
+        .map(|(a, b)| (a + nf3, b + nf3))
+        .collect();
+    pairs.extend(
+        tubes
+            .pairs_with_where(surfaces, |t, f| meets(f, t + nf3))
+            .into_iter()
+            .map(|(t, f)| (f, t + nf3)),
+    );
+    pairs.sort_unstable();
+    pairs
+}
+
+/// Every meeting pair with a tube face in it: tube against tube (a tree over the tube faces)
+/// and tube against `surfaces` (the input and envelope faces, [`surface_tree`]). The same
+/// pairs as one tree over all faces keeping those with a tube face, without walking the
+/// surface-surface pairs that the envelope proof already decided.
+fn tube_contacts(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<Contact> {
+    let pairs = tube_pairs(layout, input, surfaces);
     let nf = input.faces.len() as u32;
+    let nf3 = 3 * nf;
     let which = |f: u32| {
         if f < nf3 {
             let s = [Surface::Input, Surface::Outer, Surface::Inner][(f / nf) as usize];
@@ -230,8 +258,9 @@ pub(crate) fn build_tubes(
         }
     }
     // Narrow start: halve every radius until the exact tube proof holds.
+    let surfaces = surface_tree(&layout, nf3);
     for _ in 0..12 {
-        if tube_contacts(&layout, input).is_empty() {
+        if tube_contacts(&layout, input, &surfaces).is_empty() {
             break;
         }
         for m in &mut movers {
@@ -264,7 +293,18 @@ pub(crate) fn build_tubes(
     );
     engine::grow(&mut scene, &mut movers, policy);
     layout.positions = scene.positions;
-    let contacts = tube_contacts(&layout, input);
+    debug_assert_eq!(
+        Bvh::from_triangles(&layout.positions, &layout.faces[..nf3 as usize]).len(),
+        surfaces.len()
+    );
+    debug_assert!(
+        layout.positions[..3 * n as usize]
+            .iter()
+            .zip(soup.positions.iter().chain(input.outer).chain(input.inner))
+            .all(|(a, b)| a == b),
+        "the tube stage moved an input or envelope vertex"
+    );
+    let contacts = tube_contacts(&layout, input, &surfaces);
     // Output meshes.
     let mut tubes = Vec::with_capacity(loops.len());
     let mut mover_at = 0;
@@ -299,6 +339,95 @@ pub(crate) fn build_tubes(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The tube proof against one tree over every face, keeping the pairs with a tube face:
+    /// the same contacts, on random tube triangles around a bumpy grid and its envelopes.
+    #[test]
+    fn tube_contacts_are_those_of_one_tree_over_everything() {
+        let mut next = crate::xorshift(0x0DDB_1A5E_5BAD_5EED);
+        let mut unit = || (next() >> 11) as f64 / (1u64 << 53) as f64;
+        // A 4 x 4 vertex grid, z bumpy; envelopes 0.1 above and below.
+        let mut positions = Vec::new();
+        for j in 0..4 {
+            for i in 0..4 {
+                positions.push(DVec3::new(f64::from(i), f64::from(j), 0.2 * unit()));
+            }
+        }
+        let mut faces = Vec::new();
+        for j in 0..3u32 {
+            for i in 0..3u32 {
+                let a = j * 4 + i;
+                faces.push([a, a + 1, a + 5]);
+                faces.push([a, a + 5, a + 4]);
+            }
+        }
+        let soup = TriangleSoup::new(
+            positions.clone(),
+            faces.iter().map(|f| f.map(VertexId)).collect(),
+        );
+        let outer: Vec<DVec3> = positions.iter().map(|p| *p + DVec3::Z * 0.1).collect();
+        let inner: Vec<DVec3> = positions.iter().map(|p| *p - DVec3::Z * 0.1).collect();
+        let requested = vec![0.1; positions.len()];
+        let input = TubeInput {
+            soup: &soup,
+            faces: &faces,
+            outer: &outer,
+            inner: &inner,
+            requested: &requested,
+            diagonal: 5.0,
+        };
+        let n = positions.len() as u32;
+        let nf3 = 3 * faces.len() as u32;
+        let mut found = 0;
+        for _ in 0..40 {
+            let mut all_positions: Vec<DVec3> = positions
+                .iter()
+                .chain(&outer)
+                .chain(&inner)
+                .copied()
+                .collect();
+            let mut all_faces: Vec<[u32; 3]> = (0..3)
+                .flat_map(|s| faces.iter().map(move |f| f.map(|i| i + s * n)))
+                .collect();
+            let mut seg = Vec::new();
+            for t in 0..12u32 {
+                let c = DVec3::new(3.0 * unit(), 3.0 * unit(), 0.4 * unit() - 0.2);
+                let v0 = all_positions.len() as u32;
+                for _ in 0..3 {
+                    let d = DVec3::new(unit() - 0.5, unit() - 0.5, unit() - 0.5);
+                    all_positions.push(c + d * 0.6);
+                }
+                all_faces.push([v0, v0 + 1, v0 + 2]);
+                // Border vertices: some on the grid (exempting the faces around them).
+                let b = (unit() * f64::from(n)) as u32 % n;
+                seg.push(([b, (b + 1) % n], t % 3));
+            }
+            let layout = Layout {
+                positions: all_positions,
+                faces: all_faces,
+                seg,
+                first_vertex: vec![0; 3],
+                first_face: vec![nf3, nf3 + 4, nf3 + 8],
+            };
+            let fast = tube_pairs(&layout, &input, &surface_tree(&layout, nf3));
+            let everything = Bvh::from_triangles(&layout.positions, &layout.faces);
+            let reference: Vec<(u32, u32)> = everything.self_pairs_where(|i, j| {
+                (i >= nf3 || j >= nf3)
+                    && !exempt(input.faces, nf3, &layout.seg, i, j)
+                    && envelope_predicates::faces_intersect(
+                        &layout.positions,
+                        layout.faces[i as usize],
+                        layout.faces[j as usize],
+                    )
+            });
+            assert_eq!(fast, reference);
+            found += fast.len();
+        }
+        assert!(
+            found > 0,
+            "no contact in any trial: the test would prove nothing"
+        );
+    }
 
     #[test]
     fn frames_are_orthonormal_and_close_on_a_circle() {

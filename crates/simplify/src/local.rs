@@ -591,7 +591,7 @@ fn collapse_candidates(
         faces.sort_unstable_by_key(|x| x.0);
         faces.dedup_by_key(|x| x.0);
         let total: f64 = faces.iter().map(|x| x.1).sum();
-        if !(total > 0.0) {
+        if !total.is_finite() || total <= 0.0 {
             continue;
         }
         let cost = |x: DVec3| -> f64 {
