@@ -154,21 +154,14 @@ impl Kernel for Filtered {
         if !in_range {
             return Exact::orient2d(a, b, c);
         }
-        let r = robust::orient2d(
-            robust::Coord { x: a.x, y: a.y },
-            robust::Coord { x: b.x, y: b.y },
-            robust::Coord { x: c.x, y: c.y },
-        );
-        Orientation::from_sign(float_sign(r))
+        InRange::orient2d(a, b, c)
     }
     #[inline]
     fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Orientation {
         if !all_in_range(&[a, b, c, d]) {
             return Exact::orient3d(a, b, c, d);
         }
-        // Shewchuk's orient3d is positive when d is *below* abc: negate.
-        let r = robust::orient3d(robust3(a), robust3(b), robust3(c), robust3(d));
-        Orientation::from_sign(float_sign(r).reverse())
+        InRange::orient3d(a, b, c, d)
     }
     fn insphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) -> Sign {
         if !all_in_range(&[a, b, c, d, e]) {
@@ -208,6 +201,63 @@ impl Kernel for Filtered {
             return true;
         }
         Exact::closest_points_interior(p0, p1, q0, q1)
+    }
+}
+
+/// [`Filtered`] on points already known to be [`in_exact_range`] (every coordinate): the
+/// orientation tests go to the adaptive predicates without asking the range again, the other
+/// primitives are [`Filtered`]'s. For the crate's derived predicates, which check the range of
+/// all their points once (projections of in-range points stay in range, and nothing else is
+/// constructed) instead of at every orientation test. Outside the range the answer could be
+/// wrong (an expansion may underflow): never use it without the check (debug builds assert it).
+pub(crate) struct InRange;
+
+impl Kernel for InRange {
+    #[inline]
+    fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Orientation {
+        debug_assert!(
+            [a, b, c]
+                .iter()
+                .all(|p| in_exact_range(p.x) && in_exact_range(p.y))
+        );
+        let r = robust::orient2d(
+            robust::Coord { x: a.x, y: a.y },
+            robust::Coord { x: b.x, y: b.y },
+            robust::Coord { x: c.x, y: c.y },
+        );
+        Orientation::from_sign(float_sign(r))
+    }
+    #[inline]
+    fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Orientation {
+        debug_assert!(all_in_range(&[a, b, c, d]));
+        // Shewchuk's orient3d is positive when d is *below* abc: negate.
+        let r = robust::orient3d(robust3(a), robust3(b), robust3(c), robust3(d));
+        Orientation::from_sign(float_sign(r).reverse())
+    }
+    fn insphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) -> Sign {
+        Filtered::insphere(a, b, c, d, e)
+    }
+    #[inline]
+    fn dot(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
+        Filtered::dot(a, b, c, d)
+    }
+    fn cmp_sq_dist(p: DVec3, q: DVec3, eps2: f64) -> Sign {
+        Filtered::cmp_sq_dist(p, q, eps2)
+    }
+    fn cmp_sq_dist_point_line(p: DVec3, a: DVec3, b: DVec3, eps2: f64) -> Sign {
+        Filtered::cmp_sq_dist_point_line(p, a, b, eps2)
+    }
+    fn cmp_sq_dist_point_plane(p: DVec3, a: DVec3, b: DVec3, c: DVec3, eps2: f64) -> Sign {
+        Filtered::cmp_sq_dist_point_plane(p, a, b, c, eps2)
+    }
+    fn cmp_sq_dist_line_line(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3, eps2: f64) -> Sign {
+        Filtered::cmp_sq_dist_line_line(p0, p1, q0, q1, eps2)
+    }
+    fn edge_side(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> Sign {
+        Filtered::edge_side(a, b, c, p)
+    }
+    fn closest_points_interior(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> bool {
+        Filtered::closest_points_interior(p0, p1, q0, q1)
     }
 }
 

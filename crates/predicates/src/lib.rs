@@ -122,15 +122,6 @@ default_kernel!(
     /// Location of `p` on the closed triangle `t`; see [`generic::point_in_triangle`].
     point_in_triangle(p: DVec3, t: [DVec3; 3]) -> TriangleLocation);
 default_kernel!(
-    /// How segment `pq` meets triangle `t`; see [`generic::segment_triangle`].
-    segment_triangle(p: DVec3, q: DVec3, t: [DVec3; 3]) -> SegmentTriangle);
-default_kernel!(
-    /// Closed triangles meet; see [`generic::triangles_intersect`].
-    triangles_intersect(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool);
-default_kernel!(
-    /// Adjacent faces meet away from what they share; see [`generic::adjacent_triangles_intersect`].
-    adjacent_triangles_intersect(t1: [DVec3; 3], t2: [DVec3; 3], shared: Shared) -> bool);
-default_kernel!(
     /// Coplanar triangles overlapping with positive area; see [`generic::triangles_overlap_with_area`].
     triangles_overlap_with_area(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool);
 default_kernel!(
@@ -151,6 +142,46 @@ default_kernel!(
 default_kernel!(
     /// Inside/on/outside a closed triangulated surface; see [`generic::point_in_surface`].
     point_in_surface(p: DVec3, positions: &[DVec3], faces: &[[u32; 3]]) -> Containment);
+
+/// The points of one derived predicate all in the adaptive predicates' range: then its
+/// orientation tests skip the per-test range check ([`kernel::InRange`]), else they go through
+/// [`Filtered`] (which answers out-of-range ones exactly). The same signs either way.
+fn in_range<const N: usize>(points: [DVec3; N]) -> bool {
+    range::all_in_range(&points)
+}
+
+/// How segment `pq` meets triangle `t`; see [`generic::segment_triangle`]. The range of the
+/// five points is checked once.
+#[must_use]
+pub fn segment_triangle(p: DVec3, q: DVec3, t: [DVec3; 3]) -> SegmentTriangle {
+    if in_range([p, q, t[0], t[1], t[2]]) {
+        generic::segment_triangle::<kernel::InRange>(p, q, t)
+    } else {
+        generic::segment_triangle::<Filtered>(p, q, t)
+    }
+}
+
+/// Closed triangles meet; see [`generic::triangles_intersect`]. The range of the six points
+/// is checked once.
+#[must_use]
+pub fn triangles_intersect(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool {
+    if in_range([t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]]) {
+        generic::triangles_intersect::<kernel::InRange>(t1, t2)
+    } else {
+        generic::triangles_intersect::<Filtered>(t1, t2)
+    }
+}
+
+/// Adjacent faces meet away from what they share; see
+/// [`generic::adjacent_triangles_intersect`]. The range of the six points is checked once.
+#[must_use]
+pub fn adjacent_triangles_intersect(t1: [DVec3; 3], t2: [DVec3; 3], shared: Shared) -> bool {
+    if in_range([t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]]) {
+        generic::adjacent_triangles_intersect::<kernel::InRange>(t1, t2, shared)
+    } else {
+        generic::adjacent_triangles_intersect::<Filtered>(t1, t2, shared)
+    }
+}
 
 /// The vertex indices two faces have in common, as a [`Shared`] (or `None` when disjoint, and
 /// `Some(None)` when they share three distinct indices: the same face twice).

@@ -235,3 +235,38 @@ proptest! {
         prop_assert_eq!(g::triangles_intersect::<K>([t1[1], t1[2], t1[0]], [t2[0], t2[2], t2[1]]), reference);
     }
 }
+
+/// A scale that keeps every coordinate in the adaptive range (1), or pushes some below or
+/// above it (the free functions then take the exact path for the whole predicate).
+fn scale() -> impl Strategy<Value = f64> {
+    prop_oneof![4 => Just(1.0), 1 => Just(1e-125), 1 => Just(1e38), 1 => Just(2f64.powi(-118))]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
+
+    /// The crate's free functions check the range of all their points once and then skip it
+    /// in every orientation test; their answers are the exact kernel's, in range or not.
+    #[test]
+    fn free_functions_are_the_exact_answers((t1, t2) in tri_pair(), s in scale()) {
+        use envelope_predicates::{indexed_triangles_intersect, segment_triangle, triangles_intersect};
+        let (t1, t2) = (t1.map(|p| p * s), t2.map(|p| p * s));
+        prop_assert_eq!(triangles_intersect(t1, t2), g::triangles_intersect::<Exact>(t1, t2));
+        prop_assert_eq!(
+            segment_triangle(t2[0], t2[1], t1),
+            g::segment_triangle::<Exact>(t2[0], t2[1], t1)
+        );
+        // Sharing a vertex, then an edge (ids name corners; positions follow the ids).
+        let v = [t1[0], t2[1], t2[2]];
+        let shared = indexed_triangles_intersect(t1, [0, 1, 2], v, [0, 4, 5]);
+        prop_assert_eq!(
+            shared,
+            g::adjacent_triangles_intersect::<Exact>(t1, v, envelope_predicates::Shared::Vertex(0, 0))
+        );
+        let e = [t1[0], t1[1], t2[2]];
+        prop_assert_eq!(
+            indexed_triangles_intersect(t1, [0, 1, 2], e, [0, 1, 5]),
+            g::adjacent_triangles_intersect::<Exact>(t1, e, envelope_predicates::Shared::Edge([0, 1], [0, 1]))
+        );
+    }
+}
