@@ -293,10 +293,6 @@ pub(crate) fn build_tubes(
     );
     engine::grow(&mut scene, &mut movers, policy);
     layout.positions = scene.positions;
-    debug_assert_eq!(
-        Bvh::from_triangles(&layout.positions, &layout.faces[..nf3 as usize]).len(),
-        surfaces.len()
-    );
     debug_assert!(
         layout.positions[..3 * n as usize]
             .iter()
