@@ -1,6 +1,6 @@
 //! `envelope simplify` against its peers on the same meshes and tolerances, in one run:
 //! * `envelope`: `envelope simplify IN OUT --epsilon E --report R.json --quiet` (plus
-//!   `--placement` and `--method` when given);
+//!   `--placement` and `--method` when given; the default placement is `auto`);
 //! * `envelope-collapse`: the same with `--placement collapse` (local algorithm, edge
 //!   collapses after the subset run), the configuration with the fewest faces for its time;
 //! * `envelope-hybrid` (only when named in `--tools`): `--method hybrid --placement collapse`,
@@ -124,7 +124,7 @@ struct Args {
     json: Option<PathBuf>,
     keep: Option<PathBuf>,
     envelope: Option<PathBuf>,
-    /// `--placement` for our simplifier (`subset`, the default, `slide` or `collapse`).
+    /// `--placement` for our simplifier (`auto`, the default, `subset`, `slide` or `collapse`).
     placement: Option<String>,
     /// `--method` for our simplifier (`local`, the default, `global` or `hybrid`).
     method: Option<String>,
@@ -157,7 +157,7 @@ fn usage() -> ExitCode {
     eprintln!(
         "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--until NAME] [--epsilons 1/64%,...,1%] \
          [--tools envelope,envelope-collapse,envelope-hybrid,cgal,openmesh,meshopt] [--timeout S] [--oracle-cpu S] [--oracle-gib G] \
-         [--json PATH] [--keep DIR] [--envelope PATH] [--placement subset|slide|collapse] \
+         [--json PATH] [--keep DIR] [--envelope PATH] [--placement auto|subset|slide|collapse] \
          [--method local|global|hybrid]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
     );
@@ -231,7 +231,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
             "--placement" => {
                 let p = it.next()?;
                 a.placement = Some(p.clone())
-                    .filter(|p| ["subset", "slide", "collapse"].contains(&p.as_str()));
+                    .filter(|p| ["auto", "subset", "slide", "collapse"].contains(&p.as_str()));
                 a.placement.as_ref()?;
             }
             "--method" => {

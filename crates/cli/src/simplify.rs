@@ -85,7 +85,7 @@ impl FillArg {
 /// Where output vertices may lie.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
 pub(crate) enum PlacementArg {
-    /// Output vertices are input vertices, unmoved (the paper's 5.2; default).
+    /// Output vertices are input vertices, unmoved (the paper's 5.2).
     Subset,
     /// After the subset run, stuck vertices are tried again with their neighbours slid
     /// along their normals between the envelopes (the paper's section 8).
@@ -93,6 +93,10 @@ pub(crate) enum PlacementArg {
     /// `slide`, then a vertex that still cannot go is removed by collapsing an edge into a
     /// neighbour moved to a quadric-optimal point between the envelopes.
     Collapse,
+    /// `subset`, then the moving phase of `collapse` only when the subset run left at most a
+    /// tenth of the vertices (large epsilons, where it is cheap); the report's placement says
+    /// which ran (default).
+    Auto,
 }
 
 /// Arguments of `envelope simplify`.
@@ -130,7 +134,7 @@ pub(crate) struct Args {
     method: AlgorithmArg,
     /// Where output vertices may lie (the report's `placement`; `slide` and `collapse` move
     /// vertices, so the output's vertices are no longer a subset of the input's).
-    #[arg(long, value_enum, default_value_t = PlacementArg::Subset)]
+    #[arg(long, value_enum, default_value_t = PlacementArg::Auto)]
     placement: PlacementArg,
     /// Write the report as JSON to this file.
     #[arg(long)]
@@ -331,7 +335,7 @@ fn print_summary(args: &Args, r: &SimplifyReport) {
 
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     if matches!(args.method, AlgorithmArg::Global)
-        && !matches!(args.placement, PlacementArg::Subset)
+        && matches!(args.placement, PlacementArg::Slide | PlacementArg::Collapse)
     {
         return Err(
             "--placement slide and collapse move vertices in the local algorithm's \
@@ -353,6 +357,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
             PlacementArg::Subset => Placement::Subset,
             PlacementArg::Slide => Placement::Slide,
             PlacementArg::Collapse => Placement::Collapse,
+            PlacementArg::Auto => Placement::Auto,
         },
         verify: !args.no_verify,
         ..SimplifyOptions::new(field(args, &soup)?)

@@ -306,3 +306,52 @@ fn slide_placement_moves_vertices_and_says_so() {
     // differs); on the corpus it is far below (crates/simplify/README.md).
     assert!(faces[1] < faces[0] && faces[2] < faces[0], "{faces:?}");
 }
+
+/// The default placement (`auto`): the subset run's output where it left many vertices
+/// (small epsilon), `--placement collapse`'s where it left few (large epsilon), byte for
+/// byte, and the report says which ran.
+#[test]
+fn default_placement_collapses_only_when_few_vertices_are_left() {
+    let dir = tempfile::tempdir().unwrap();
+    let sphere = generate::icosphere(4, 1.0);
+    let input = write(dir.path(), "sphere.off", &sphere);
+    let run = |eps: &str, placement: Option<&str>| -> (String, serde_json::Value) {
+        let tag = format!(
+            "{}-{}",
+            eps.replace(['/', '%'], "_"),
+            placement.unwrap_or("default")
+        );
+        let output = dir.path().join(format!("{tag}.off"));
+        let report = dir.path().join(format!("{tag}.json"));
+        let mut args = vec![
+            "simplify",
+            &input,
+            output.to_str().unwrap(),
+            "--epsilon",
+            eps,
+            "--quiet",
+            "--report",
+            report.to_str().unwrap(),
+        ];
+        if let Some(p) = placement {
+            args.extend(["--placement", p]);
+        }
+        let out = envelope(&args);
+        assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+        let r = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        (std::fs::read_to_string(&output).unwrap(), r)
+    };
+    for (eps, ran) in [("1/4%", "subset"), ("2%", "collapse")] {
+        let (default, r) = run(eps, None);
+        let (expected, _) = run(eps, Some(ran));
+        assert_eq!(r["placement"], format!("auto: {ran}"), "{eps}");
+        assert!(
+            default == expected,
+            "{eps}: default output differs from {ran}'s"
+        );
+        let left = r["output_vertices"].as_u64().unwrap();
+        let divisor = envelope_simplify::AUTO_MOVING_DIVISOR as u64;
+        let few = left * divisor <= r["removed_vertices"].as_u64().unwrap() + left;
+        assert_eq!(few, ran == "collapse", "{eps}: {left} vertices left");
+    }
+}

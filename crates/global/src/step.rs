@@ -265,6 +265,7 @@ fn global_stats(g: &GlobalStats) -> Stats {
         candidate_tests: g.filter_tests,
         slid: 0,
         collapsed: 0,
+        moving_phase: false,
     }
 }
 
@@ -276,6 +277,9 @@ fn add_local(stats: &mut Stats, local: &Stats) {
     stats.no_valid_fill += local.no_valid_fill;
     stats.refused += local.refused;
     stats.candidate_tests += local.candidate_tests;
+    stats.slid += local.slid;
+    stats.collapsed += local.collapsed;
+    stats.moving_phase |= local.moving_phase;
 }
 
 fn local_json(l: &Stats) -> serde_json::Value {

@@ -51,7 +51,8 @@ pub struct SimplifyOptions {
     /// Where output vertices may lie (default: the input vertices, as in the paper's 5.2;
     /// [`Placement::Slide`]: the local step then slides stuck neighbourhoods along the
     /// fibers, section 8; [`Placement::Collapse`]: and then collapses edges of what is still
-    /// stuck). Only steps that run the local algorithm's phase use it (the local and hybrid
+    /// stuck; [`Placement::Auto`], the command line's default: collapse only when the subset
+    /// run left few vertices). Only steps that run the local algorithm's phase use it (the local and hybrid
     /// methods, not the global one; the CLI refuses that combination).
     pub placement: Placement,
     /// Vertices per border-tube ring (`None`: no tubes, border vertices are then kept).
@@ -247,11 +248,12 @@ pub struct SimplifyReport {
     pub peak_memory_bytes: Option<u64>,
     /// Vertices removed.
     pub removed_vertices: usize,
-    /// `"subset"`, `"slide"` or `"collapse"` ([`SimplifyOptions::placement`]).
+    /// `"subset"`, `"slide"`, `"collapse"`, or with [`Placement::Auto`] what it ran:
+    /// `"auto: subset"` or `"auto: collapse"` ([`SimplifyOptions::placement`]).
     pub placement: &'static str,
     /// Removals that slid neighbours along their fibers (0 with `"subset"`).
     pub slid_removals: usize,
-    /// Removals by an edge collapse (only with `"collapse"`).
+    /// Removals by an edge collapse (only with `"collapse"` and `"auto: collapse"`).
     pub collapsed_removals: usize,
     /// Removal attempts.
     pub attempts: usize,
@@ -593,6 +595,8 @@ pub fn simplify_with(
             Placement::Subset => "subset",
             Placement::Slide => "slide",
             Placement::Collapse => "collapse",
+            Placement::Auto if stats.moving_phase => "auto: collapse",
+            Placement::Auto => "auto: subset",
         },
         slid_removals: stats.slid,
         collapsed_removals: stats.collapsed,

@@ -36,9 +36,10 @@ pub use fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
 pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, Nearby, NoFilter};
 pub use grid::FaceGrid;
 pub use local::{
-    HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Placement, Policies, Removal,
-    RemovalQueue, SimplifyError, Stats, VertexFibers, queue_vertices, simplify_local,
-    simplify_local_from, simplify_local_sliding, simplify_local_visited, simplify_local_with,
+    AUTO_MOVING_DIVISOR, HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Placement,
+    Policies, Removal, RemovalQueue, SimplifyError, Stats, VertexFibers, queue_vertices,
+    simplify_local, simplify_local_from, simplify_local_sliding, simplify_local_visited,
+    simplify_local_with,
 };
 pub use lod::{Level, LodOptions, LodRule, Screen, lod_chain};
 pub use policy::{

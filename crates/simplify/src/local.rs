@@ -29,6 +29,7 @@
 //! | very large holes | vertices of valence above [`MAX_HOLE`] are kept (the candidate list is cubic in the valence) |
 //! | spatial index | a hashed uniform grid over the live faces, rebuilt coarser as faces grow ([`FaceGrid`]); barriers in a static BVH |
 //! | vertex positions | input positions ([`Placement::Subset`], the paper's 5.2); [`Placement::Slide`] adds the sliding the paper's section 8 proposes as future work, as a phase after the subset run (see [`LocalSimplifier::try_slide_remove`] for its choices); [`Placement::Collapse`] adds, in the same phase, edge collapses into a moved neighbour ([`LocalSimplifier::try_collapse`]; positions: memoryless quadrics, the midpoint, the neighbour's own, cheapest first, at most 8, none farther than 1.25 times the local offset from the planes around the edge) |
+//! | when to move vertices | [`Placement::Auto`] (the command line's default): the subset run, then the moving phase of [`Placement::Collapse`] only when the subset run left at most one vertex in [`AUTO_MOVING_DIVISOR`] of those it started with: the moving phase tries every vertex that is left, each at several positions, so it is cheap next to the subset run only when few are left; where many are left (small epsilons), the subset run's output already has fewer faces than CGAL's envelope collapse in the benchmark, and the moving phase would cost 1.3-2.6 times the subset run |
 //! | moving phase | planned read-only with the planned positions (the faces around a moved vertex tested where they would be), batched like the subset run with two-ring-and-fiber boxes |
 //!
 //! The output is deterministic and the same for any number of threads. With the
@@ -56,6 +57,10 @@ use thiserror::Error;
 
 /// Vertices of larger valence are not tried (their candidate lists grow cubically).
 pub const MAX_HOLE: usize = 40;
+
+/// [`Placement::Auto`] runs the moving phase when the subset run left at most one vertex in
+/// this many of those it started with.
+pub const AUTO_MOVING_DIVISOR: usize = 10;
 
 /// Why [`simplify_local`] stopped with an error.
 #[derive(Clone, Debug, PartialEq, Eq, Error)]
@@ -98,6 +103,9 @@ pub struct Stats {
     pub slid: usize,
     /// Removals by an edge collapse to a moved neighbour ([`Placement::Collapse`]).
     pub collapsed: usize,
+    /// Whether the moving phase ran (with [`Placement::Slide`] and [`Placement::Collapse`]
+    /// always; with [`Placement::Auto`] when few vertices were left).
+    pub moving_phase: bool,
 }
 
 /// The hole-filling strategy of [`Options`].
@@ -167,6 +175,10 @@ pub enum Placement {
     /// filter ([`LocalSimplifier::try_collapse`]). Output vertices lie anywhere between the
     /// envelopes; the guarantee is the same (the filter, then the certificate).
     Collapse,
+    /// The subset run, then the moving phase of [`Placement::Collapse`] only when the subset
+    /// run left at most one vertex in [`AUTO_MOVING_DIVISOR`] of those it started with (see
+    /// the module docs for why); otherwise the output is [`Placement::Subset`]'s.
+    Auto,
 }
 
 /// The fiber of every vertex (by vertex id): the segment from its inner envelope point to its
@@ -213,6 +225,9 @@ pub struct Policies<'p> {
     /// Edge collapses after the subset run ([`Placement::Collapse`]; with `fibers`, after
     /// sliding).
     pub collapse: bool,
+    /// Run the moving phase (`fibers`, `collapse`) only when the subset run left at most one
+    /// vertex in [`AUTO_MOVING_DIVISOR`] of those it started with ([`Placement::Auto`]).
+    pub moving_if_few_left: bool,
 }
 
 /// Simplifies `mesh` in place by the local algorithm of section 5.2, with the validity test
@@ -299,7 +314,8 @@ pub fn simplify_local_sliding(
         keep_border: !barriers.has_tubes(),
         check_each_step: options.check_each_step,
         fibers: fibers.filter(|_| options.placement != Placement::Subset),
-        collapse: options.placement == Placement::Collapse,
+        collapse: matches!(options.placement, Placement::Collapse | Placement::Auto),
+        moving_if_few_left: options.placement == Placement::Auto,
     };
     run(mesh, &policies, seeds, visitor)
 }
@@ -378,7 +394,11 @@ fn run(
             }
         }
     }
-    if policies.fibers.is_some() || policies.collapse {
+    let few_left = local.mesh().num_vertices() * AUTO_MOVING_DIVISOR <= stats.vertices_before;
+    if (policies.fibers.is_some() || policies.collapse)
+        && (few_left || !policies.moving_if_few_left)
+    {
+        stats.moving_phase = true;
         moving_phase(&mut local, policies, &mut stats, visitor)?;
     }
     stats.candidate_tests = local.candidate_tests;

@@ -393,6 +393,7 @@ fn exhaustive_fills_where_the_single_pass_gets_stuck() {
             check_each_step: true,
             fibers: None,
             collapse: false,
+            moving_if_few_left: false,
         };
         simplify_local_with(&mut m, &policies, &mut ()).unwrap();
         assert_guarantees(&s, &m, &barriers);
@@ -476,6 +477,7 @@ fn stop_rule_and_visitor() {
         check_each_step: false,
         fibers: None,
         collapse: false,
+        moving_if_few_left: false,
     };
     let stats = simplify_local_with(&mut m, &policies, &mut count).unwrap();
     assert!(

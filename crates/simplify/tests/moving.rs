@@ -438,3 +438,28 @@ proptest::proptest! {
         proptest::prop_assert_eq!(cert.verdict, Verdict::Holds, "{} accepted: {:?}", accepted, cert);
     }
 }
+
+#[test]
+fn auto_moves_vertices_only_when_the_subset_run_left_few() {
+    let s = bumpy();
+    let before = HalfEdgeMesh::from_soup(&s).unwrap().num_vertices();
+    let mut branches = Vec::new();
+    for eps in [0.005, 0.15] {
+        let env = envelopes(&s, eps);
+        let (subset, _) = run(&s, &env, Placement::Subset);
+        let (collapse, sc) = run(&s, &env, Placement::Collapse);
+        let (auto, sa) = run(&s, &env, Placement::Auto);
+        let few_left = subset.num_vertices() * envelope_simplify::AUTO_MOVING_DIVISOR <= before;
+        let expected = if few_left { &collapse } else { &subset };
+        assert_eq!(
+            auto.to_soup(),
+            expected.to_soup(),
+            "eps {eps}, few left {few_left}"
+        );
+        assert_eq!(sa.moving_phase, few_left, "eps {eps}");
+        assert!(sc.moving_phase);
+        branches.push(few_left);
+    }
+    // One epsilon on each side of the rule, and the moving phase changed something there.
+    assert_eq!(branches, [false, true]);
+}
