@@ -93,11 +93,13 @@ fn cases(log: &mut Vec<String>) -> Vec<Case> {
         ("folded_vertex", generate::folded_vertex()),
     ]
     .into_iter()
+    // The command line's default placement: the subset run, and at the larger epsilons (few
+    // vertices left) the collapse phase after it, borders (cylinder, cup) included.
     .map(|(n, soup)| Case {
         name: n.to_string(),
         soup,
         percents: GENERATED_PERCENTS,
-        placement: Placement::Subset,
+        placement: Placement::Auto,
     })
     .collect();
     // hand and femur each have one folded vertex (pinned).
@@ -160,6 +162,8 @@ fn outputs_pass_cgal() {
     let tmp = tempfile::tempdir().unwrap();
     let mut log = Vec::new();
     let mut failures = Vec::new();
+    // What the auto placement ran, over all cases: both branches must have been checked.
+    let mut auto_ran = std::collections::BTreeSet::new();
     for (k, case) in cases(&mut log).iter().enumerate() {
         let orig_path = tmp.path().join(format!("{k}-orig.off"));
         write_path(&orig_path, &case.soup, Format::Off).unwrap();
@@ -177,6 +181,9 @@ fn outputs_pass_cgal() {
                     continue;
                 }
             };
+            if case.placement == Placement::Auto {
+                auto_ran.insert(report.placement);
+            }
             let out_path = tmp.path().join(format!("{k}-{percent}.off"));
             write_path(&out_path, &out, Format::Off).unwrap();
             let mut problems = Vec::new();
@@ -222,9 +229,10 @@ fn outputs_pass_cgal() {
                 (a, b) => problems.push(format!("CGAL topology unavailable: {a:?} / {b:?}")),
             }
             let line = format!(
-                "{tag}: {} -> {} faces, {:.2} s, CGAL h(out,in) {:.4}% h(in,out) {:.4}% of diag, envelope proof {}",
+                "{tag}: {} -> {} faces ({}), {:.2} s, CGAL h(out,in) {:.4}% h(in,out) {:.4}% of diag, envelope proof {}",
                 report.input_faces,
                 report.output_faces,
+                report.placement,
                 report.seconds,
                 100.0 * dist[0] / report.diagonal,
                 100.0 * dist[1] / report.diagonal,
@@ -265,6 +273,11 @@ fn outputs_pass_cgal() {
         }
     }
     println!("{}", log.join("\n"));
+    assert_eq!(
+        auto_ran,
+        ["auto: collapse", "auto: subset"].into(),
+        "the auto placement's branches that ran"
+    );
     assert!(
         failures.is_empty(),
         "{} outputs fail the CGAL oracle:\n{}",

@@ -434,7 +434,9 @@ impl Greedy {
 /// the work: at most `n` tests instead of a failing greedy pass's dozens (at small epsilon
 /// most attempts fail; on armadillo at 1/64 % the second ear turns away most of the holes
 /// whose first ear passes). Rejections are cached in the context; the test stops as soon as
-/// the condition holds, so when every ear passes it costs two tests (ears 0 and 2).
+/// the condition holds, so when every ear passes it costs two tests (ears 0 and 2), and as
+/// soon as it cannot (the ears not rejected yet are one, or two consecutive ones: armadillo
+/// at 1/64 %, single thread, 1.5 % fewer instructions, same outputs).
 pub(crate) fn ears_allow_a_filling(ctx: &mut FillContext<'_>) -> bool {
     let n = ctx.hole().len();
     if n < 3 {
@@ -455,12 +457,31 @@ pub(crate) fn ears_allow_a_filling(ctx: &mut FillContext<'_>) -> bool {
         d != 1 && d != n - 1
     };
     let mut accepted: Vec<usize> = Vec::with_capacity(n);
+    // The ears not rejected yet; once no two of them are apart the condition cannot hold
+    // (with three or more, two are apart: `n >= 4`), and the rest need not be tested.
+    let mut open = vec![true; n];
+    let mut left = n;
     for i in (0..n).step_by(2).chain((1..n).step_by(2)) {
         if ear(ctx, i) {
             if accepted.iter().any(|&j| apart(i, j)) {
                 return true;
             }
             accepted.push(i);
+        } else {
+            open[i] = false;
+            left -= 1;
+            let cannot = match left {
+                0 | 1 => true,
+                2 => {
+                    let mut two = (0..n).filter(|&k| open[k]);
+                    let (a, b) = (two.next().unwrap_or(0), two.next().unwrap_or(0));
+                    !apart(a, b)
+                }
+                _ => false,
+            };
+            if cannot {
+                return false;
+            }
         }
     }
     false
@@ -614,7 +635,8 @@ mod tests {
     }
 
     /// A filter that rejects every ear leaves no triangulation: both fillers fail after
-    /// asking for the six ears only, where a greedy pass would try all twenty triangles.
+    /// asking for five of the six ears only (0, 2, 4, 1, 3: the last one alone cannot make
+    /// a pair), where a greedy pass would try all twenty triangles.
     #[test]
     fn no_ear_no_filling_after_six_tests() {
         let (m, hole) = hexagon();
@@ -629,7 +651,7 @@ mod tests {
             calls.store(0, Ordering::Relaxed);
             let mut ctx = FillContext::new(&m, &grid, &no_ears, &hole);
             assert!(!filler.fill(&mut ctx));
-            assert_eq!(calls.load(Ordering::Relaxed), 6);
+            assert_eq!(calls.load(Ordering::Relaxed), 5);
         }
         // One ear allowed: still none (a hexagon's triangulations have two ears). Two
         // opposite ears: exhaustive finds the triangulation that uses them.
@@ -651,7 +673,8 @@ mod tests {
 
     /// A hexagon's triangulations have two ears that are not consecutive: with only one
     /// ear, or only two consecutive ones (the pair 5, 0 wraps around), both fillers give up
-    /// after the six ear tests; with two apart (0 and 3, or 5 and 1 across the wrap), the
+    /// after the ear tests (six, or five when the ears still open after the fifth are
+    /// consecutive: 5 and 0); with two apart (0 and 3, or 5 and 1 across the wrap), the
     /// ear test lets them go on and exhaustive filling succeeds.
     #[test]
     fn two_ears_apart_are_needed() {
@@ -663,15 +686,17 @@ mod tests {
             k.sort_unstable();
             k
         };
-        let cases: [(&[u32], bool); 6] = [
-            (&[2], false),
-            (&[2, 3], false),
-            (&[5, 0], false),
-            (&[0, 3], true),
-            (&[5, 1], true),
-            (&[0, 2, 4], true),
+        // Allowed ears, whether fillable, and the ear tests an unfillable one takes (order
+        // 0, 2, 4, 1, 3, 5).
+        let cases: [(&[u32], bool, usize); 6] = [
+            (&[2], false, 6),
+            (&[2, 3], false, 6),
+            (&[5, 0], false, 5),
+            (&[0, 3], true, 0),
+            (&[5, 1], true, 0),
+            (&[0, 2, 4], true, 0),
         ];
-        for (ears, fillable) in cases {
+        for (ears, fillable, ear_tests) in cases {
             let allowed: Vec<[u32; 3]> = ears.iter().map(|&i| ear(i)).collect();
             let calls = AtomicUsize::new(0);
             let filter = |p: &CandidateProfile<'_>| {
@@ -689,7 +714,7 @@ mod tests {
                     assert!(calls.load(Ordering::Relaxed) > 6, "ears {ears:?}");
                 } else {
                     assert!(!filled, "ears {ears:?}");
-                    assert_eq!(calls.load(Ordering::Relaxed), 6, "ears {ears:?}");
+                    assert_eq!(calls.load(Ordering::Relaxed), ear_tests, "ears {ears:?}");
                 }
             }
             let mut ctx = FillContext::new(&m, &grid, &filter, &hole);
