@@ -52,8 +52,9 @@ pub struct SimplifyOptions {
     /// [`Placement::Slide`]: the local step then slides stuck neighbourhoods along the
     /// fibers, section 8; [`Placement::Collapse`]: and then collapses edges of what is still
     /// stuck; [`Placement::Auto`], the command line's default: collapse only when the subset
-    /// run left few vertices). Only steps that run the local algorithm's phase use it (the local and hybrid
-    /// methods, not the global one; the CLI refuses that combination).
+    /// run left few vertices). Only steps that run the local algorithm's phase use it (the
+    /// local and hybrid methods, not the global one: the CLI refuses slide and collapse with
+    /// it, and auto there reports `"auto: subset"`, as nothing moves).
     pub placement: Placement,
     /// Vertices per border-tube ring (`None`: no tubes, border vertices are then kept).
     pub tube_segments: Option<u32>,

@@ -458,6 +458,13 @@ fn auto_moves_vertices_only_when_the_subset_run_left_few() {
         );
         assert_eq!(sa.moving_phase, few_left, "eps {eps}");
         assert!(sc.moving_phase);
+        if few_left {
+            assert_ne!(
+                collapse.to_soup(),
+                subset.to_soup(),
+                "eps {eps}: nothing moved"
+            );
+        }
         branches.push(few_left);
     }
     // One epsilon on each side of the rule, and the moving phase changed something there.
