@@ -106,6 +106,9 @@ pub struct Barriers {
     /// one side of its plane).
     slabs: Vec<SlabFilter>,
     kinds: Vec<BarrierKind>,
+    /// The largest coordinate magnitude of any barrier triangle (the bound `slabs` are
+    /// widened for; see [`SlabFilter::new`]).
+    magnitude: f64,
     /// Per envelope triangle, a bit per corner that is a pin ([`Barriers::with_pins`]).
     pinned: Vec<u8>,
     bvh: Option<Bvh>,
@@ -187,13 +190,18 @@ impl Barriers {
                 old.iter().map(|i| boxes[pick(i)]).collect::<Vec<_>>(),
             )
         };
-        let slabs = triangles.par_iter().map(|&t| SlabFilter::new(t)).collect();
+        let magnitude = triangles.iter().copied().map(magnitude).fold(0.0, f64::max);
+        let slabs = triangles
+            .par_iter()
+            .map(|&t| SlabFilter::new(t, magnitude))
+            .collect();
         let pinned = vec![0; triangles.len()];
         Ok(Self {
             triangles,
             boxes,
             slabs,
             kinds,
+            magnitude,
             pinned,
             bvh,
             has_tubes,
@@ -287,7 +295,9 @@ impl Barriers {
             return false;
         };
         let query = Aabb::from_triangle(t);
-        let plane = SlabFilter::new(t);
+        // Barrier corners are at most `magnitude`: `plane` covers them; the barriers' own
+        // filters cover `t` when its corners are too (else they are skipped: no pruning).
+        let plane = SlabFilter::new(t, self.magnitude);
         let meets = |i: u32| {
             let i = i as usize;
             i < self.triangles.len()
@@ -464,7 +474,7 @@ impl Barriers {
         match kind {
             BarrierKind::Envelope | BarrierKind::Wall => {
                 !plane.separates_points(b)
-                    && !self.slabs[i].separates_points(t)
+                    && !(self.slabs[i].covers(plane.t_mag) && self.slabs[i].separates_points(t))
                     && match pin_ids(t, b, self.pinned[i]) {
                         Some(g) => indexed_triangles_intersect(t, [0, 1, 2], b, g),
                         None => triangles_intersect(t, b),
@@ -519,11 +529,19 @@ struct SlabFilter {
     /// `t`'s projection on each axis, as computed.
     lo: [f64; 4],
     hi: [f64; 4],
+    /// `lo` and `hi` widened by the slack for coordinates up to `bound` on the other side
+    /// (infinite on an axis that cannot separate: zero or not finite).
+    lo_wide: [f64; 4],
+    hi_wide: [f64; 4],
     t_mag: f64,
+    /// At least `t_mag`: the coordinate magnitude that `lo_wide` and `hi_wide` cover.
+    bound: f64,
 }
 
 impl SlabFilter {
-    fn new(t: [DVec3; 3]) -> Self {
+    /// The filter of `t`, widened for triangles with coordinates up to `bound` in magnitude
+    /// (or up to `t`'s own, when larger) in [`SlabFilter::separates_points`].
+    fn new(t: [DVec3; 3], bound: f64) -> Self {
         let n = (t[1] - t[0]).cross(t[2] - t[0]);
         let axes = [
             n,
@@ -531,17 +549,25 @@ impl SlabFilter {
             n.cross(t[2] - t[1]),
             n.cross(t[0] - t[2]),
         ];
+        let t_mag = t.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
         let mut f = Self {
             axes,
             norm1: axes.map(|a| a.abs().element_sum()),
             lo: [0.0; 4],
             hi: [0.0; 4],
-            t_mag: t.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max),
+            lo_wide: [f64::NEG_INFINITY; 4],
+            hi_wide: [f64::INFINITY; 4],
+            t_mag,
+            bound: bound.max(t_mag),
         };
         for k in 0..4 {
             let d = t.map(|p| axes[k].dot(p));
             f.lo[k] = d[0].min(d[1]).min(d[2]);
             f.hi[k] = d[0].max(d[1]).max(d[2]);
+            if let Some(slack) = f.slack(k, f.bound) {
+                f.lo_wide[k] = f.lo[k] - slack;
+                f.hi_wide[k] = f.hi[k] + slack;
+            }
         }
         f
     }
@@ -563,18 +589,26 @@ impl SlabFilter {
         n.dot(lo) > self.hi[0] + slack || n.dot(hi) < self.lo[0] - slack
     }
 
-    /// The test for the three corners of a triangle `q` on all four axes.
+    /// The test for the three corners of a triangle `q` on all four axes. The caller knows
+    /// that `q`'s coordinates are at most `self.bound` in magnitude (the slack is
+    /// precomputed for that bound; [`SlabFilter::covers`] tells).
     fn separates_points(&self, q: [DVec3; 3]) -> bool {
-        let mag = q.iter().fold(0.0, |m: f64, p| m.max(p.abs().max_element()));
         (0..4).any(|k| {
-            let Some(slack) = self.slack(k, mag) else {
-                return false;
-            };
             let d = q.map(|p| self.axes[k].dot(p));
-            d[0].min(d[1]).min(d[2]) > self.hi[k] + slack
-                || d[0].max(d[1]).max(d[2]) < self.lo[k] - slack
+            d[0].min(d[1]).min(d[2]) > self.hi_wide[k] || d[0].max(d[1]).max(d[2]) < self.lo_wide[k]
         })
     }
+
+    /// Whether [`SlabFilter::separates_points`] may be asked of triangles whose coordinates
+    /// are at most `mag` in magnitude.
+    fn covers(&self, mag: f64) -> bool {
+        mag <= self.bound
+    }
+}
+
+/// The largest coordinate magnitude of `t`.
+fn magnitude(t: [DVec3; 3]) -> f64 {
+    t.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max)
 }
 
 #[cfg(test)]
@@ -648,8 +682,9 @@ mod tests {
             let mut q = q;
             q[0].x += f64::from(nudge) * f64::EPSILON * q[0].x.abs().max(1.0);
             let bq = Aabb::from_triangle(q);
-            let f = SlabFilter::new(t);
-            if f.separates_points(q) || f.separates(&bq) || SlabFilter::new(q).separates_points(t) {
+            let bound = magnitude(t).max(magnitude(q));
+            let f = SlabFilter::new(t, bound);
+            if f.separates_points(q) || f.separates(&bq) || SlabFilter::new(q, bound).separates_points(t) {
                 prop_assert!(!triangles_intersect(t, q), "{t:?} {q:?}");
             }
         }

@@ -52,7 +52,7 @@ use envelope_predicates::bvh::Aabb;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, VecDeque};
 use thiserror::Error;
 
 /// Vertices of larger valence are not tried (their candidate lists grow cubically).
@@ -355,9 +355,10 @@ fn run(
     };
     let mut local = LocalSimplifier::new(mesh, policies.keep_border);
     let batched = policies.order.is_fifo() && !policies.check_each_step;
+    let mut rings = RingBoxes::default();
     'run: loop {
         let batch = if batched {
-            independent_batch(&mut queue, local.mesh())
+            independent_batch(&mut queue, local.mesh(), |m, v| rings.get(m, v))
         } else {
             queue.pop().into_iter().collect()
         };
@@ -380,7 +381,9 @@ fn run(
                 Ok(removal) => {
                     stats.removed += 1;
                     visitor.on_removed(v, &removal.faces);
+                    rings.forget(v);
                     for &w in &removal.hole.vertices {
+                        rings.forget(w);
                         queue.push(local.mesh(), policies.order, w);
                     }
                 }
@@ -470,7 +473,7 @@ fn moving_phase(
         let batch = if policies.check_each_step {
             queue.pop().into_iter().collect()
         } else {
-            independent_batch_within(&mut queue, local.mesh(), |m, v| moving_box(m, v, fibers))
+            independent_batch(&mut queue, local.mesh(), |m, v| moving_box(m, v, fibers))
         };
         if batch.is_empty() {
             break;
@@ -685,6 +688,11 @@ impl Ord for Entry {
 #[derive(Clone, Debug, Default)]
 pub struct RemovalQueue {
     heap: BinaryHeap<Entry>,
+    /// Entries in the order the heap would pop them, at constant cost each: those queued
+    /// with a first-in-first-out order ([`QueueOrder::is_fifo`]: one priority for every
+    /// vertex) and those put back by a batch window. [`RemovalQueue::pop`] takes the first
+    /// of both stores.
+    fifo: VecDeque<Entry>,
     queued: Vec<bool>,
     seq: u64,
 }
@@ -702,17 +710,56 @@ impl RemovalQueue {
             return;
         }
         self.queued[v.index()] = true;
-        self.heap.push(Entry {
+        let e = Entry {
             priority: order.priority(mesh, v),
             seq: self.seq,
             v,
-        });
+        };
+        // The deque stays in heap order while its priorities are one (a single order).
+        if order.is_fifo() && self.fifo.back().is_none_or(|b| b.priority == e.priority) {
+            self.fifo.push_back(e);
+        } else {
+            self.heap.push(e);
+        }
         self.seq += 1;
+    }
+
+    /// Takes the next entry (the heap's order over both stores).
+    fn pop_entry(&mut self) -> Option<Entry> {
+        let from_heap = match (self.heap.peek(), self.fifo.front()) {
+            (Some(h), Some(f)) => h > f,
+            (h, _) => h.is_some(),
+        };
+        if from_heap {
+            self.heap.pop()
+        } else {
+            self.fifo.pop_front()
+        }
+    }
+
+    /// Puts back the entries just taken by [`RemovalQueue::pop_entry`] (in the order taken,
+    /// nothing queued since, still flagged as queued). They come before every entry left,
+    /// so in front of the deque, in order, they are where the heap would keep them.
+    fn put_back(&mut self, entries: Vec<Entry>) {
+        debug_assert!(
+            entries.windows(2).all(|w| w[0] > w[1]),
+            "not in the order taken"
+        );
+        debug_assert!(
+            entries
+                .last()
+                .is_none_or(|e| self.fifo.front().is_none_or(|f| e > f)
+                    && self.heap.peek().is_none_or(|h| e > h)),
+            "queued since"
+        );
+        for e in entries.into_iter().rev() {
+            self.fifo.push_front(e);
+        }
     }
 
     /// Takes the next vertex.
     pub fn pop(&mut self) -> Option<VertexId> {
-        let e = self.heap.pop()?;
+        let e = self.pop_entry()?;
         self.queued[e.v.index()] = false;
         Some(e.v)
     }
@@ -720,19 +767,27 @@ impl RemovalQueue {
     /// Number of queued vertices.
     #[must_use]
     pub fn len(&self) -> usize {
-        self.heap.len()
+        self.heap.len() + self.fifo.len()
     }
 
     /// True when nothing is queued.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.heap.is_empty()
+        self.heap.is_empty() && self.fifo.is_empty()
     }
 
-    /// Each queued vertex is live, flagged, and in the heap once.
+    /// Each queued vertex is live, flagged, and stored once; the deque is in queue order.
     pub fn sanity_check(&self, mesh: &HalfEdgeMesh) -> Result<(), String> {
         let mut seen = vec![false; self.queued.len()];
-        for e in &self.heap {
+        if self
+            .fifo
+            .iter()
+            .zip(self.fifo.iter().skip(1))
+            .any(|(a, b)| a <= b)
+        {
+            return Err("first-in-first-out entries out of order".into());
+        }
+        for e in self.heap.iter().chain(&self.fifo) {
             let i = e.v.index();
             if !self.queued[i] || seen[i] {
                 return Err(format!("queue entry {} unflagged or repeated", e.v));
@@ -750,45 +805,36 @@ impl RemovalQueue {
 }
 
 /// How far [`independent_batch`] looks into the queue, and how many it takes at most.
-/// Larger batches wake the other threads less often (bunny00 at 1/64 %, 2 threads: planning
-/// took 1.38 s of wall time for 1.91 s of work in 5,858 batches with 64 and 16, 1.16 s for
-/// 1.93 s in 1,989 batches with 256 and 64); the selection is serial and grows with the window.
-const BATCH_WINDOW: usize = 256;
-const BATCH_LIMIT: usize = 64;
+/// Larger batches wake the other threads less often and leave less of the batch's last plan
+/// alone on one thread, but the selection is serial and its box tests grow with the square
+/// of the window. bunny00 at 1/64 %, 2 threads (instrumented run): 1,989 batches with 256
+/// and 64, the selection 0.046 s and the planning 1.076 s of wall time for 1.728 s of work;
+/// 1,130 batches with 512 and 128, 0.058 s and 0.983 s for 1.724 s; 675 with 1,024 and 256,
+/// 0.088 s and 0.966 s. armadillo at 1/64 % gains nothing beyond 256 (its selection took
+/// 0.021, 0.036 and 0.068 s).
+const BATCH_WINDOW: usize = 512;
+const BATCH_LIMIT: usize = 128;
 
 /// Takes vertices off a first-in-first-out queue for one round of planning: the front
-/// vertex, then, among the next [`BATCH_WINDOW`] - 1, every vertex whose closed one-ring box
-/// is apart from the boxes of all vertices before it in the window (taken or not), up to
-/// [`BATCH_LIMIT`]. The one-ring box holds the vertex's fan and every candidate triangle of
-/// its hole, so every face a test of it looks at or its removal changes: the removals of a
-/// batch do not see each other, nor do they see the skipped vertices' removals, and carrying
-/// them out before those changes nothing but the order in which re-queued neighbours are
+/// vertex, then, among the next [`BATCH_WINDOW`] - 1, every vertex whose closed box
+/// `reach(mesh, v)` is apart from the boxes of all vertices before it in the window (taken
+/// or not), up to [`BATCH_LIMIT`]. The box must hold everything a plan of the vertex reads
+/// or its removal changes (the subset run: the one-ring box, [`one_ring_box`], which holds
+/// the vertex's fan and every candidate triangle of its hole): the removals of a batch do
+/// not see each other, nor do they see the skipped vertices' removals, and carrying them
+/// out before those changes nothing but the order in which re-queued neighbours are
 /// appended. Skipped vertices keep their places. The batches depend on the queue and the
 /// mesh only, never on the number of threads, so the output does not either.
-fn independent_batch(queue: &mut RemovalQueue, mesh: &HalfEdgeMesh) -> Vec<VertexId> {
-    independent_batch_within(queue, mesh, one_ring_box)
-}
-
-/// The box of `v` and its neighbours.
-fn one_ring_box(mesh: &HalfEdgeMesh, v: VertexId) -> Aabb {
-    mesh.vertex_neighbors(v)
-        .fold(Aabb::from_points(&[mesh.position(v)]), |b, w| {
-            b.union(&Aabb::from_points(&[mesh.position(w)]))
-        })
-}
-
-/// [`independent_batch`] with another box per vertex, which must hold everything a plan of
-/// it reads or its removal changes.
-fn independent_batch_within(
+fn independent_batch(
     queue: &mut RemovalQueue,
     mesh: &HalfEdgeMesh,
-    reach: impl Fn(&HalfEdgeMesh, VertexId) -> Aabb,
+    mut reach: impl FnMut(&HalfEdgeMesh, VertexId) -> Aabb,
 ) -> Vec<VertexId> {
     let mut batch = Vec::new();
     let mut skipped = Vec::new();
     let mut boxes: Vec<Aabb> = Vec::new();
     while batch.len() < BATCH_LIMIT && batch.len() + skipped.len() < BATCH_WINDOW {
-        let Some(e) = queue.heap.pop() else {
+        let Some(e) = queue.pop_entry() else {
             break;
         };
         let v = e.v;
@@ -803,10 +849,39 @@ fn independent_batch_within(
             skipped.push(e);
         }
     }
-    for e in skipped {
-        queue.heap.push(e);
-    }
+    queue.put_back(skipped);
     batch
+}
+
+/// The [`one_ring_box`]es of the subset run, kept while the one-ring stays: a vertex's box
+/// changes only when its neighbours do (no vertex moves there), that is when it is on the
+/// hole of a removal ([`RingBoxes::forget`] it then). Vertices skipped by a batch are taken
+/// up again by the next, with the box computed the first time.
+#[derive(Default)]
+struct RingBoxes(Vec<Option<Aabb>>);
+
+impl RingBoxes {
+    fn get(&mut self, mesh: &HalfEdgeMesh, v: VertexId) -> Aabb {
+        let i = v.index();
+        if self.0.len() <= i {
+            self.0.resize(i + 1, None);
+        }
+        *self.0[i].get_or_insert_with(|| one_ring_box(mesh, v))
+    }
+
+    fn forget(&mut self, v: VertexId) {
+        if let Some(b) = self.0.get_mut(v.index()) {
+            *b = None;
+        }
+    }
+}
+
+/// The box of `v` and its neighbours.
+fn one_ring_box(mesh: &HalfEdgeMesh, v: VertexId) -> Aabb {
+    mesh.vertex_neighbors(v)
+        .fold(Aabb::from_points(&[mesh.position(v)]), |b, w| {
+            b.union(&Aabb::from_points(&[mesh.position(w)]))
+        })
 }
 
 /// Every live vertex, in id order, prioritised by `order` (section 5.2: "placing all
@@ -1311,6 +1386,80 @@ struct Plan {
 mod tests {
     use super::*;
     use envelope_mesh::generate;
+
+    /// The queue pops in the heap's order (smallest priority, then first queued) whether
+    /// entries sit in its deque or its heap: first-in-first-out and prioritised pushes
+    /// mixed, pops, and entries taken and put back as a batch window does, against a plain
+    /// heap.
+    #[test]
+    fn queue_pops_in_heap_order_with_both_stores() {
+        let m = HalfEdgeMesh::from_soup(&generate::torus(1.0, 0.4, 12, 8)).unwrap();
+        let n = m.vertices().count() as u64;
+        let mut next = {
+            let mut x = 0x2545_F491_4F6C_DD1D_u64;
+            move || {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                x
+            }
+        };
+        let mut q = RemovalQueue::default();
+        let mut reference = BinaryHeap::new();
+        let mut queued = std::collections::HashSet::new();
+        let mut seq = 0;
+        let (mut from_deque, mut from_heap, mut put_back) = (0, 0, 0);
+        for step in 0..4000 {
+            let r = next();
+            match r % 4 {
+                0 | 1 => {
+                    let v = VertexId((next() % n) as u32);
+                    // Mostly first-in-first-out runs, with prioritised pushes between them.
+                    let order: &dyn QueueOrder = if step % 500 < 400 { &Fifo } else { &FlatFirst };
+                    q.push(&m, order, v);
+                    if queued.insert(v) {
+                        reference.push(Entry {
+                            priority: order.priority(&m, v),
+                            seq,
+                            v,
+                        });
+                        seq += 1;
+                    }
+                }
+                2 => {
+                    let got = q.pop();
+                    let want = reference.pop().map(|e| e.v);
+                    assert_eq!(got, want, "step {step}");
+                    if let Some(v) = want {
+                        queued.remove(&v);
+                    }
+                }
+                _ => {
+                    // A window: take some, put all back.
+                    let k = (next() % 6) as usize;
+                    let mut taken = Vec::new();
+                    for _ in 0..k {
+                        let deque_front = q.fifo.front().map(|e| e.seq);
+                        let Some(e) = q.pop_entry() else { break };
+                        if deque_front == Some(e.seq) {
+                            from_deque += 1;
+                        } else {
+                            from_heap += 1;
+                        }
+                        taken.push(e);
+                    }
+                    put_back += taken.len();
+                    q.put_back(taken);
+                }
+            }
+            q.sanity_check(&m).unwrap();
+            assert_eq!(q.len(), reference.len());
+        }
+        assert!(
+            from_deque > 100 && from_heap > 100 && put_back > 200,
+            "{from_deque} {from_heap} {put_back}"
+        );
+    }
 
     /// Collapse positions beyond [`COLLAPSE_REACH`] times the local offset are dropped; the
     /// rest come cheapest first, at most [`COLLAPSE_TRIES`].
