@@ -473,8 +473,10 @@ impl Barriers {
     ) -> bool {
         match kind {
             BarrierKind::Envelope | BarrierKind::Wall => {
-                !plane.separates_points(b)
-                    && !(self.slabs[i].covers(plane.t_mag) && self.slabs[i].separates_points(t))
+                let own = &self.slabs[i];
+                let apart = plane.separates_points(b)
+                    || (own.covers(plane.t_mag) && own.separates_points(t));
+                !apart
                     && match pin_ids(t, b, self.pinned[i]) {
                         Some(g) => indexed_triangles_intersect(t, [0, 1, 2], b, g),
                         None => triangles_intersect(t, b),
