@@ -44,8 +44,11 @@ pub(crate) struct Scene<'a> {
     pub faces: Vec<[u32; 3]>,
     /// The swept box of every face: every position it can take while the movers move.
     pub swept: Vec<Aabb>,
-    /// Over `swept`.
+    /// Over `swept[fixed.1..]` (item `i` is face `fixed.1 + i`).
     pub bvh: Bvh,
+    /// A tree over the first `fixed.1` faces, which never move, built by the caller with
+    /// their boxes (their swept boxes: see [`Scene::with_fixed`]).
+    pub fixed: Option<(&'a Bvh, u32)>,
     /// Pairs `(star face, other face)` never tested.
     pub exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
     /// The box of every face at its current positions, kept up to date by [`commit`] (a
@@ -62,8 +65,25 @@ impl<'a> Scene<'a> {
         swept: Vec<Aabb>,
         exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
     ) -> Self {
+        Self::with_fixed(positions, alias, faces, swept, exempt, None)
+    }
+
+    /// [`Scene::new`] with a tree the caller already has over the first `n` faces (`fixed =
+    /// Some((tree, n))`, item `i` of `tree` face `i`): faces that no mover touches, whose
+    /// swept boxes are their boxes, each inside the tree's box of it. Only the other faces
+    /// get a tree of their own; the candidates are the same.
+    pub fn with_fixed(
+        positions: Vec<DVec3>,
+        alias: Vec<u32>,
+        faces: Vec<[u32; 3]>,
+        swept: Vec<Aabb>,
+        exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
+        fixed: Option<(&'a Bvh, u32)>,
+    ) -> Self {
+        let n = fixed.map_or(0, |f| f.1 as usize);
         let mut scene = Scene {
-            bvh: Bvh::new(&swept),
+            bvh: Bvh::new(&swept[n..]),
+            fixed,
             positions,
             alias,
             faces,
@@ -242,7 +262,15 @@ fn candidates(scene: &Scene<'_>, m: &Mover) -> Vec<u32> {
         .star
         .iter()
         .fold(Aabb::EMPTY, |b, &f| b.union(&scene.swept[f as usize]));
-    let mut c = scene.bvh.overlapping(&reach);
+    let mut c = match scene.fixed {
+        Some((tree, n)) => {
+            let mut c = tree.overlapping(&reach);
+            debug_assert!(c.iter().all(|&i| i < n));
+            c.extend(scene.bvh.overlapping(&reach).into_iter().map(|i| i + n));
+            c
+        }
+        None => scene.bvh.overlapping(&reach),
+    };
     c.shrink_to_fit();
     c
 }

@@ -55,7 +55,7 @@ fn xorshift(mut state: u64) -> impl FnMut() -> u64 {
 }
 
 use envelope_mesh::{TriangleSoup, VertexId, analyze};
-use envelope_predicates::bvh::Aabb;
+use envelope_predicates::bvh::{Aabb, Bvh};
 use glam::DVec3;
 
 pub use field::{
@@ -293,6 +293,7 @@ pub fn build_envelopes(
             outer,
             inner,
             mut proof,
+            tree,
         },
     ) = match options.method {
         Method::Analytical => (Method::Analytical, prove(analytical(), None)),
@@ -342,6 +343,7 @@ pub fn build_envelopes(
                 inner: &inner,
                 requested: &requested,
                 diagonal,
+                surfaces: Some(&tree),
             };
             let policy = StepPolicy {
                 k: options.numerical.k,
@@ -376,6 +378,8 @@ struct Proved {
     outer: Vec<DVec3>,
     inner: Vec<DVec3>,
     proof: Proof,
+    /// The proof's tree over the input, outer and inner faces at these positions.
+    tree: Bvh,
 }
 
 impl Proved {
@@ -433,13 +437,14 @@ fn prove_and_repair(
         input_free,
         unchanged: None,
     };
+    let (contacts, mut tree) = proof::prove_envelopes(
+        &soup.positions,
+        [(&outer, &eps_plus), (&inner, &eps_minus)],
+        faces,
+        &first,
+    );
     let mut proof = Proof {
-        contacts: proof::prove_envelopes(
-            &soup.positions,
-            [(&outer, &eps_plus), (&inner, &eps_minus)],
-            faces,
-            &first,
-        ),
+        contacts,
         ..Proof::default()
     };
     let mut repaired = vec![false; soup.num_vertices()];
@@ -477,7 +482,7 @@ fn prove_and_repair(
         outer = place(&eps_plus, 1.0);
         inner = place(&eps_minus, -1.0);
         proof.repair_rounds += 1;
-        proof.contacts = proof::prove_envelopes(
+        (proof.contacts, tree) = proof::prove_envelopes(
             &soup.positions,
             [(&outer, &eps_plus), (&inner, &eps_minus)],
             faces,
@@ -491,6 +496,7 @@ fn prove_and_repair(
         outer,
         inner,
         proof,
+        tree,
     }
 }
 

@@ -90,12 +90,15 @@ pub(crate) struct Known<'a> {
 /// `known` says which pairs need no test because their answer is already known to be
 /// "apart" (see [`Known`]); the faces of the one soup are input `0..nf`, outer `nf..2nf`,
 /// inner `2nf..3nf`.
+///
+/// Also returns the tree it built over the boxes of those faces (item = face), which the
+/// tube stage reuses ([`crate::tubes`]).
 pub(crate) fn prove_envelopes(
     input: &[DVec3],
     envelopes: [(&[DVec3], &[f64]); 2],
     faces: &[[u32; 3]],
     known: &Known<'_>,
-) -> Vec<Contact> {
+) -> (Vec<Contact>, Bvh) {
     let n = input.len() as u32;
     let nf = faces.len() as u32;
     let mut positions = Vec::with_capacity(3 * input.len());
@@ -129,7 +132,8 @@ pub(crate) fn prove_envelopes(
     };
     let skip =
         |i: u32, j: u32| (settled(i) && settled(j)) || (known.input_free && i < nf && j < nf);
-    Bvh::from_triangles(&positions, &all)
+    let tree = Bvh::from_triangles(&positions, &all);
+    let contacts = tree
         .self_pairs_where(|i, j| {
             !skip(i, j) && faces_intersect(&positions, all[i as usize], all[j as usize])
         })
@@ -138,5 +142,6 @@ pub(crate) fn prove_envelopes(
             a: which(a),
             b: which(b),
         })
-        .collect()
+        .collect();
+    (contacts, tree)
 }

@@ -83,6 +83,9 @@ pub(crate) struct TubeInput<'a> {
     pub inner: &'a [DVec3],
     pub requested: &'a [f64],
     pub diagonal: f64,
+    /// A tree over the boxes of the input, outer and inner faces (item `f`: face `f` of the
+    /// three in that order, at these positions), when the envelope proof left one.
+    pub surfaces: Option<&'a Bvh>,
 }
 
 struct Layout {
@@ -258,9 +261,25 @@ pub(crate) fn build_tubes(
         }
     }
     // Narrow start: halve every radius until the exact tube proof holds.
-    let surfaces = surface_tree(&layout, nf3);
+    let built;
+    let surfaces = match input.surfaces {
+        Some(tree) => {
+            debug_assert!(tree.len() == nf3 as usize);
+            debug_assert!((0..nf3).all(|f| {
+                let b = Aabb::from_triangle(
+                    layout.faces[f as usize].map(|v| layout.positions[v as usize]),
+                );
+                tree.overlapping(&b).contains(&f)
+            }));
+            tree
+        }
+        None => {
+            built = surface_tree(&layout, nf3);
+            &built
+        }
+    };
     for _ in 0..12 {
-        if tube_contacts(&layout, input, &surfaces).is_empty() {
+        if tube_contacts(&layout, input, surfaces).is_empty() {
             break;
         }
         for m in &mut movers {
@@ -284,12 +303,19 @@ pub(crate) fn build_tubes(
     let boxes = engine::swept_face_boxes(&layout.faces, &sweep);
     let ex = |f: u32, g: u32| exempt(input.faces, nf3, &layout.seg, f, g);
     let alias: Vec<u32> = (0..layout.positions.len() as u32).collect();
-    let mut scene = Scene::new(
+    // The input and envelope faces do not move here: their swept boxes are their boxes,
+    // which `surfaces` was built over.
+    debug_assert!(
+        (0..nf3 as usize).all(|f| boxes[f]
+            == Aabb::from_triangle(layout.faces[f].map(|v| layout.positions[v as usize])))
+    );
+    let mut scene = Scene::with_fixed(
         layout.positions.clone(),
         alias,
         layout.faces.clone(),
         boxes,
         &ex,
+        Some((surfaces, nf3)),
     );
     engine::grow(&mut scene, &mut movers, policy);
     layout.positions = scene.positions;
@@ -300,7 +326,7 @@ pub(crate) fn build_tubes(
             .all(|(a, b)| a == b),
         "the tube stage moved an input or envelope vertex"
     );
-    let contacts = tube_contacts(&layout, input, &surfaces);
+    let contacts = tube_contacts(&layout, input, surfaces);
     // Output meshes.
     let mut tubes = Vec::with_capacity(loops.len());
     let mut mover_at = 0;
@@ -371,6 +397,7 @@ mod tests {
             inner: &inner,
             requested: &requested,
             diagonal: 5.0,
+            surfaces: None,
         };
         let n = positions.len() as u32;
         let nf3 = 3 * faces.len() as u32;
