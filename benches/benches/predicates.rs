@@ -1,11 +1,13 @@
 //! Predicate throughput: orient3d and triangle–triangle tests per second on random and on
 //! near-degenerate inputs (filtered vs exact kernel), and `self_intersections` on a ~1M-face
-//! torus. Run: `cargo bench -p envelope-benches --bench predicates`.
+//! torus, and the build of a BVH over the faces of a ~140k-face torus (the size of bunny00's
+//! barriers). Run: `cargo bench -p envelope-benches --bench predicates`.
 
 use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use envelope_predicates::bvh::Bvh;
 use envelope_predicates::generic::triangles_intersect;
 use envelope_predicates::{Exact, Filtered, Kernel, self_intersections};
 use glam::DVec3;
@@ -153,5 +155,22 @@ fn self_intersect(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, orient3d, tri_tri, self_intersect);
+fn bvh_build(c: &mut Criterion) {
+    let (pos, faces) = torus(350, 200);
+    let mut g = c.benchmark_group("bvh_build");
+    g.sample_size(10)
+        .measurement_time(Duration::from_secs(3))
+        .warm_up_time(Duration::from_millis(500));
+    g.throughput(Throughput::Elements(faces.len() as u64));
+    g.bench_function("torus_140k_faces", |b| {
+        b.iter(|| {
+            let tree = Bvh::from_triangles(black_box(&pos), &faces);
+            assert_eq!(tree.len(), faces.len());
+            tree.len()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, orient3d, tri_tri, self_intersect, bvh_build);
 criterion_main!(benches);
