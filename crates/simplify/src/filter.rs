@@ -27,7 +27,7 @@ use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
 use envelope_predicates::indexed_triangles_intersect;
 use glam::DVec3;
-use std::cell::OnceCell;
+use std::cell::{OnceCell, RefCell};
 
 /// The current approximation a candidate is tested against: the live faces of the mesh
 /// (indexed by a [`FaceGrid`]) plus triangles placed earlier in the same hole filling.
@@ -60,7 +60,12 @@ pub struct Approximation<'a> {
 /// candidates have their corners there). A face that meets such a query has a box
 /// overlapping the query's, hence the region's, so the answers are those of the grid. It
 /// belongs to one grid in one state: the grid must not change while it is in use, and it
-/// must be used with one grid only.
+/// must be used with one grid (and its mesh) only.
+///
+/// It also remembers the candidates that met none of the gathered faces, with the
+/// excluded faces and moved vertices they were asked with: the same candidate asked again
+/// with the same ones skips the scan (the placed and extra triangles are still tested). The
+/// local simplifier's ear test and greedy fill ask about many of the same triangles.
 ///
 /// ```
 /// use envelope_mesh::{HalfEdgeMesh, VertexId, generate};
@@ -83,6 +88,39 @@ pub struct Approximation<'a> {
 pub struct Nearby {
     region: Aabb,
     faces: OnceCell<Vec<(Aabb, FaceId, [VertexId; 3])>>,
+    clear: RefCell<Clear>,
+}
+
+/// [`Nearby`]'s memory of the candidates that met none of its faces, for the excluded faces
+/// and moved vertices of the first such query (`None` until then).
+#[derive(Debug, Default)]
+struct Clear {
+    asked_with: Option<AskedWith>,
+    candidates: Vec<([VertexId; 3], [DVec3; 3])>,
+}
+
+/// The parts of an [`Approximation`] besides the grid that the scan's answer depends on.
+#[derive(Debug)]
+struct AskedWith {
+    excluded: Vec<FaceId>,
+    moved: Vec<(VertexId, DVec3)>,
+}
+
+impl Clear {
+    /// Whether `a` asked of an approximation excluding `excluded` with `moved` may use and
+    /// add to the memory.
+    fn applies(&self, a: &Approximation<'_>) -> bool {
+        self.asked_with
+            .as_ref()
+            .is_none_or(|w| w.excluded == a.excluded && w.moved == a.moved)
+    }
+
+    /// Whether candidate `t` (corners `p`), up to a rotation, is remembered as clear.
+    fn knows(&self, t: [VertexId; 3], p: [DVec3; 3]) -> bool {
+        self.candidates.iter().any(|&(u, q)| {
+            (0..3).any(|r| (0..3).all(|k| u[(k + r) % 3] == t[k] && q[(k + r) % 3] == p[k]))
+        })
+    }
 }
 
 impl Nearby {
@@ -92,6 +130,7 @@ impl Nearby {
         Self {
             region,
             faces: OnceCell::new(),
+            clear: RefCell::new(Clear::default()),
         }
     }
 
@@ -156,12 +195,28 @@ impl<'a> Approximation<'a> {
         }
         let hit =
             |f: FaceId, g: [VertexId; 3]| !self.excluded.contains(&f) && meet(t, p, g, pos(g));
-        match self.nearby.and_then(|n| n.faces(self.grid, &bounds)) {
-            Some(faces) => faces
-                .iter()
-                .any(|&(b, f, g)| b.overlaps(&bounds) && hit(f, g)),
-            None => self.grid.any_overlapping(&bounds, hit),
+        let Some(nearby) = self.nearby else {
+            return self.grid.any_overlapping(&bounds, hit);
+        };
+        let Some(faces) = nearby.faces(self.grid, &bounds) else {
+            return self.grid.any_overlapping(&bounds, hit);
+        };
+        let remember = nearby.clear.borrow().applies(self);
+        if remember && nearby.clear.borrow().knows(t, p) {
+            return false;
         }
+        let met = faces
+            .iter()
+            .any(|&(b, f, g)| b.overlaps(&bounds) && hit(f, g));
+        if !met && remember {
+            let mut clear = nearby.clear.borrow_mut();
+            clear.asked_with.get_or_insert_with(|| AskedWith {
+                excluded: self.excluded.to_vec(),
+                moved: self.moved.to_vec(),
+            });
+            clear.candidates.push((t, p));
+        }
+        met
     }
 }
 
@@ -303,6 +358,10 @@ mod tests {
             let plain = Approximation { excluded: &excluded, ..Approximation::of_mesh(&mesh, &grid) };
             let nearby = Nearby::new(Aabb::from_points(&region));
             let hinted = Approximation { nearby: Some(&nearby), ..plain };
+            // The same `Nearby` asked with nothing excluded: what it remembers as clear with
+            // `excluded` must not answer for it.
+            let everything = Approximation { excluded: &[], ..Approximation::of_mesh(&mesh, &grid) };
+            let hinted_everything = Approximation { nearby: Some(&nearby), ..everything };
             for q in queries {
                 // Ids below the mesh's 42 vertices are corners at those vertices; the others
                 // are new vertices at the drawn points.
@@ -313,11 +372,34 @@ mod tests {
                 let corners = [0, 1, 2].map(|i| {
                     if ids[i].index() < 42 { mesh.position(ids[i]) } else { q[i].1 }
                 });
-                prop_assert_eq!(
-                    hinted.intersects(ids, corners),
-                    plain.intersects(ids, corners),
-                    "{:?} {:?}", ids, corners
-                );
+                // Twice each (the second may come from the memory), rotated, then with
+                // nothing excluded.
+                let rotated = ([ids[1], ids[2], ids[0]], [corners[1], corners[2], corners[0]]);
+                for (a, b, (ids, corners)) in [
+                    (hinted, plain, (ids, corners)),
+                    (hinted, plain, (ids, corners)),
+                    (hinted, plain, rotated),
+                    (hinted_everything, everything, (ids, corners)),
+                ] {
+                    prop_assert_eq!(
+                        a.intersects(ids, corners),
+                        b.intersects(ids, corners),
+                        "{:?} {:?}", ids, corners
+                    );
+                }
+                // Clear once every face it meets is excluded; not with none excluded.
+                let meets: Vec<FaceId> = mesh
+                    .faces()
+                    .filter(|&f| {
+                        let g = mesh.face_vertices(f);
+                        meet(ids, corners, g, g.map(|v| mesh.position(v)))
+                    })
+                    .collect();
+                let fresh = Nearby::new(Aabb::from_points(&region));
+                let clear = Approximation { excluded: &meets, nearby: Some(&fresh), ..everything };
+                let full = Approximation { nearby: Some(&fresh), ..everything };
+                prop_assert!(!clear.intersects(ids, corners));
+                prop_assert_eq!(full.intersects(ids, corners), !meets.is_empty());
             }
         }
     }
