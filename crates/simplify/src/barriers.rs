@@ -60,12 +60,7 @@ impl Query {
     /// The same question, up to a rotation of the corners (which carries the border edges
     /// along): the answer is a function of the closed triangle and of its border segments.
     fn is(&self, t: [DVec3; 3], border_edges: [bool; 3]) -> bool {
-        (0..3).any(|r| {
-            (0..3).all(|k| {
-                self.corners[(k + r) % 3] == t[k]
-                    && self.border_edges[(k + r) % 3] == border_edges[k]
-            })
-        })
+        crate::same_up_to_rotation((&self.corners, &self.border_edges), (&t, &border_edges))
     }
 }
 

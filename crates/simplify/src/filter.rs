@@ -117,9 +117,9 @@ impl Clear {
 
     /// Whether candidate `t` (corners `p`), up to a rotation, is remembered as clear.
     fn knows(&self, t: [VertexId; 3], p: [DVec3; 3]) -> bool {
-        self.candidates.iter().any(|&(u, q)| {
-            (0..3).any(|r| (0..3).all(|k| u[(k + r) % 3] == t[k] && q[(k + r) % 3] == p[k]))
-        })
+        self.candidates
+            .iter()
+            .any(|(u, q)| crate::same_up_to_rotation((u, q), (&t, &p)))
     }
 }
 

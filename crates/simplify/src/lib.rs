@@ -46,3 +46,13 @@ pub use policy::{
     Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor, aspect_ratio,
 };
 pub use walls::{WALL_SEGMENTS, Wall, border_walls};
+
+/// Whether the triangle `(a, a_data)` is `(b, b_data)` up to a rotation of its corners, the
+/// per-corner data (border edges, positions) rotating along. The memories of
+/// [`Barriers::scoped`] and [`Nearby`] match their questions with it.
+pub(crate) fn same_up_to_rotation<A: PartialEq, B: PartialEq>(
+    (a, a_data): (&[A; 3], &[B; 3]),
+    (b, b_data): (&[A; 3], &[B; 3]),
+) -> bool {
+    (0..3).any(|r| (0..3).all(|k| a[(k + r) % 3] == b[k] && a_data[(k + r) % 3] == b_data[k]))
+}
