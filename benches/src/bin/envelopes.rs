@@ -10,7 +10,9 @@
 //! `--quick` (CI smoke): a generated sphere and torus only, two epsilons. The `--only-*` flags
 //! restrict the table to matching rows (for profiling one configuration). `--isolate` runs
 //! every row in a fresh child process (same arguments plus `--only-*`), so that the peak RSS
-//! of a row is its own and not the high-water mark of the rows before it.
+//! of a row is its own and not the high-water mark of the rows before it. `--input-free`
+//! skips the proof's input-input pairs, as `envelope simplify` does (its input check, run
+//! beside, tests those pairs).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -72,6 +74,7 @@ fn main() -> ExitCode {
     let skip_large = args.iter().any(|a| a == "--skip-large");
     let isolate = args.iter().any(|a| a == "--isolate");
     let no_header = args.iter().any(|a| a == "--no-header");
+    let input_free = args.iter().any(|a| a == "--input-free");
     let corpus = args
         .iter()
         .position(|a| a == "--corpus")
@@ -142,6 +145,7 @@ fn main() -> ExitCode {
                 let mut o = EnvelopeOptions::new(EpsilonField::Constant(pct / 100.0 * diag));
                 o.method = method;
                 o.tube_segments = None;
+                o.input_free_of_intersections = input_free;
                 let t = Instant::now();
                 let cpu0 = cpu_seconds();
                 let env = match build_envelopes(soup, &o) {

@@ -27,15 +27,16 @@ use rayon::prelude::*;
 
 use crate::normals::VertexFaces;
 
-/// Per-vertex `(eps_plus, eps_minus)` by the analytical method.
+/// Per-vertex `(eps_plus, eps_minus)` by the analytical method; `bvh` is a tree over the
+/// boxes of the input faces (item = face).
 pub(crate) fn analytical_eps(
     soup: &TriangleSoup,
     vf: &VertexFaces,
     normals: &[DVec3],
     requested: &[f64],
+    bvh: &Bvh,
 ) -> (Vec<f64>, Vec<f64>) {
     let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
-    let bvh = Bvh::from_triangles(&soup.positions, &faces);
     let per_face: Vec<[f64; 2]> = faces
         .par_iter()
         .map(|f| {

@@ -271,7 +271,9 @@ pub fn build_envelopes(
     }
     let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
     let diagonal = soup.diagonal();
-    let analytical = || analytical::analytical_eps(soup, &vf, &normals, &targets);
+    // One tree over the input faces, for the analytical method and every proof.
+    let input_tree = Bvh::from_triangles(&soup.positions, &faces);
+    let analytical = || analytical::analytical_eps(soup, &vf, &normals, &targets, &input_tree);
     let numerical = || numerical_eps(soup, &normals, &targets, &options.numerical, diagonal, None);
     let input_free = options.input_free_of_intersections;
     let prove = |(p, m): (Vec<f64>, Vec<f64>), proved: Option<&Proved>| {
@@ -282,6 +284,7 @@ pub fn build_envelopes(
             &faces,
             (p, m),
             (input_free, base),
+            &input_tree,
             options.max_repair_rounds,
         )
     };
@@ -401,6 +404,7 @@ fn prove_and_repair(
     faces: &[[u32; 3]],
     (mut eps_plus, mut eps_minus): (Vec<f64>, Vec<f64>),
     (input_free, base): (bool, Option<&Proved>),
+    input_tree: &Bvh,
     max_rounds: u32,
 ) -> Proved {
     let place = |eps: &[f64], s: f64| -> Vec<DVec3> {
@@ -441,6 +445,7 @@ fn prove_and_repair(
         &soup.positions,
         [(&outer, &eps_plus), (&inner, &eps_minus)],
         faces,
+        input_tree,
         &first,
     );
     let mut proof = Proof {
@@ -486,6 +491,7 @@ fn prove_and_repair(
             &soup.positions,
             [(&outer, &eps_plus), (&inner, &eps_minus)],
             faces,
+            input_tree,
             &every,
         );
     }
@@ -711,11 +717,12 @@ mod proof_tests {
     use super::*;
     use envelope_mesh::generate;
 
-    fn prepared(soup: &TriangleSoup) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    fn prepared(soup: &TriangleSoup) -> (Vec<DVec3>, Vec<[u32; 3]>, Bvh) {
         let vf = VertexFaces::new(soup.num_vertices(), &soup.faces);
         let normals = normals::vertex_normals_with(soup, &vf).normals;
-        let faces = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
-        (normals, faces)
+        let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
+        let tree = Bvh::from_triangles(&soup.positions, &faces);
+        (normals, faces, tree)
     }
 
     /// The proof against a proved configuration tests the pairs with a changed face: it
@@ -724,7 +731,7 @@ mod proof_tests {
     #[test]
     fn proof_against_a_proved_configuration_finds_what_changed() {
         let sphere = generate::icosphere(2, 1.0);
-        let (normals, faces) = prepared(&sphere);
+        let (normals, faces, tree) = prepared(&sphere);
         let n = sphere.num_vertices();
         let eps = vec![0.02; n];
         let base = prove_and_repair(
@@ -733,6 +740,7 @@ mod proof_tests {
             &faces,
             (eps.clone(), eps.clone()),
             (false, None),
+            &tree,
             0,
         );
         assert!(base.proof.contacts.is_empty());
@@ -742,6 +750,7 @@ mod proof_tests {
             &faces,
             (eps.clone(), eps.clone()),
             (true, Some(&base)),
+            &tree,
             0,
         );
         assert!(same.proof.contacts.is_empty());
@@ -755,6 +764,7 @@ mod proof_tests {
                 &faces,
                 (pushed.clone(), eps.clone()),
                 known,
+                &tree,
                 0,
             );
             assert!(
@@ -779,7 +789,7 @@ mod proof_tests {
         let mut soup_faces = a.faces.clone();
         soup_faces.extend(a.faces.iter().map(|f| f.map(|v| VertexId(v.0 + shift))));
         let soup = TriangleSoup::new(positions, soup_faces);
-        let (normals, faces) = prepared(&soup);
+        let (normals, faces, tree) = prepared(&soup);
         let eps = vec![0.01; soup.num_vertices()];
         let input_pairs = |input_free: bool| {
             prove_and_repair(
@@ -788,6 +798,7 @@ mod proof_tests {
                 &faces,
                 (eps.clone(), eps.clone()),
                 (input_free, None),
+                &tree,
                 0,
             )
             .proof

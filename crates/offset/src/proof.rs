@@ -89,18 +89,25 @@ pub(crate) struct Known<'a> {
 ///
 /// `known` says which pairs need no test because their answer is already known to be
 /// "apart" (see [`Known`]); the faces of the one soup are input `0..nf`, outer `nf..2nf`,
-/// inner `2nf..3nf`.
+/// inner `2nf..3nf`. `input_tree` is a tree over the input faces' boxes (item = face).
 ///
-/// Also returns the tree it built over the boxes of those faces (item = face), which the
-/// tube stage reuses ([`crate::tubes`]).
+/// Candidates: one tree per surface, and the pairs within the outer, within the inner, and
+/// between any two of the three (within the input only when it is not known free); the same
+/// pairs as one tree over all three would give. `faces_intersect` decides each (its f64
+/// pre-tests, then the exact test).
+///
+/// Also returns one tree over all those faces (item = face: [`Bvh::join`] of the three),
+/// which the tube stage reuses ([`crate::tubes`]).
 pub(crate) fn prove_envelopes(
     input: &[DVec3],
     envelopes: [(&[DVec3], &[f64]); 2],
     faces: &[[u32; 3]],
+    input_tree: &Bvh,
     known: &Known<'_>,
 ) -> (Vec<Contact>, Bvh) {
     let n = input.len() as u32;
     let nf = faces.len() as u32;
+    debug_assert_eq!(input_tree.len(), faces.len());
     let mut positions = Vec::with_capacity(3 * input.len());
     positions.extend_from_slice(input);
     let mut all = Vec::with_capacity(3 * faces.len());
@@ -130,18 +137,40 @@ pub(crate) fn prove_envelopes(
             .unchanged
             .is_some_and(|u| f < nf || u[(f / nf - 1) as usize][(f % nf) as usize])
     };
-    let skip =
-        |i: u32, j: u32| (settled(i) && settled(j)) || (known.input_free && i < nf && j < nf);
-    let tree = Bvh::from_triangles(&positions, &all);
-    let contacts = tree
-        .self_pairs_where(|i, j| {
-            !skip(i, j) && faces_intersect(&positions, all[i as usize], all[j as usize])
-        })
+    // Global face ids `i`, `j` of two different faces.
+    let meet = |i: u32, j: u32| {
+        !(settled(i) && settled(j)) && faces_intersect(&positions, all[i as usize], all[j as usize])
+    };
+    let (outer_tree, inner_tree) = rayon::join(
+        || Bvh::from_triangles(&positions, &all[nf as usize..2 * nf as usize]),
+        || Bvh::from_triangles(&positions, &all[2 * nf as usize..]),
+    );
+    let trees = [(input_tree, 0), (&outer_tree, nf), (&inner_tree, 2 * nf)];
+    let mut pairs = Vec::new();
+    for (a, &(ta, oa)) in trees.iter().enumerate() {
+        if a > 0 || !known.input_free {
+            pairs.extend(
+                ta.self_pairs_where(|i, j| meet(i + oa, j + oa))
+                    .into_iter()
+                    .map(|(i, j)| (i + oa, j + oa)),
+            );
+        }
+        for &(tb, ob) in &trees[a + 1..] {
+            pairs.extend(
+                ta.pairs_with_where(tb, |i, j| meet(i + oa, j + ob))
+                    .into_iter()
+                    .map(|(i, j)| (i + oa, j + ob)),
+            );
+        }
+    }
+    pairs.sort_unstable();
+    let contacts = pairs
         .into_iter()
         .map(|(a, b)| Contact {
             a: which(a),
             b: which(b),
         })
         .collect();
+    let tree = Bvh::join(input_tree.clone(), Bvh::join(outer_tree, inner_tree));
     (contacts, tree)
 }

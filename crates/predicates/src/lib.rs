@@ -20,6 +20,7 @@
 //! answers. NaN/infinite inputs panic.
 #![forbid(unsafe_code)]
 
+pub mod apart;
 pub mod arith;
 pub mod bvh;
 pub mod generic;
@@ -237,11 +238,29 @@ pub fn indexed_triangles_intersect(
 }
 
 /// True when mesh faces `f` and `g` intersect, adjacency-aware; see
-/// [`indexed_triangles_intersect`].
+/// [`indexed_triangles_intersect`]. When the six points are in range (so that no f64
+/// product overflows), the f64 pre-tests of [`apart`] run first: they only ever answer
+/// "apart" when the exact test would. The exact test decides the rest.
+///
+/// ```
+/// use envelope_predicates::faces_intersect;
+/// use glam::DVec3;
+/// let pos = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.2, 0.2, 1.0)];
+/// assert!(!faces_intersect(&pos, [0, 1, 2], [2, 1, 3])); // flat, sharing an edge
+/// assert!(!faces_intersect(&pos, [0, 1, 2], [0, 4, 1])); // folded up, sharing an edge
+/// assert!(faces_intersect(&pos, [0, 1, 2], [0, 1, 2])); // the same face twice
+/// ```
 #[must_use]
 pub fn faces_intersect(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> bool {
     let corners = |h: [u32; 3]| h.map(|i| positions[i as usize]);
-    indexed_triangles_intersect(corners(f), f, corners(g), g)
+    let (t1, t2) = (corners(f), corners(g));
+    let (fs, gs) = (f.map(|x| g.contains(&x)), g.map(|x| f.contains(&x)));
+    if in_range([t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]])
+        && apart::surely_apart(&apart::Planar::new(t1), fs, &apart::Planar::new(t2), gs)
+    {
+        return false;
+    }
+    indexed_triangles_intersect(t1, f, t2, g)
 }
 
 /// All pairs of intersecting faces, `(i, j)` with `i < j`, sorted.

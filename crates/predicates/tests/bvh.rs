@@ -88,6 +88,47 @@ fn queries_match_brute_force() {
     }
 }
 
+/// `Bvh::join` answers like one tree built over the concatenated boxes (empty sides too).
+#[test]
+fn joined_trees_match_one_tree() {
+    let mut g = Lcg(11);
+    for (na, nb) in [(0, 0), (0, 7), (9, 0), (1, 1), (40, 300), (2000, 1500)] {
+        let (a, b) = (random_boxes(&mut g, na), random_boxes(&mut g, nb));
+        let all: Vec<Aabb> = a.iter().chain(&b).copied().collect();
+        let one = Bvh::new(&all);
+        let joined = Bvh::join(Bvh::new(&a), Bvh::new(&b));
+        assert_eq!(joined.len(), na + nb);
+        assert_eq!(joined.self_pairs(), one.self_pairs(), "{na} + {nb}");
+        for _ in 0..20 {
+            let p = g.point(10.0);
+            let q = Aabb::from_points(&[p, p + g.point(2.0)]);
+            assert_eq!(joined.overlapping(&q), one.overlapping(&q));
+        }
+        let other = Bvh::new(&random_boxes(&mut g, 60));
+        assert_eq!(joined.pairs_with(&other), one.pairs_with(&other));
+        assert_eq!(other.pairs_with(&joined), other.pairs_with(&one));
+        if let Some(root) = joined.root() {
+            let mut stack = vec![root];
+            let mut seen = Vec::new();
+            while let Some(nd) = stack.pop() {
+                let bx = joined.bounds(nd);
+                match joined.kind(nd) {
+                    NodeKind::Leaf(items) => {
+                        for &i in items {
+                            let bi = all[i as usize];
+                            assert!(bx.contains(bi.min) && bx.contains(bi.max));
+                            seen.push(i);
+                        }
+                    }
+                    NodeKind::Interior(l, r) => stack.extend([l, r]),
+                }
+            }
+            seen.sort_unstable();
+            assert_eq!(seen, (0..(na + nb) as u32).collect::<Vec<_>>());
+        }
+    }
+}
+
 #[test]
 fn distance_lower_bound_is_a_lower_bound() {
     let mut g = Lcg(9);

@@ -268,5 +268,16 @@ proptest! {
             indexed_triangles_intersect(t1, [0, 1, 2], e, [0, 1, 5]),
             g::adjacent_triangles_intersect::<Exact>(t1, e, envelope_predicates::Shared::Edge([0, 1], [0, 1]))
         );
+        // `faces_intersect` (f64 pre-tests, then exact) on the same three cases, both orders.
+        let pos = [t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]];
+        let cases = [
+            ([3, 4, 5], g::triangles_intersect::<Exact>(t1, t2)),
+            ([0, 4, 5], shared),
+            ([0, 1, 5], g::adjacent_triangles_intersect::<Exact>(t1, e, envelope_predicates::Shared::Edge([0, 1], [0, 1]))),
+        ];
+        for (other, expected) in cases {
+            prop_assert_eq!(envelope_predicates::faces_intersect(&pos, [0, 1, 2], other), expected);
+            prop_assert_eq!(envelope_predicates::faces_intersect(&pos, other, [1, 2, 0]), expected);
+        }
     }
 }
