@@ -397,7 +397,8 @@ impl Proved {
 ///
 /// `known`: whether the input is known free of self-intersections, and a configuration over
 /// the same input that was proved without any contact; the first proof then tests only the
-/// pairs with a face that differs from it (see [`proof::Known`]); repair rounds test all.
+/// pairs with a face that differs from it (see [`proof::Known`]). Each repair round tests
+/// only the pairs with a face it moved, and keeps the other answers of the round before.
 fn prove_and_repair(
     soup: &TriangleSoup,
     normals: &[DVec3],
@@ -436,10 +437,7 @@ fn prove_and_repair(
     let first = proof::Known {
         input_free,
         unchanged: base_unchanged.as_ref().map(|[o, i]| [&o[..], &i[..]]),
-    };
-    let every = proof::Known {
-        input_free,
-        unchanged: None,
+        previous: &[],
     };
     let (contacts, mut tree) = proof::prove_envelopes(
         &soup.positions,
@@ -468,6 +466,7 @@ fn prove_and_repair(
                 }
             }
         }
+        let (before_plus, before_minus) = (eps_plus.clone(), eps_minus.clone());
         let mut changed = false;
         for v in 0..soup.num_vertices() {
             for (h, eps) in [
@@ -484,15 +483,27 @@ fn prove_and_repair(
         if !changed {
             break; // only input-input contacts, or vertices already at zero
         }
-        outer = place(&eps_plus, 1.0);
-        inner = place(&eps_minus, -1.0);
+        let (new_outer, new_inner) = (place(&eps_plus, 1.0), place(&eps_minus, -1.0));
+        // Only the faces the halving moved are tested again: the other pairs are those of
+        // the round before, with its answers (see `proof::Known`).
+        let moved = [
+            unchanged(&new_outer, &eps_plus, &outer, &before_plus),
+            unchanged(&new_inner, &eps_minus, &inner, &before_minus),
+        ];
+        (outer, inner) = (new_outer, new_inner);
         proof.repair_rounds += 1;
+        let previous = std::mem::take(&mut proof.contacts);
+        let since = proof::Known {
+            input_free,
+            unchanged: Some([&moved[0], &moved[1]]),
+            previous: &previous,
+        };
         (proof.contacts, tree) = proof::prove_envelopes(
             &soup.positions,
             [(&outer, &eps_plus), (&inner, &eps_minus)],
             faces,
             input_tree,
-            &every,
+            &since,
         );
     }
     proof.repaired_vertices = repaired.iter().filter(|&&r| r).count();

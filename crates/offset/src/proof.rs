@@ -10,7 +10,7 @@
 //! "with each other" (outer-input, inner-input, outer-inner) at once. Tubes are proved
 //! separately (see [`crate::tubes`]).
 use envelope_mesh::FaceId;
-use envelope_predicates::bvh::Bvh;
+use envelope_predicates::bvh::{Aabb, Bvh};
 use envelope_predicates::faces_intersect;
 use glam::DVec3;
 
@@ -66,17 +66,20 @@ impl Proof {
 }
 
 /// What is already known about the pairs [`prove_envelopes`] would test; each item only
-/// skips pairs whose answer ("apart") is known, so the contacts found are the same.
+/// stands in for tests whose answers are known, so the contacts found are the same.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Known<'a> {
     /// The input is proved free of self-intersections (the caller checked it, see
     /// [`crate::EnvelopeOptions::input_free_of_intersections`]): input-input pairs are skipped.
     pub input_free: bool,
     /// `unchanged[k][f]` (`k` = 0 outer, 1 inner): envelope face `f` has the positions and
-    /// vertex indices it had in a configuration that was proved (no contact at all). A pair
-    /// of unchanged faces (the input's never change) is then the same pair as in that proof,
-    /// with the same answer, and is skipped.
+    /// vertex indices it had in an earlier configuration whose proof found the contacts
+    /// `previous`. A pair of unchanged faces (the input's never change) is then the same
+    /// pair as in that proof, with the same answer: a contact when it is in `previous`, else
+    /// apart. Only the pairs with a changed face are tested.
     pub unchanged: Option<[&'a [bool]; 2]>,
+    /// The contacts of that earlier configuration (see `unchanged`).
+    pub previous: &'a [Contact],
 }
 
 /// Exact contacts among input, outer and inner (same connectivity `faces`), each envelope
@@ -131,35 +134,58 @@ pub(crate) fn prove_envelopes(
         };
         (s, FaceId(f % nf))
     };
-    // Same as in the proved configuration (the input's faces always are).
-    let settled = |f: u32| {
-        known
-            .unchanged
-            .is_some_and(|u| f < nf || u[(f / nf - 1) as usize][(f % nf) as usize])
-    };
     // Global face ids `i`, `j` of two different faces.
-    let meet = |i: u32, j: u32| {
-        !(settled(i) && settled(j)) && faces_intersect(&positions, all[i as usize], all[j as usize])
-    };
+    let meet = |i: u32, j: u32| faces_intersect(&positions, all[i as usize], all[j as usize]);
     let (outer_tree, inner_tree) = rayon::join(
         || Bvh::from_triangles(&positions, &all[nf as usize..2 * nf as usize]),
         || Bvh::from_triangles(&positions, &all[2 * nf as usize..]),
     );
     let trees = [(input_tree, 0), (&outer_tree, nf), (&inner_tree, 2 * nf)];
     let mut pairs = Vec::new();
-    for (a, &(ta, oa)) in trees.iter().enumerate() {
-        if a > 0 || !known.input_free {
-            pairs.extend(
-                ta.self_pairs_where(|i, j| meet(i + oa, j + oa))
-                    .into_iter()
-                    .map(|(i, j)| (i + oa, j + oa)),
-            );
+    match known.unchanged {
+        None => {
+            for (a, &(ta, oa)) in trees.iter().enumerate() {
+                if a > 0 || !known.input_free {
+                    let found = ta.self_pairs_where(|i, j| meet(i + oa, j + oa));
+                    pairs.extend(found.into_iter().map(|(i, j)| (i + oa, j + oa)));
+                }
+                for &(tb, ob) in &trees[a + 1..] {
+                    let found = ta.pairs_with_where(tb, |i, j| meet(i + oa, j + ob));
+                    pairs.extend(found.into_iter().map(|(i, j)| (i + oa, j + ob)));
+                }
+            }
         }
-        for &(tb, ob) in &trees[a + 1..] {
+        Some(u) => {
+            // Only the changed faces, each against every face (a pair of two changed faces
+            // once: from the lower id); the pairs of unchanged faces keep their answers.
+            let is_changed = |f: u32| f >= nf && !u[(f / nf - 1) as usize][(f % nf) as usize];
+            let changed: Vec<u32> = (nf..3 * nf).filter(|&f| is_changed(f)).collect();
+            let boxes: Vec<Aabb> = changed
+                .iter()
+                .map(|&f| Aabb::from_triangle(all[f as usize].map(|v| positions[v as usize])))
+                .collect();
+            let changed_tree = Bvh::new(&boxes);
+            for &(tb, ob) in &trees {
+                let found = changed_tree.pairs_with_where(tb, |k, x| {
+                    let (c, x) = (changed[k as usize], x + ob);
+                    c != x && (!is_changed(x) || c < x) && meet(c, x)
+                });
+                pairs.extend(found.into_iter().map(|(k, x)| {
+                    let c = changed[k as usize];
+                    (c.min(x + ob), c.max(x + ob))
+                }));
+            }
+            let global = |(s, f): (Surface, FaceId)| match s {
+                Surface::Input => f.0,
+                Surface::Outer => nf + f.0,
+                _ => 2 * nf + f.0,
+            };
             pairs.extend(
-                ta.pairs_with_where(tb, |i, j| meet(i + oa, j + ob))
-                    .into_iter()
-                    .map(|(i, j)| (i + oa, j + ob)),
+                known
+                    .previous
+                    .iter()
+                    .map(|c| (global(c.a), global(c.b)))
+                    .filter(|&(a, b)| !is_changed(a) && !is_changed(b)),
             );
         }
     }

@@ -52,25 +52,40 @@ impl Planar {
                 continue;
             }
             any = true;
-            let d = q[k] - self.t[0];
-            let v = self.n.dot(d);
-            // Plus an absolute 1e-300 for underflow, as in `projection`.
-            let tol = 6e-14 * self.m12 * d.abs().max_element() + 1e-300;
+            let (v, tol) = self.value(q[k]);
             pos &= v > tol;
             neg &= v < -tol;
         }
         any && (pos || neg)
     }
+
+    /// The f64 orientation of `p` against the plane, and a bound on its error: the exact
+    /// `orient3d(t0, t1, t2, p)` lies within `tol` of `v` (for coordinates whose products
+    /// neither overflow nor underflow below the absolute 1e-300, as in [`projection`]).
+    #[inline]
+    fn value(&self, p: DVec3) -> (f64, f64) {
+        let d = p - self.t[0];
+        (
+            self.n.dot(d),
+            6e-14 * self.m12 * d.abs().max_element() + 1e-300,
+        )
+    }
 }
 
 /// True when the closed triangles certainly meet nowhere except at the vertices they share
-/// (`fs`/`gs` mark, per triangle, the vertices the other one has too): the unshared vertices
-/// of one lie strictly on one side of the other's plane, so the intersection is at most the
-/// shared vertices. A `false` decides nothing.
+/// (`fs`/`gs` mark, per triangle, the vertices the other one has too). Tried in turn: the
+/// unshared vertices of one strictly on one side of the other's plane (the intersection is
+/// then at most the shared vertices); the nine edge-cross-edge separating axes
+/// ([`edge_axes_apart`]); and, for (nearly) coplanar pairs, which neither decides, the
+/// in-plane separating axes and a plane through a shared edge ([`in_plane_apart`]). A
+/// `false` decides nothing.
 #[inline]
 #[must_use]
 pub fn surely_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) -> bool {
-    p1.separates(p2.t, gs) || p2.separates(p1.t, fs) || edge_axes_apart(&p1.t, fs, &p2.t, gs)
+    p1.separates(p2.t, gs)
+        || p2.separates(p1.t, fs)
+        || edge_axes_apart(&p1.t, fs, &p2.t, gs)
+        || in_plane_apart(p1, fs, p2, gs)
 }
 
 /// `L·(p - o)` as an interval that certainly holds the exact value for the f64 points `p`,
@@ -85,6 +100,54 @@ fn projection(l: DVec3, p: DVec3, o: DVec3) -> (f64, f64) {
     (v - tol, v + tol)
 }
 
+/// Whether axis `l` separates the two triangles (see [`edge_axes_apart`]): with no shared
+/// vertex (`shared == 0`), disjoint projection intervals; with one, `origin` (the shared
+/// vertex, which projects to exactly 0) strictly between the unshared vertices of one and
+/// those of the other.
+#[inline]
+fn axis_apart(
+    l: DVec3,
+    (t1, fs): (&[DVec3; 3], [bool; 3]),
+    (t2, gs): (&[DVec3; 3], [bool; 3]),
+    origin: DVec3,
+    shared: usize,
+) -> bool {
+    let (mut lo1, mut hi1, mut lo2, mut hi2) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for k in 0..3 {
+        if !fs[k] {
+            let (lo, hi) = projection(l, t1[k], origin);
+            lo1 = lo1.min(lo);
+            hi1 = hi1.max(hi);
+        }
+        if !gs[k] {
+            let (lo, hi) = projection(l, t2[k], origin);
+            lo2 = lo2.min(lo);
+            hi2 = hi2.max(hi);
+        }
+    }
+    if shared == 0 {
+        hi1 < lo2 || hi2 < lo1
+    } else {
+        (hi1 < 0.0 && lo2 > 0.0) || (hi2 < 0.0 && lo1 > 0.0)
+    }
+}
+
+/// The shared vertex of `t1` when there is exactly one (else `t1[0]`), and how many.
+#[inline]
+fn origin_of(t1: &[DVec3; 3], fs: [bool; 3]) -> (DVec3, usize) {
+    let shared = fs.iter().filter(|&&b| b).count();
+    let origin = match fs.iter().position(|&b| b) {
+        Some(k) => t1[k],
+        None => t1[0],
+    };
+    (origin, shared)
+}
+
 /// The separating-axis test on the nine edge-cross-edge directions (any direction is a
 /// valid axis, so the f64 cross products need no error bound; the projections carry one,
 /// see [`projection`]). With no shared vertex: the projections of the two triangles are
@@ -93,47 +156,85 @@ fn projection(l: DVec3, p: DVec3, o: DVec3) -> (f64, f64) {
 /// combinations) meet at most in `s`. A `false` decides nothing.
 #[must_use]
 pub fn edge_axes_apart(t1: &[DVec3; 3], fs: [bool; 3], t2: &[DVec3; 3], gs: [bool; 3]) -> bool {
-    let shared = fs.iter().filter(|&&b| b).count();
+    let (origin, shared) = origin_of(t1, fs);
     if shared > 1 {
         return false;
     }
-    let origin = match fs.iter().position(|&b| b) {
-        Some(k) => t1[k],
-        None => t1[0],
-    };
     for i in 0..3 {
         let e1 = t1[(i + 1) % 3] - t1[i];
         for j in 0..3 {
             let l = e1.cross(t2[(j + 1) % 3] - t2[j]);
-            let (mut lo1, mut hi1, mut lo2, mut hi2) = (
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-            );
-            for k in 0..3 {
-                if !fs[k] {
-                    let (lo, hi) = projection(l, t1[k], origin);
-                    lo1 = lo1.min(lo);
-                    hi1 = hi1.max(hi);
-                }
-                if !gs[k] {
-                    let (lo, hi) = projection(l, t2[k], origin);
-                    lo2 = lo2.min(lo);
-                    hi2 = hi2.max(hi);
-                }
-            }
-            let apart = if shared == 0 {
-                hi1 < lo2 || hi2 < lo1
-            } else {
-                (hi1 < 0.0 && lo2 > 0.0) || (hi2 < 0.0 && lo1 > 0.0)
-            };
-            if apart {
+            if axis_apart(l, (t1, fs), (t2, gs), origin, shared) {
                 return true;
             }
         }
     }
     false
+}
+
+/// For pairs in (nearly) one plane, where neither plane separates and every edge-cross-edge
+/// axis is (nearly) the common normal. With no shared vertex: the separating axes `n1 × e`
+/// for the six edges `e` of both triangles (`n1` the f64 normal of `t1`; any axis is valid,
+/// see [`edge_axes_apart`]: these are the in-plane edge normals of the 2-D test). With one
+/// shared vertex `s`: the axes `n1 × (u + w)`, `u` and `w` the unit directions from `s` to
+/// an unshared vertex of `t1` and of `t2` (lines through `s` between the two triangles).
+/// With a shared edge `ab`: the unshared vertices `c` of `t1` and `d` of `t2` strictly on
+/// the two sides of the plane through `a`, `b` and the f64 point `e = a + n1 / |n1|·len`
+/// (the plane holds `a` and `b` exactly, whatever `e` is; the sides are decided by the
+/// error-bounded f64 orientation of [`Planar`]), so that `t1` and `t2` lie in the two closed
+/// half-spaces and meet in that plane only, where each is the segment `ab`. A `false`
+/// decides nothing.
+#[must_use]
+pub fn in_plane_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) -> bool {
+    let (t1, t2) = (&p1.t, &p2.t);
+    let (origin, shared) = origin_of(t1, fs);
+    if shared > 2 {
+        return false;
+    }
+    if shared == 2 {
+        let (Some(c), Some(d)) = (fs.iter().position(|&b| !b), gs.iter().position(|&b| !b)) else {
+            return false;
+        };
+        // The shared edge as `t1` orders it (`a` then `b` around `t1`).
+        let (a, b) = (t1[(c + 1) % 3], t1[(c + 2) % 3]);
+        let len = p1.m12.sqrt();
+        if !(len > 0.0 && len.is_finite()) {
+            return false;
+        }
+        let e = a + p1.n * (1.0 / len);
+        let side = Planar::new([a, b, e]);
+        let (vc, tc) = side.value(t1[c]);
+        let (vd, td) = side.value(t2[d]);
+        return (vc > tc && vd < -td) || (vc < -tc && vd > td);
+    }
+    let n1 = p1.n;
+    if shared == 1 {
+        // Lines through the shared vertex between an edge of each (the sum of their unit
+        // directions): an edge's own line has its far vertex on it, never strictly apart.
+        let unit = |p: DVec3| (p - origin).normalize_or_zero();
+        let others = |t: &[DVec3; 3], m: [bool; 3]| {
+            let mut o = [DVec3::ZERO; 2];
+            let mut k = 0;
+            for i in 0..3 {
+                if !m[i] && k < 2 {
+                    o[k] = unit(t[i]);
+                    k += 1;
+                }
+            }
+            o
+        };
+        let (u, w) = (others(t1, fs), others(t2, gs));
+        return u.iter().any(|&a| {
+            w.iter()
+                .any(|&b| axis_apart(n1.cross(a + b), (t1, fs), (t2, gs), origin, shared))
+        });
+    }
+    (0..3).any(|i| {
+        let e1 = t1[(i + 1) % 3] - t1[i];
+        let e2 = t2[(i + 1) % 3] - t2[i];
+        axis_apart(n1.cross(e1), (t1, fs), (t2, gs), origin, shared)
+            || axis_apart(n1.cross(e2), (t1, fs), (t2, gs), origin, shared)
+    })
 }
 
 #[cfg(test)]
@@ -195,40 +296,102 @@ mod tests {
     #[test]
     fn pre_tests_never_claim_apart_for_meeting_triangles() {
         let mut next = xorshift(0x9E37_79B9_7F4A_7C15);
-        let mut claimed = 0;
-        for round in 0..40_000 {
-            let mut point = |grid: bool| {
+        // Claimed apart: per number of shared vertices, and among coplanar pairs.
+        let mut claimed = [0; 3];
+        let mut coplanar_claimed = 0;
+        for round in 0..120_000 {
+            // Grid points, random points, and grid points in the plane z = x + y (coplanar
+            // pairs: touching, overlapping and apart ones).
+            let kind = round % 3;
+            let mut point = || {
                 let mut c = || {
                     let r = next();
-                    if grid {
-                        (r % 5) as f64 - 2.0
-                    } else {
+                    if kind == 1 {
                         (r >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+                    } else {
+                        (r % 5) as f64 - 2.0
                     }
                 };
-                v(c(), c(), c())
+                let (x, y, z) = (c(), c(), c());
+                if kind == 2 {
+                    v(x, y, x + y)
+                } else {
+                    v(x, y, z)
+                }
             };
-            let grid = round % 2 == 0;
-            let t1 = [point(grid), point(grid), point(grid)];
-            let mut t2 = [point(grid), point(grid), point(grid)];
-            let (f, g) = if round % 4 < 2 {
-                ([0, 1, 2], [3, 4, 5])
-            } else {
-                t2[0] = t1[0];
-                ([0, 1, 2], [0, 4, 5])
+            let t1 = [point(), point(), point()];
+            let mut t2 = [point(), point(), point()];
+            let shared = (round / 3) % 3;
+            let (f, g) = match shared {
+                0 => ([0, 1, 2], [3, 4, 5]),
+                1 => {
+                    t2[0] = t1[0];
+                    ([0, 1, 2], [0, 4, 5])
+                }
+                _ => {
+                    // The edge (1, 2) of t1, the other way round in t2 (as in a mesh).
+                    t2[0] = t1[2];
+                    t2[1] = t1[1];
+                    ([0, 1, 2], [2, 1, 5])
+                }
             };
             let fs = f.map(|x| g.contains(&x));
             let gs = g.map(|x| f.contains(&x));
             let (p1, p2) = (Planar::new(t1), Planar::new(t2));
             if surely_apart(&p1, fs, &p2, gs) {
-                claimed += 1;
+                claimed[shared] += 1;
+                if kind == 2 {
+                    coplanar_claimed += 1;
+                }
                 assert!(
                     !tris_intersect(t1, f, t2, g),
-                    "claimed apart but meeting: {t1:?} {t2:?}"
+                    "claimed apart but meeting: {t1:?} {f:?} {t2:?} {g:?}"
                 );
             }
         }
-        assert!(claimed > 1000, "{claimed}");
+        assert!(claimed.iter().all(|&c| c > 1000), "{claimed:?}");
+        assert!(coplanar_claimed > 1000, "{coplanar_claimed}");
+    }
+
+    /// Coplanar pairs that only the in-plane test decides: two faces of a flat strip sharing
+    /// an edge, sharing a vertex, and sharing none.
+    #[test]
+    fn flat_neighbours_are_apart_in_plane() {
+        let p = |x: f64, y: f64| v(x, y, 0.5 * x - 0.25 * y + 1.0);
+        let (a, b, c, d, e) = (
+            p(0.0, 0.0),
+            p(1.0, 0.0),
+            p(0.0, 1.0),
+            p(1.0, 1.0),
+            p(2.0, 1.0),
+        );
+        let none = [false; 3];
+        let cases = [
+            (
+                [a, b, c],
+                [false, true, true],
+                [b, d, c],
+                [true, false, true],
+            ),
+            (
+                [a, b, c],
+                [false, true, false],
+                [b, e, d],
+                [true, false, false],
+            ),
+            ([a, b, c], none, [p(1.5, 0.0), e, d], none),
+        ];
+        for (t1, fs, t2, gs) in cases {
+            let (p1, p2) = (Planar::new(t1), Planar::new(t2));
+            assert!(!p1.separates(t2, gs) && !p2.separates(t1, fs));
+            assert!(surely_apart(&p1, fs, &p2, gs), "{t1:?} {t2:?}");
+        }
+        // Overlapping in the plane: never apart.
+        let (t1, t2) = ([a, b, c], [b, p(0.25, 0.25), c]); // exactly in the plane
+        let fs = [false, true, true];
+        let gs = [true, false, true];
+        assert!(!surely_apart(&Planar::new(t1), fs, &Planar::new(t2), gs));
+        assert!(tris_intersect(t1, [0, 1, 2], t2, [1, 9, 2]));
     }
 
     fn surely_apart_planes(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool {
