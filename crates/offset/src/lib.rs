@@ -821,4 +821,59 @@ mod proof_tests {
         assert!(input_pairs(false) > 0);
         assert_eq!(input_pairs(true), 0);
     }
+
+    /// Repair rounds test only the faces the halving moved and keep the other answers: the
+    /// contacts after each round are those of a full proof of that round's offsets. On the
+    /// interpenetrating spheres the envelope contacts shrink round by round while the
+    /// input-input ones (never moved) must be kept.
+    #[test]
+    fn repair_rounds_find_what_a_full_proof_finds() {
+        let a = generate::icosphere(2, 1.0);
+        let mut positions = a.positions.clone();
+        let shift = positions.len() as u32;
+        positions.extend(a.positions.iter().map(|&p| p + DVec3::new(1.7, 0.1, 0.05)));
+        let mut soup_faces = a.faces.clone();
+        soup_faces.extend(a.faces.iter().map(|f| f.map(|v| VertexId(v.0 + shift))));
+        let soup = TriangleSoup::new(positions, soup_faces);
+        let (normals, faces, tree) = prepared(&soup);
+        let eps = vec![0.2; soup.num_vertices()];
+        let mut rounds_with_envelope_contacts = 0;
+        for rounds in 0..4 {
+            let repaired = prove_and_repair(
+                &soup,
+                &normals,
+                &faces,
+                (eps.clone(), eps.clone()),
+                (false, None),
+                &tree,
+                rounds,
+            );
+            let full = prove_and_repair(
+                &soup,
+                &normals,
+                &faces,
+                (repaired.eps_plus.clone(), repaired.eps_minus.clone()),
+                (false, None),
+                &tree,
+                0,
+            );
+            assert_eq!(
+                repaired.proof.contacts, full.proof.contacts,
+                "after {rounds} rounds"
+            );
+            assert!(
+                full.proof
+                    .contacts
+                    .iter()
+                    .any(|c| c.a.0 == Surface::Input && c.b.0 == Surface::Input)
+            );
+            if full.proof.contacts.iter().any(|c| c.b.0 != Surface::Input) {
+                rounds_with_envelope_contacts += 1;
+            }
+        }
+        assert!(
+            rounds_with_envelope_contacts >= 2,
+            "{rounds_with_envelope_contacts}"
+        );
+    }
 }
