@@ -213,7 +213,12 @@ fn shared_indices(f: [u32; 3], g: [u32; 3]) -> Option<Option<Shared>> {
 /// True when triangles `t1` and `t2`, whose corners carry the vertex indices `f` and `g`,
 /// intersect, adjacency-aware: triangles sharing indices intersect only if they meet away from
 /// the shared vertex/edge; the same three indices twice always count as intersecting (a
-/// duplicated face). Indices only name corners here (they may be aliases of the positions).
+/// duplicated face). Indices only name corners here (they may be aliases of the positions),
+/// but corners with one index must be one point.
+///
+/// When the six points are in range (so that no f64 product overflows), the f64 pre-tests
+/// of [`apart`] run first: they only ever answer "apart" when the exact test would. The
+/// exact test decides the rest.
 ///
 /// ```
 /// use envelope_predicates::indexed_triangles_intersect;
@@ -230,17 +235,31 @@ pub fn indexed_triangles_intersect(
     t2: [DVec3; 3],
     g: [u32; 3],
 ) -> bool {
-    match shared_indices(f, g) {
-        None => triangles_intersect(t1, t2),
-        Some(Some(shared)) => adjacent_triangles_intersect(t1, t2, shared),
-        Some(None) => true,
+    let shared = shared_indices(f, g);
+    if let Some(None) = shared {
+        return true;
+    }
+    let six = [t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]];
+    let fast = in_range(six);
+    if fast {
+        let (fs, gs) = (f.map(|x| g.contains(&x)), g.map(|x| f.contains(&x)));
+        if apart::surely_apart(&apart::Planar::new(t1), fs, &apart::Planar::new(t2), gs) {
+            return false;
+        }
+    }
+    match (shared, fast) {
+        (None, true) => generic::triangles_intersect::<kernel::InRange>(t1, t2),
+        (None, false) => generic::triangles_intersect::<Filtered>(t1, t2),
+        (Some(Some(s)), true) => {
+            generic::adjacent_triangles_intersect::<kernel::InRange>(t1, t2, s)
+        }
+        (Some(Some(s)), false) => generic::adjacent_triangles_intersect::<Filtered>(t1, t2, s),
+        (Some(None), _) => true,
     }
 }
 
 /// True when mesh faces `f` and `g` intersect, adjacency-aware; see
-/// [`indexed_triangles_intersect`]. When the six points are in range (so that no f64
-/// product overflows), the f64 pre-tests of [`apart`] run first: they only ever answer
-/// "apart" when the exact test would. The exact test decides the rest.
+/// [`indexed_triangles_intersect`] (with its f64 pre-tests).
 ///
 /// ```
 /// use envelope_predicates::faces_intersect;
@@ -253,14 +272,7 @@ pub fn indexed_triangles_intersect(
 #[must_use]
 pub fn faces_intersect(positions: &[DVec3], f: [u32; 3], g: [u32; 3]) -> bool {
     let corners = |h: [u32; 3]| h.map(|i| positions[i as usize]);
-    let (t1, t2) = (corners(f), corners(g));
-    let (fs, gs) = (f.map(|x| g.contains(&x)), g.map(|x| f.contains(&x)));
-    if in_range([t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]])
-        && apart::surely_apart(&apart::Planar::new(t1), fs, &apart::Planar::new(t2), gs)
-    {
-        return false;
-    }
-    indexed_triangles_intersect(t1, f, t2, g)
+    indexed_triangles_intersect(corners(f), f, corners(g), g)
 }
 
 /// All pairs of intersecting faces, `(i, j)` with `i < j`, sorted.
