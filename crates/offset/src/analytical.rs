@@ -42,35 +42,42 @@ pub(crate) fn analytical_eps(
         .map(|f| {
             let v = f.map(|i| soup.positions[i as usize]);
             let t_box = Aabb::from_triangle(v);
-            let mut out = [f64::INFINITY; 2];
-            for (k, side) in [1.0, -1.0].into_iter().enumerate() {
-                let d = f.map(|i| normals[i as usize] * (2.0 * side * requested[i as usize]));
+            // Both sides' prisms, asked of the tree in one query over the union of their
+            // boxes; each side then takes the triangles whose boxes meet its own box (the
+            // same triangles, in the same order, as a query of its own would give).
+            let side = |s: f64| {
+                let d = f.map(|i| normals[i as usize] * (2.0 * s * requested[i as usize]));
                 let top = [v[0] + d[0], v[1] + d[1], v[2] + d[2]];
                 let b = t_box.union(&Aabb::from_triangle(top));
                 let scale = b.min.abs().max(b.max.abs()).max_element();
-                let b = b.inflated(scale * 1e-12);
-                let mut delta = f64::INFINITY;
-                bvh.for_each_overlapping(&b, |g| {
-                    let gf = faces[g as usize];
-                    if gf.iter().any(|x| f.contains(x)) {
-                        return;
+                (d, top, b.inflated(scale * 1e-12), scale)
+            };
+            let sides = [side(1.0), side(-1.0)];
+            let mut delta = [f64::INFINITY; 2];
+            bvh.for_each_overlapping(&sides[0].2.union(&sides[1].2), |g| {
+                let gf = faces[g as usize];
+                if gf.iter().any(|x| f.contains(x)) {
+                    return;
+                }
+                let tg = gf.map(|i| soup.positions[i as usize]);
+                let g_box = Aabb::from_triangle(tg);
+                let g_scale = g_box.min.abs().max(g_box.max.abs()).max_element();
+                for (k, (d, top, b, scale)) in sides.iter().enumerate() {
+                    if !g_box.overlaps(b) {
+                        continue;
                     }
-                    let tg = gf.map(|i| soup.positions[i as usize]);
-                    // Two shortcuts that skip only triangles whose candidate points could not
-                    // lower `delta` (see `PRUNE_TOLERANCE`): every point of `tg` is farther
-                    // from `t` than the gap between their boxes, and the prism lies in the
-                    // convex hull of its six corners.
-                    let g_box = Aabb::from_triangle(tg);
-                    let g_scale = g_box.min.abs().max(g_box.max.abs()).max_element();
+                    // Two shortcuts that skip only triangles whose candidate points could
+                    // not lower `delta` (see `PRUNE_TOLERANCE`): every point of `tg` is
+                    // farther from `t` than the gap between their boxes, and the prism lies
+                    // in the convex hull of its six corners.
                     let tol = PRUNE_TOLERANCE * scale.max(g_scale);
-                    if box_gap(&t_box, &g_box) > delta + tol || hull_misses(v, top, tg, tol) {
-                        return;
+                    if box_gap(&t_box, &g_box) > delta[k] + tol || hull_misses(v, *top, tg, tol) {
+                        continue;
                     }
-                    delta = delta.min(closest_in_prism(v, d, tg));
-                });
-                out[k] = delta / 2.0;
-            }
-            out
+                    delta[k] = delta[k].min(closest_in_prism(v, *d, tg));
+                }
+            });
+            delta.map(|x| x / 2.0)
         })
         .collect();
     let mut plus = requested.to_vec();
