@@ -479,8 +479,9 @@ pub fn simplify_with(
     progress.stage(Stage::Envelopes);
     // The input check and the envelopes run side by side (much of the check is sequential);
     // the check's verdict comes first, whatever the envelopes made of a refused input.
-    let (problems, (env, env_seconds)) = rayon::join(
-        || input_problems(soup),
+    let ((problems, topo_in), (env, env_seconds)) = rayon::join(
+        // The topology the driver needs (border walls, the report) beside the check too.
+        || (input_problems(soup), analyze(soup)),
         || {
             let t_env = Instant::now();
             let env = options
@@ -505,7 +506,6 @@ pub fn simplify_with(
         return Err(DriverError::Unacceptable(problems));
     }
     let env = env?;
-    let topo_in = analyze(soup);
     let fractions = env.achieved_fractions();
     let envelope = EnvelopeReport {
         method: match options.method {
@@ -548,9 +548,13 @@ pub fn simplify_with(
         .filter(|&v| used[v] && (env.eps_plus[v] == 0.0 || env.eps_minus[v] == 0.0))
         .map(|v| soup.positions[v])
         .collect();
-    let barriers = Barriers::with_walls(vec![env.outer, env.inner], tubes, walls)?.with_pins(&pins);
-
-    let mut mesh = HalfEdgeMesh::from_soup(soup)?;
+    // The barriers' tree and the mesh the simplifier edits are independent: built side by side.
+    let (barriers, mesh) = rayon::join(
+        || Barriers::with_walls(vec![env.outer, env.inner], tubes, walls),
+        || HalfEdgeMesh::from_soup(soup),
+    );
+    let barriers = barriers?.with_pins(&pins);
+    let mut mesh = mesh?;
     progress.stage(Stage::Simplify {
         vertices: mesh.num_vertices(),
     });
