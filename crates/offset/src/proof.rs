@@ -11,8 +11,9 @@
 //! separately (see [`crate::tubes`]).
 use envelope_mesh::FaceId;
 use envelope_predicates::bvh::{Aabb, Bvh};
-use envelope_predicates::faces_intersect;
+use envelope_predicates::{PreparedFace, prepared_faces_intersect};
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// Which surface a face belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -96,8 +97,8 @@ pub(crate) struct Known<'a> {
 ///
 /// Candidates: one tree per surface, and the pairs within the outer, within the inner, and
 /// between any two of the three (within the input only when it is not known free); the same
-/// pairs as one tree over all three would give. `faces_intersect` decides each (its f64
-/// pre-tests, then the exact test).
+/// pairs as one tree over all three would give. `prepared_faces_intersect` decides each (the
+/// f64 pre-tests on each face's plane, computed once, then the exact test).
 ///
 /// Also returns one tree over all those faces (item = face: [`Bvh::join`] of the three),
 /// which the tube stage reuses ([`crate::tubes`]).
@@ -134,8 +135,14 @@ pub(crate) fn prove_envelopes(
         };
         (s, FaceId(f % nf))
     };
+    // Each face's plane once (each meets about a dozen candidates), in parallel.
+    let prepared: Vec<PreparedFace> = all
+        .par_iter()
+        .map(|&f| PreparedFace::new(&positions, f))
+        .collect();
     // Global face ids `i`, `j` of two different faces.
-    let meet = |i: u32, j: u32| faces_intersect(&positions, all[i as usize], all[j as usize]);
+    let meet =
+        |i: u32, j: u32| prepared_faces_intersect(&prepared[i as usize], &prepared[j as usize]);
     let (outer_tree, inner_tree) = rayon::join(
         || Bvh::from_triangles(&positions, &all[nf as usize..2 * nf as usize]),
         || Bvh::from_triangles(&positions, &all[2 * nf as usize..]),

@@ -55,8 +55,11 @@ impl Planar {
             let (v, tol) = self.value(q[k]);
             pos &= v > tol;
             neg &= v < -tol;
+            if !(pos || neg) {
+                return false;
+            }
         }
-        any && (pos || neg)
+        any
     }
 
     /// The f64 orientation of `p` against the plane, and a bound on its error: the exact

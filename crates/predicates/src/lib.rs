@@ -216,9 +216,9 @@ fn shared_indices(f: [u32; 3], g: [u32; 3]) -> Option<Option<Shared>> {
 /// duplicated face). Indices only name corners here (they may be aliases of the positions),
 /// but corners with one index must be one point.
 ///
-/// When the six points are in range (so that no f64 product overflows), the f64 pre-tests
-/// of [`apart`] run first: they only ever answer "apart" when the exact test would. The
-/// exact test decides the rest.
+/// When no coordinate exceeds [`MAX_ALLOWED_MAGNITUDE`] (so that no f64 product
+/// overflows), the f64 pre-tests of [`apart`] run first: they only ever answer "apart" when
+/// the exact test would. The exact test decides the rest.
 ///
 /// ```
 /// use envelope_predicates::indexed_triangles_intersect;
@@ -240,13 +240,32 @@ pub fn indexed_triangles_intersect(
         return true;
     }
     let six = [t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]];
-    let fast = in_range(six);
-    if fast {
+    // The pre-tests need only that no f64 product overflows (their error bounds carry an
+    // absolute term for underflow): a bound on the magnitudes, cheaper than the full range
+    // check, which only the exact path needs.
+    let largest = six.iter().fold(0.0f64, |m, p| m.max(p.abs().max_element()));
+    if largest <= MAX_ALLOWED_MAGNITUDE {
         let (fs, gs) = (f.map(|x| g.contains(&x)), g.map(|x| f.contains(&x)));
-        if apart::surely_apart(&apart::Planar::new(t1), fs, &apart::Planar::new(t2), gs) {
+        // `apart::surely_apart`, with the second plane made only when the first does not
+        // separate (most pairs of neighbouring faces are decided by one of the two).
+        let p1 = apart::Planar::new(t1);
+        if p1.separates(t2, gs) {
+            return false;
+        }
+        let p2 = apart::Planar::new(t2);
+        if p2.separates(t1, fs)
+            || apart::edge_axes_apart(&t1, fs, &t2, gs)
+            || apart::in_plane_apart(&p1, fs, &p2, gs)
+        {
             return false;
         }
     }
+    exact_indexed(t1, t2, shared)
+}
+
+/// The exact adjacency-aware test (no pre-test), `shared` from [`shared_indices`].
+fn exact_indexed(t1: [DVec3; 3], t2: [DVec3; 3], shared: Option<Option<Shared>>) -> bool {
+    let fast = in_range([t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]]);
     match (shared, fast) {
         (None, true) => generic::triangles_intersect::<kernel::InRange>(t1, t2),
         (None, false) => generic::triangles_intersect::<Filtered>(t1, t2),
@@ -256,6 +275,63 @@ pub fn indexed_triangles_intersect(
         (Some(Some(s)), false) => generic::adjacent_triangles_intersect::<Filtered>(t1, t2, s),
         (Some(None), _) => true,
     }
+}
+
+/// A mesh face made ready for many [`prepared_faces_intersect`] tests: its vertex indices,
+/// corners and f64 plane, and whether its coordinates allow the pre-tests. Worth it when each
+/// face meets several others (the envelope proof: about a dozen candidates per face).
+#[derive(Clone, Copy, Debug)]
+pub struct PreparedFace {
+    ids: [u32; 3],
+    plane: apart::Planar,
+    /// No coordinate above [`MAX_ALLOWED_MAGNITUDE`] (see [`indexed_triangles_intersect`]).
+    small: bool,
+}
+
+impl PreparedFace {
+    /// Face `f` of `positions`.
+    ///
+    /// ```
+    /// use envelope_predicates::{prepared_faces_intersect, PreparedFace};
+    /// use glam::DVec3;
+    /// let pos = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.2, 0.2, 1.0)];
+    /// let prep = |f| PreparedFace::new(&pos, f);
+    /// assert!(!prepared_faces_intersect(&prep([0, 1, 2]), &prep([2, 1, 3]))); // flat, sharing an edge
+    /// assert!(prepared_faces_intersect(&prep([0, 1, 2]), &prep([0, 1, 2]))); // the same face twice
+    /// ```
+    #[must_use]
+    pub fn new(positions: &[DVec3], f: [u32; 3]) -> Self {
+        let t = f.map(|i| positions[i as usize]);
+        let largest = t.iter().fold(0.0f64, |m, p| m.max(p.abs().max_element()));
+        PreparedFace {
+            ids: f,
+            plane: apart::Planar::new(t),
+            small: largest <= MAX_ALLOWED_MAGNITUDE,
+        }
+    }
+}
+
+/// [`faces_intersect`] on two prepared faces: the same answer (the same pre-tests on the
+/// stored planes, then the same exact test), without recomputing either plane.
+#[must_use]
+pub fn prepared_faces_intersect(a: &PreparedFace, b: &PreparedFace) -> bool {
+    let (f, g) = (a.ids, b.ids);
+    let shared = shared_indices(f, g);
+    if let Some(None) = shared {
+        return true;
+    }
+    let (t1, t2) = (a.plane.t, b.plane.t);
+    if a.small && b.small {
+        let (fs, gs) = (f.map(|x| g.contains(&x)), g.map(|x| f.contains(&x)));
+        if a.plane.separates(t2, gs)
+            || b.plane.separates(t1, fs)
+            || apart::edge_axes_apart(&t1, fs, &t2, gs)
+            || apart::in_plane_apart(&a.plane, fs, &b.plane, gs)
+        {
+            return false;
+        }
+    }
+    exact_indexed(t1, t2, shared)
 }
 
 /// True when mesh faces `f` and `g` intersect, adjacency-aware; see

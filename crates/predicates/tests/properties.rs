@@ -281,3 +281,20 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
+
+    /// `prepared_faces_intersect` gives `faces_intersect`'s answers (which the test above
+    /// ties to the exact kernel), with no, one and two shared vertices, in both orders.
+    #[test]
+    fn prepared_faces_give_the_same_answers((t1, t2) in tri_pair(), s in scale()) {
+        use envelope_predicates::{faces_intersect, prepared_faces_intersect, PreparedFace};
+        let pos: Vec<DVec3> = t1.iter().chain(&t2).map(|&p| p * s).collect();
+        for (f, g) in [([0, 1, 2], [3, 4, 5]), ([0, 1, 2], [0, 4, 5]), ([0, 1, 2], [2, 1, 5]), ([0, 1, 2], [1, 2, 0])] {
+            let (a, b) = (PreparedFace::new(&pos, f), PreparedFace::new(&pos, g));
+            prop_assert_eq!(prepared_faces_intersect(&a, &b), faces_intersect(&pos, f, g));
+            prop_assert_eq!(prepared_faces_intersect(&b, &a), faces_intersect(&pos, g, f));
+        }
+    }
+}

@@ -251,6 +251,17 @@ pub trait Filter: Sync {
     /// Whether the candidate may be placed.
     fn accepts(&self, profile: &CandidateProfile<'_>) -> bool;
 
+    /// A refusal that needs nothing of the approximation: true only when [`Filter::accepts`]
+    /// is false for this candidate (its ids, corners and border edges) whatever
+    /// `profile.approximation` is (mesh, placed, excluded and moved faces). Callers may ask
+    /// it first to skip work: the ear test ([`crate::fill`]) asks it of every ear before
+    /// any approximation test, so that a hole whose ears the barriers alone turn away never
+    /// gathers the mesh faces around it. The default claims nothing.
+    fn refuses_anyway(&self, profile: &CandidateProfile<'_>) -> bool {
+        let _ = profile;
+        false
+    }
+
     /// A hint: the candidates asked about until `run` returns have their corners in the
     /// closed box `region` (the local simplifier gives each hole the box of its vertices). A
     /// filter may prepare for that once; the envelope filter gathers the barrier triangles
@@ -316,6 +327,12 @@ impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
         self.base.accepts(p)
             && !self.barriers.refuses(p.corners, p.border_edges)
             && !p.approximation.intersects(p.triangle, p.corners)
+    }
+
+    /// The base's own such refusal, or the barriers' (which see only the corners and the
+    /// border edges).
+    fn refuses_anyway(&self, p: &CandidateProfile<'_>) -> bool {
+        self.base.refuses_anyway(p) || self.barriers.refuses(p.corners, p.border_edges)
     }
 
     fn within(&self, region: &Aabb, run: &mut dyn FnMut()) {
