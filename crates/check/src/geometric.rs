@@ -3,7 +3,8 @@
 use envelope_mesh::{FaceId, TriangleSoup, VertexId};
 use envelope_predicates::bvh::{Aabb, Bvh};
 use envelope_predicates::{
-    collinear, faces_intersect, point_strictly_inside_segment, triangles_overlap_with_area,
+    PreparedFace, collinear, point_strictly_inside_segment, prepared_faces_intersect,
+    triangles_overlap_with_area,
 };
 use glam::DVec3;
 
@@ -119,9 +120,14 @@ impl PairwiseFindings {
             .map(|&f| soup.faces[f as usize].map(|v| v.0))
             .collect();
         let tree = Bvh::from_triangles(&soup.positions, &faces);
+        // Each face's plane once: a face meets about a dozen candidates.
+        let prepared: Vec<PreparedFace> = faces
+            .iter()
+            .map(|&f| PreparedFace::new(&soup.positions, f))
+            .collect();
         let intersecting: Vec<(u32, u32)> = tree
             .self_pairs_where(|i, j| {
-                faces_intersect(&soup.positions, faces[i as usize], faces[j as usize])
+                prepared_faces_intersect(&prepared[i as usize], &prepared[j as usize])
             })
             .into_iter()
             .map(|(i, j)| (ids[i as usize], ids[j as usize]))
