@@ -221,7 +221,7 @@ impl Bvh {
                 boxes: Vec::new(),
             };
         }
-        let centers: Vec<DVec3> = boxes.iter().map(Aabb::center).collect();
+        let centers: Vec<[f64; 3]> = boxes.iter().map(|b| b.center().to_array()).collect();
         let nodes = build(boxes, &centers, &mut items, 0);
         let ordered = items.iter().map(|&i| boxes[i as usize]).collect();
         Bvh {
@@ -549,14 +549,16 @@ fn cross_rec<F: Fn(u32, u32) -> Option<(u32, u32)> + Sync>(
 
 /// Builds the subtree over `items` (positions `offset..` in the global item order); node 0 of
 /// the returned vector is its root, child links are relative to the vector. Large subtrees are
-/// split in parallel and relocated; small ones are built sequentially in place.
-fn build(boxes: &[Aabb], centers: &[DVec3], items: &mut [u32], offset: u32) -> Vec<Node> {
+/// split in parallel and relocated; small ones are built sequentially in place. A node's box
+/// is the union of its children's (the same box as the union of its items', min and max
+/// being exact).
+fn build(boxes: &[Aabb], centers: &[[f64; 3]], items: &mut [u32], offset: u32) -> Vec<Node> {
     if items.len() <= 16 * PAR_THRESHOLD {
         let mut nodes = Vec::with_capacity(items.len() / 2 + 1);
         build_into(&mut nodes, boxes, centers, items, offset);
         return nodes;
     }
-    let (bounds, mid) = split(boxes, centers, items);
+    let mid = split(centers, items);
     let (li, ri) = items.split_at_mut(mid);
     let (left, right) = rayon::join(
         || build(boxes, centers, li, offset),
@@ -565,7 +567,7 @@ fn build(boxes: &[Aabb], centers: &[DVec3], items: &mut [u32], offset: u32) -> V
     let mut nodes = Vec::with_capacity(1 + left.len() + right.len());
     let (lo, ro) = (1u32, 1 + left.len() as u32);
     nodes.push(Node {
-        bounds,
+        bounds: left[0].bounds.union(&right[0].bounds),
         a: lo,
         b: ro,
         count: (li.len() + ri.len()) as u32,
@@ -591,7 +593,7 @@ fn build(boxes: &[Aabb], centers: &[DVec3], items: &mut [u32], offset: u32) -> V
 fn build_into(
     nodes: &mut Vec<Node>,
     boxes: &[Aabb],
-    centers: &[DVec3],
+    centers: &[[f64; 3]],
     items: &mut [u32],
     offset: u32,
 ) -> u32 {
@@ -610,9 +612,9 @@ fn build_into(
         });
         return me;
     }
-    let (bounds, mid) = split(boxes, centers, items);
+    let mid = split(centers, items);
     nodes.push(Node {
-        bounds,
+        bounds: Aabb::EMPTY,
         a: 0,
         b: 0,
         count: items.len() as u32,
@@ -621,27 +623,29 @@ fn build_into(
     let (li, ri) = items.split_at_mut(mid);
     let l = build_into(nodes, boxes, centers, li, offset);
     let r = build_into(nodes, boxes, centers, ri, offset + mid as u32);
-    nodes[me as usize].a = l;
-    nodes[me as usize].b = r;
+    let bounds = nodes[l as usize].bounds.union(&nodes[r as usize].bounds);
+    let node = &mut nodes[me as usize];
+    node.a = l;
+    node.b = r;
+    node.bounds = bounds;
     me
 }
 
-/// Bounds of the items, and a median partition of them along the widest axis of their centres.
-fn split(boxes: &[Aabb], centers: &[DVec3], items: &mut [u32]) -> (Aabb, usize) {
-    let mut bounds = Aabb::EMPTY;
-    let mut cb = Aabb::EMPTY;
+/// A median partition of the items along the widest axis of their centres; returns the
+/// position of the median.
+fn split(centers: &[[f64; 3]], items: &mut [u32]) -> usize {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for &i in items.iter() {
-        bounds = bounds.union(&boxes[i as usize]);
         let c = centers[i as usize];
-        cb = Aabb {
-            min: cb.min.min(c),
-            max: cb.max.max(c),
-        };
+        for k in 0..3 {
+            lo[k] = lo[k].min(c[k]);
+            hi[k] = hi[k].max(c[k]);
+        }
     }
-    let ext = cb.max - cb.min;
-    let axis = if ext.x >= ext.y && ext.x >= ext.z {
+    let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let axis = if ext[0] >= ext[1] && ext[0] >= ext[2] {
         0
-    } else if ext.y >= ext.z {
+    } else if ext[1] >= ext[2] {
         1
     } else {
         2
@@ -650,5 +654,5 @@ fn split(boxes: &[Aabb], centers: &[DVec3], items: &mut [u32]) -> (Aabb, usize) 
     items.select_nth_unstable_by(mid, |&i, &j| {
         centers[i as usize][axis].total_cmp(&centers[j as usize][axis])
     });
-    (bounds, mid)
+    mid
 }
