@@ -77,6 +77,12 @@ proptest! {
         prop_assert_eq!(g::triangles_intersect::<K>([t1[0], t1[2], t1[1]], [t2[1], t2[0], t2[2]]), r);
         // Intersection iff distance zero.
         prop_assert_eq!(g::cmp_triangle_triangle::<K>(t1, t2, 0.0) == Sign::Zero, r);
+        // Intersection iff an edge of one meets the other (closed triangles: the
+        // intersection, when there is one, has a point on an edge of one of them).
+        let edge_meets = |a: [DVec3; 3], b: [DVec3; 3]| {
+            (0..3).any(|i| g::segment_triangle::<K>(a[i], a[(i + 1) % 3], b).intersects())
+        };
+        prop_assert_eq!(edge_meets(t1, t2) || edge_meets(t2, t1), r);
         let ov = g::triangles_overlap_with_area::<K>(t1, t2);
         prop_assert_eq!(g::triangles_overlap_with_area::<K>(t2, [t1[2], t1[1], t1[0]]), ov);
         prop_assert!(!ov || r);
