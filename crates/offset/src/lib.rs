@@ -789,17 +789,22 @@ mod proof_tests {
         }
     }
 
+    /// One soup of two unit icospheres (`subdivisions`), the second moved by `shift`.
+    fn two_spheres(subdivisions: u32, shift: DVec3) -> TriangleSoup {
+        let a = generate::icosphere(subdivisions, 1.0);
+        let mut positions = a.positions.clone();
+        let n = positions.len() as u32;
+        positions.extend(a.positions.iter().map(|&p| p + shift));
+        let mut faces = a.faces.clone();
+        faces.extend(a.faces.iter().map(|f| f.map(|v| VertexId(v.0 + n))));
+        TriangleSoup::new(positions, faces)
+    }
+
     /// Two interpenetrating spheres in one soup (manifold, oriented, self-intersecting):
     /// input-input contacts are reported unless the caller says the input was checked.
     #[test]
     fn input_pairs_are_tested_unless_known_free() {
-        let a = generate::icosphere(1, 1.0);
-        let mut positions = a.positions.clone();
-        let shift = positions.len() as u32;
-        positions.extend(a.positions.iter().map(|&p| p + DVec3::new(0.9, 0.1, 0.05)));
-        let mut soup_faces = a.faces.clone();
-        soup_faces.extend(a.faces.iter().map(|f| f.map(|v| VertexId(v.0 + shift))));
-        let soup = TriangleSoup::new(positions, soup_faces);
+        let soup = two_spheres(1, DVec3::new(0.9, 0.1, 0.05));
         let (normals, faces, tree) = prepared(&soup);
         let eps = vec![0.01; soup.num_vertices()];
         let input_pairs = |input_free: bool| {
@@ -828,13 +833,7 @@ mod proof_tests {
     /// input-input ones (never moved) must be kept.
     #[test]
     fn repair_rounds_find_what_a_full_proof_finds() {
-        let a = generate::icosphere(2, 1.0);
-        let mut positions = a.positions.clone();
-        let shift = positions.len() as u32;
-        positions.extend(a.positions.iter().map(|&p| p + DVec3::new(1.7, 0.1, 0.05)));
-        let mut soup_faces = a.faces.clone();
-        soup_faces.extend(a.faces.iter().map(|f| f.map(|v| VertexId(v.0 + shift))));
-        let soup = TriangleSoup::new(positions, soup_faces);
+        let soup = two_spheres(2, DVec3::new(1.7, 0.1, 0.05));
         let (normals, faces, tree) = prepared(&soup);
         let eps = vec![0.2; soup.num_vertices()];
         let mut rounds_with_envelope_contacts = 0;

@@ -66,26 +66,31 @@ fn queries_match_brute_force() {
             }
         }
         assert_eq!(bvh.pairs_with(&t2), cross);
-        // Every node box contains its items' boxes.
-        if let Some(root) = bvh.root() {
-            let mut stack = vec![root];
-            let mut seen = 0;
-            while let Some(nd) = stack.pop() {
-                let b = bvh.bounds(nd);
-                match bvh.kind(nd) {
-                    NodeKind::Leaf(items) => {
-                        for &i in items {
-                            let bi = boxes[i as usize];
-                            assert!(b.contains(bi.min) && b.contains(bi.max));
-                            seen += 1;
-                        }
+        assert_items_nest(&bvh, &boxes);
+    }
+}
+
+/// Every node box contains its items' boxes, and every item is in exactly one leaf.
+fn assert_items_nest(tree: &Bvh, boxes: &[Aabb]) {
+    let mut seen = Vec::new();
+    if let Some(root) = tree.root() {
+        let mut stack = vec![root];
+        while let Some(nd) = stack.pop() {
+            let b = tree.bounds(nd);
+            match tree.kind(nd) {
+                NodeKind::Leaf(items) => {
+                    for &i in items {
+                        let bi = boxes[i as usize];
+                        assert!(b.contains(bi.min) && b.contains(bi.max));
+                        seen.push(i);
                     }
-                    NodeKind::Interior(l, r) => stack.extend([l, r]),
                 }
+                NodeKind::Interior(l, r) => stack.extend([l, r]),
             }
-            assert_eq!(seen, n);
         }
     }
+    seen.sort_unstable();
+    assert_eq!(seen, (0..boxes.len() as u32).collect::<Vec<_>>());
 }
 
 /// `Bvh::join` answers like one tree built over the concatenated boxes (empty sides too).
@@ -107,25 +112,7 @@ fn joined_trees_match_one_tree() {
         let other = Bvh::new(&random_boxes(&mut g, 60));
         assert_eq!(joined.pairs_with(&other), one.pairs_with(&other));
         assert_eq!(other.pairs_with(&joined), other.pairs_with(&one));
-        if let Some(root) = joined.root() {
-            let mut stack = vec![root];
-            let mut seen = Vec::new();
-            while let Some(nd) = stack.pop() {
-                let bx = joined.bounds(nd);
-                match joined.kind(nd) {
-                    NodeKind::Leaf(items) => {
-                        for &i in items {
-                            let bi = all[i as usize];
-                            assert!(bx.contains(bi.min) && bx.contains(bi.max));
-                            seen.push(i);
-                        }
-                    }
-                    NodeKind::Interior(l, r) => stack.extend([l, r]),
-                }
-            }
-            seen.sort_unstable();
-            assert_eq!(seen, (0..(na + nb) as u32).collect::<Vec<_>>());
-        }
+        assert_items_nest(&joined, &all);
     }
 }
 
