@@ -30,7 +30,7 @@ mod json;
 
 use std::collections::BTreeMap;
 
-use envelope_mesh::{FaceId, TriangleSoup, VertexId, analyze, degeneracy};
+use envelope_mesh::{FaceId, Topology, TriangleSoup, VertexId, analyze, degeneracy};
 use glam::DVec3;
 
 pub use classes::{DegeneracyClass, Severity};
@@ -191,6 +191,21 @@ impl CheckReport {
 /// the topology counts (see `envelope_mesh::analyze`).
 #[must_use]
 pub fn check(soup: &TriangleSoup, options: &CheckOptions) -> CheckReport {
+    check_with_topology(soup, options).0
+}
+
+/// [`check`], and the soup's topology it computed on the way (`envelope_mesh::analyze`), for
+/// a caller that needs both (the simplify driver: border walls and its report).
+///
+/// ```
+/// use envelope_check::{check_with_topology, CheckOptions};
+/// use envelope_mesh::generate;
+/// let (report, topology) = check_with_topology(&generate::icosphere(1, 1.0), &CheckOptions::default());
+/// assert!(report.acceptable());
+/// assert_eq!(topology.genus, Some(0));
+/// ```
+#[must_use]
+pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (CheckReport, Topology) {
     use DegeneracyClass as C;
     let n = options.max_examples;
     let topology = analyze(soup);
@@ -316,7 +331,7 @@ pub fn check(soup: &TriangleSoup, options: &CheckOptions) -> CheckReport {
         );
     }
 
-    CheckReport {
+    let report = CheckReport {
         vertices: topology.num_vertices,
         faces: topology.num_faces,
         edges: topology.num_edges,
@@ -327,7 +342,8 @@ pub fn check(soup: &TriangleSoup, options: &CheckOptions) -> CheckReport {
         manifold: topology.manifold,
         orientable: topology.orientable,
         degeneracies: d,
-    }
+    };
+    (report, topology)
 }
 
 /// `referenced[v]`: some face names `v` (faces with out-of-range indices are skipped).

@@ -20,8 +20,8 @@
 
 use std::time::Instant;
 
-use envelope_check::{CheckOptions, DegeneracyClass, check};
-use envelope_mesh::{BuildError, HalfEdgeMesh, TriangleSoup, VertexId, analyze};
+use envelope_check::{CheckOptions, DegeneracyClass, check_with_topology};
+use envelope_mesh::{BuildError, HalfEdgeMesh, Topology, TriangleSoup, VertexId, analyze};
 use envelope_offset::{EnvelopeError, EnvelopeOptions, EpsilonField, Method, build_envelopes};
 use envelope_verify::{Certificate, Verdict};
 use glam::DVec3;
@@ -332,17 +332,23 @@ pub fn peak_memory_bytes() -> Option<u64> {
 /// The error-class degeneracies of a soup (empty: acceptable input, section 7.1).
 #[must_use]
 pub fn input_problems(soup: &TriangleSoup) -> Vec<(DegeneracyClass, usize)> {
-    let report = check(
+    input_problems_and_topology(soup).0
+}
+
+/// [`input_problems`] and the soup's topology, which the check computes anyway.
+fn input_problems_and_topology(soup: &TriangleSoup) -> (Vec<(DegeneracyClass, usize)>, Topology) {
+    let (report, topology) = check_with_topology(
         soup,
         &CheckOptions {
             max_examples: 0,
             ..CheckOptions::default()
         },
     );
-    report
+    let problems = report
         .errors()
         .map(|c| (c, report.finding(c).count))
-        .collect()
+        .collect();
+    (problems, topology)
 }
 
 fn quantile(sorted: &[f64], q: f64) -> f64 {
@@ -480,8 +486,8 @@ pub fn simplify_with(
     // The input check and the envelopes run side by side (much of the check is sequential);
     // the check's verdict comes first, whatever the envelopes made of a refused input.
     let ((problems, topo_in), (env, env_seconds)) = rayon::join(
-        // The topology the driver needs (border walls, the report) beside the check too.
-        || (input_problems(soup), analyze(soup)),
+        // The check gives the topology the driver needs too (border walls, the report).
+        || input_problems_and_topology(soup),
         || {
             let t_env = Instant::now();
             let env = options
