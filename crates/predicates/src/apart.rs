@@ -85,8 +85,15 @@ impl Planar {
 #[inline]
 #[must_use]
 pub fn surely_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) -> bool {
-    p1.separates(p2.t, gs)
-        || p2.separates(p1.t, fs)
+    p1.separates(p2.t, gs) || apart_beyond_first_plane(p1, fs, p2, gs)
+}
+
+/// [`surely_apart`] without its first test (`p1`'s plane), for a caller that has made it
+/// already and makes `p2` only when it fails.
+#[inline]
+#[must_use]
+pub fn apart_beyond_first_plane(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) -> bool {
+    p2.separates(p1.t, fs)
         || edge_axes_apart(&p1.t, fs, &p2.t, gs)
         || in_plane_apart(p1, fs, p2, gs)
 }
@@ -249,15 +256,6 @@ mod tests {
         DVec3::new(x, y, z)
     }
 
-    fn xorshift(mut state: u64) -> impl FnMut() -> u64 {
-        move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        }
-    }
-
     /// Crossed triangles whose planes do not separate them; an edge-cross-edge axis does.
     #[test]
     fn edge_axes_separate_crossed_triangles() {
@@ -298,7 +296,7 @@ mod tests {
     /// "apart" is never claimed for triangles that meet beyond what they share.
     #[test]
     fn pre_tests_never_claim_apart_for_meeting_triangles() {
-        let mut next = xorshift(0x9E37_79B9_7F4A_7C15);
+        let mut next = crate::xorshift(0x9E37_79B9_7F4A_7C15);
         // Claimed apart: per number of shared vertices, and among coplanar pairs.
         let mut claimed = [0; 3];
         let mut coplanar_claimed = 0;

@@ -35,6 +35,17 @@ pub use kernel::{Checked, Exact, Filtered, Kernel};
 pub use range::{MAX_ALLOWED_MAGNITUDE, MIN_ALLOWED_MAGNITUDE, in_exact_range, next_down, next_up};
 pub use sign::{Orientation, Sign};
 
+/// A xorshift generator of pseudo-random `u64`s for the unit tests (seeded, reproducible).
+#[cfg(test)]
+fn xorshift(mut state: u64) -> impl FnMut() -> u64 {
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    }
+}
+
 /// The kernel the free functions of this crate use.
 pub type DefaultKernel = Filtered;
 
@@ -239,28 +250,28 @@ pub fn indexed_triangles_intersect(
     if let Some(None) = shared {
         return true;
     }
-    let six = [t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]];
-    // The pre-tests need only that no f64 product overflows (their error bounds carry an
-    // absolute term for underflow): a bound on the magnitudes, cheaper than the full range
-    // check, which only the exact path needs.
-    let largest = six.iter().fold(0.0f64, |m, p| m.max(p.abs().max_element()));
-    if largest <= MAX_ALLOWED_MAGNITUDE {
+    if small([t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]]) {
         let (fs, gs) = (f.map(|x| g.contains(&x)), g.map(|x| f.contains(&x)));
         // `apart::surely_apart`, with the second plane made only when the first does not
         // separate (most pairs of neighbouring faces are decided by one of the two).
         let p1 = apart::Planar::new(t1);
-        if p1.separates(t2, gs) {
-            return false;
-        }
-        let p2 = apart::Planar::new(t2);
-        if p2.separates(t1, fs)
-            || apart::edge_axes_apart(&t1, fs, &t2, gs)
-            || apart::in_plane_apart(&p1, fs, &p2, gs)
+        if p1.separates(t2, gs)
+            || apart::apart_beyond_first_plane(&p1, fs, &apart::Planar::new(t2), gs)
         {
             return false;
         }
     }
     exact_indexed(t1, t2, shared)
+}
+
+/// Whether no coordinate exceeds [`MAX_ALLOWED_MAGNITUDE`]: all the f64 pre-tests of [`apart`]
+/// need (their error bounds carry an absolute term for underflow), cheaper than the full
+/// range check, which only the exact path needs.
+fn small<const N: usize>(points: [DVec3; N]) -> bool {
+    points
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.abs().max_element()))
+        <= MAX_ALLOWED_MAGNITUDE
 }
 
 /// The exact adjacency-aware test (no pre-test), `shared` from [`shared_indices`].
@@ -302,11 +313,10 @@ impl PreparedFace {
     #[must_use]
     pub fn new(positions: &[DVec3], f: [u32; 3]) -> Self {
         let t = f.map(|i| positions[i as usize]);
-        let largest = t.iter().fold(0.0f64, |m, p| m.max(p.abs().max_element()));
         PreparedFace {
             ids: f,
             plane: apart::Planar::new(t),
-            small: largest <= MAX_ALLOWED_MAGNITUDE,
+            small: small(t),
         }
     }
 }
@@ -323,11 +333,7 @@ pub fn prepared_faces_intersect(a: &PreparedFace, b: &PreparedFace) -> bool {
     let (t1, t2) = (a.plane.t, b.plane.t);
     if a.small && b.small {
         let (fs, gs) = (f.map(|x| g.contains(&x)), g.map(|x| f.contains(&x)));
-        if a.plane.separates(t2, gs)
-            || b.plane.separates(t1, fs)
-            || apart::edge_axes_apart(&t1, fs, &t2, gs)
-            || apart::in_plane_apart(&a.plane, fs, &b.plane, gs)
-        {
+        if apart::surely_apart(&a.plane, fs, &b.plane, gs) {
             return false;
         }
     }

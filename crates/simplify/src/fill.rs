@@ -195,13 +195,18 @@ impl<'a> FillContext<'a> {
         }
         let ok = self.test(t, with_placed);
         if !ok {
-            if self.rejected.is_empty() {
-                let n = self.hole.len();
-                self.rejected = vec![false; n * n * n];
-            }
-            self.rejected[slot] = true;
+            self.remember_rejection(slot);
         }
         ok
+    }
+
+    /// Caches the rejection of the triangle at `slot` (see [`Self::slot`]) for this fill.
+    fn remember_rejection(&mut self, slot: usize) {
+        if self.rejected.is_empty() {
+            let n = self.hole.len();
+            self.rejected = vec![false; n * n * n];
+        }
+        self.rejected[slot] = true;
     }
 
     /// Whether the triangle on hole positions `t` is refused whatever the approximation: a
@@ -219,11 +224,7 @@ impl<'a> FillContext<'a> {
             self.filter.refuses_anyway(&profile)
         };
         if refused {
-            if self.rejected.is_empty() {
-                let n = self.hole.len();
-                self.rejected = vec![false; n * n * n];
-            }
-            self.rejected[slot] = true;
+            self.remember_rejection(slot);
         }
         refused
     }

@@ -491,13 +491,7 @@ mod straddling_tests {
     /// with the filtered kernel and the exact one.
     #[test]
     fn straddling_test_matches_the_edge_test() {
-        let mut st = 0x1234_5678_9abc_def0u64;
-        let mut next = || {
-            st ^= st << 13;
-            st ^= st >> 7;
-            st ^= st << 17;
-            st
-        };
+        let mut next = crate::xorshift(0x1234_5678_9abc_def0);
         let (mut applied, mut met) = (0, 0);
         for round in 0..150_000 {
             let mut pt = || {
