@@ -261,6 +261,7 @@ fn global_stats(g: &GlobalStats) -> Stats {
         attempts: g.attempts,
         removed: g.removed,
         no_valid_fill: g.no_valid_fill,
+        no_fill_across_fiber: 0,
         refused: g.overlapping,
         candidate_tests: g.filter_tests,
         slid: 0,
@@ -275,6 +276,7 @@ fn add_local(stats: &mut Stats, local: &Stats) {
     stats.attempts += local.attempts;
     stats.removed += local.removed;
     stats.no_valid_fill += local.no_valid_fill;
+    stats.no_fill_across_fiber += local.no_fill_across_fiber;
     stats.refused += local.refused;
     stats.candidate_tests += local.candidate_tests;
     stats.slid += local.slid;

@@ -173,6 +173,28 @@ pub fn segment_triangle(p: DVec3, q: DVec3, t: [DVec3; 3]) -> SegmentTriangle {
     }
 }
 
+/// The algebraic number of crossings of a polyline with oriented triangles; see
+/// [`generic::polyline_crossings`]. The range of all the points is checked once.
+#[must_use]
+pub fn polyline_crossings(path: &[DVec3], triangles: &[[DVec3; 3]]) -> Option<i32> {
+    if range::all_in_range(path) && triangles.iter().all(|t| range::all_in_range(t)) {
+        generic::polyline_crossings::<kernel::InRange>(path, triangles)
+    } else {
+        generic::polyline_crossings::<Filtered>(path, triangles)
+    }
+}
+
+/// Every point strictly on one side of the plane of `t`; see
+/// [`generic::strictly_one_side_of_plane`]. The range of all the points is checked once.
+#[must_use]
+pub fn strictly_one_side_of_plane(t: [DVec3; 3], points: &[DVec3]) -> bool {
+    if range::all_in_range(&t) && range::all_in_range(points) {
+        generic::strictly_one_side_of_plane::<kernel::InRange>(t, points)
+    } else {
+        generic::strictly_one_side_of_plane::<Filtered>(t, points)
+    }
+}
+
 /// Closed triangles meet; see [`generic::triangles_intersect`]. The range of the six points
 /// is checked once.
 #[must_use]

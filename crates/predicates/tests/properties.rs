@@ -304,3 +304,53 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+    /// A decided crossing number of a path with a closed outward-oriented surface (a
+    /// tetrahedron) is the change of containment between its ends: +1 from inside to
+    /// outside, -1 back, 0 when both are on one side (`point_in_surface` counts ray
+    /// crossings by parity, independently). Random paths of one and two segments, many
+    /// through the grid's degeneracies (those are undecided: `None`).
+    #[test]
+    fn polyline_crossings_are_the_change_of_containment(
+        corners in (point(), point(), point(), point()),
+        path in prop::collection::vec(point(), 2..4),
+    ) {
+        use envelope_predicates::{Containment, orient3d, point_in_surface, polyline_crossings};
+        let (a, b, c, d) = corners;
+        let mut pos = vec![a, b, c, d];
+        match orient3d(a, b, c, d) {
+            Orientation::Degenerate => return Ok(()),
+            // Faces below are outward for d on the negative side of abc.
+            Orientation::Positive => pos.swap(0, 1),
+            Orientation::Negative => {}
+        }
+        let faces = [[0u32, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]];
+        let tris: Vec<[DVec3; 3]> = faces.iter().map(|f| f.map(|i| pos[i as usize])).collect();
+        let inside = |p: DVec3| match point_in_surface(p, &pos, &faces) {
+            Containment::Inside => Some(1),
+            Containment::Outside => Some(0),
+            Containment::On => None,
+        };
+        let (Some(first), Some(last)) = (inside(path[0]), inside(path[path.len() - 1])) else {
+            return Ok(());
+        };
+        if let Some(n) = polyline_crossings(&path, &tris) {
+            prop_assert_eq!(n, first - last);
+            prop_assert_eq!(Some(n), g::polyline_crossings::<K>(&path, &tris));
+        }
+    }
+
+    /// `strictly_one_side_of_plane` is every point's `orient3d` equal and non-zero.
+    #[test]
+    fn one_side_of_a_plane_is_equal_orientations(t in (point(), point(), point()), pts in prop::collection::vec(point(), 1..4)) {
+        use envelope_predicates::{orient3d, strictly_one_side_of_plane};
+        let t = [t.0, t.1, t.2];
+        let o: Vec<Orientation> = pts.iter().map(|&p| orient3d(t[0], t[1], t[2], p)).collect();
+        let expected = o[0] != Orientation::Degenerate && o.iter().all(|&x| x == o[0]);
+        prop_assert_eq!(strictly_one_side_of_plane(t, &pts), expected);
+        prop_assert_eq!(g::strictly_one_side_of_plane::<K>(t, &pts), expected);
+    }
+}

@@ -30,8 +30,8 @@ use thiserror::Error;
 
 use crate::policy::Rejection;
 use crate::{
-    BarrierError, Barriers, HoleFilling, Order, Placement, SimplifyError, VertexFibers, Visitor,
-    border_walls, simplify_local_sliding,
+    BarrierError, Barriers, FiberTest, HoleFilling, Order, Placement, SimplifyError, VertexFibers,
+    Visitor, border_walls, simplify_local_sliding,
 };
 
 /// What [`simplify`] does.
@@ -258,6 +258,8 @@ pub struct SimplifyReport {
     pub collapsed_removals: usize,
     /// Removal attempts.
     pub attempts: usize,
+    /// Attempts the fiber test turned away ([`crate::FiberTest`]; part of the failed ones).
+    pub no_fill_across_fiber: usize,
     /// Genus of the input (`None`: undefined).
     pub genus_in: Option<u32>,
     /// Genus of the output.
@@ -298,6 +300,7 @@ impl SimplifyReport {
             "slid_removals": self.slid_removals,
             "collapsed_removals": self.collapsed_removals,
             "attempts": self.attempts,
+            "no_fill_across_fiber": self.no_fill_across_fiber,
             "genus_in": self.genus_in,
             "genus_out": self.genus_out,
             "border_loops_in": self.border_loops_in,
@@ -412,6 +415,9 @@ pub struct StepInput<'a> {
     pub inner: &'a [DVec3],
     /// The job's options.
     pub options: &'a SimplifyOptions,
+    /// The fiber test over `inner` and `outer` ([`FiberTest`]), when its conditions hold:
+    /// proved envelopes, no pins.
+    pub fiber_test: Option<&'a FiberTest<'a>>,
 }
 
 /// What a [`SimplifyStep`] did.
@@ -512,6 +518,7 @@ pub fn simplify_with(
         return Err(DriverError::Unacceptable(problems));
     }
     let env = env?;
+    let env_proved = env.proof.holds();
     let fractions = env.achieved_fractions();
     let envelope = EnvelopeReport {
         method: match options.method {
@@ -565,14 +572,26 @@ pub fn simplify_with(
         vertices: mesh.num_vertices(),
     });
     let t_simp = Instant::now();
+    // The fiber test's conditions: envelopes proved apart from the input, nothing pinned.
+    let fiber_test = (env_proved && pins.is_empty()).then(|| {
+        FiberTest::new(
+            VertexFibers {
+                inner: &inner,
+                outer: &outer,
+            },
+            &soup.faces,
+        )
+    });
     let input = StepInput {
         barriers: &barriers,
         outer: &outer,
         inner: &inner,
         options,
+        fiber_test: fiber_test.as_ref(),
     };
     let outcome = step.run(&mut mesh, &input, progress)?;
     let stats = outcome.stats;
+
     let simplify_seconds = t_simp.elapsed().as_secs_f64();
     let out = mesh.to_soup();
     let topo_out = analyze(&out);
@@ -612,6 +631,7 @@ pub fn simplify_with(
         slid_removals: stats.slid,
         collapsed_removals: stats.collapsed,
         attempts: stats.attempts,
+        no_fill_across_fiber: stats.no_fill_across_fiber,
         genus_in: topo_in.genus,
         genus_out: topo_out.genus,
         border_loops_in: topo_in.num_border_loops(),
@@ -663,6 +683,7 @@ fn run_local(
         &local_options,
         seeds,
         Some(fibers),
+        input.fiber_test,
         &mut visitor,
     )
 }

@@ -18,6 +18,7 @@
 //! closing edge `last -> first` is new and becomes a border edge; the filter is told so in
 //! [`CandidateProfile::border_edges`] and tests it against the border tubes.
 
+use crate::fiber::FiberPath;
 use crate::filter::{Approximation, CandidateProfile, Filter, Nearby, position_in};
 use crate::grid::FaceGrid;
 use crate::policy::aspect_ratio;
@@ -207,6 +208,20 @@ impl<'a> FillContext<'a> {
             self.rejected = vec![false; n * n * n];
         }
         self.rejected[slot] = true;
+    }
+
+    /// The fiber test's question (see [`crate::fiber`]): whether some triangle on the hole's
+    /// vertices that meets `path` is not refused anyway ([`Self::refused_anyway`], whose
+    /// refusals are cached for the rest of the fill). False means no valid filling exists
+    /// when the path crosses the fan once.
+    pub(crate) fn a_triangle_across_may_pass(&mut self, path: &FiberPath) -> bool {
+        let corners: Vec<DVec3> = self
+            .hole
+            .vertices
+            .iter()
+            .map(|&v| self.position(v))
+            .collect();
+        path.any_triangle_that_may_meet(&corners, |t| !self.refused_anyway(t))
     }
 
     /// Whether the triangle on hole positions `t` is refused whatever the approximation: a

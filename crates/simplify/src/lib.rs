@@ -18,6 +18,7 @@
 
 mod barriers;
 mod driver;
+mod fiber;
 mod fill;
 mod filter;
 mod grid;
@@ -32,6 +33,7 @@ pub use driver::{
     SimplifyStep, Stage, StepInput, StepOutcome, VerifyReport, input_problems, peak_memory_bytes,
     simplify, simplify_with,
 };
+pub use fiber::FiberTest;
 pub use fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
 pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, Nearby, NoFilter};
 pub use grid::FaceGrid;

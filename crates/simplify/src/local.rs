@@ -23,6 +23,7 @@
 //! | tie breaks | equal aspect ratios: the triangle with the lexicographically smallest hole positions (the hole starts at the vertex `remove_vertex_fan` names first) |
 //! | candidate triangles | all triples of hole vertices, generated once per hole; a sub-hole considers those whose three vertices are on it |
 //! | degenerate candidates | exactly collinear corners: rejected |
+//! | attempts that cannot succeed | not in the paper: before the filling, the fiber test ([`FiberTest`], module `fiber`) ends an interior vertex's attempt when every triangle on its hole's vertices that meets a path from its inner to its outer envelope point is refused by the barriers (every valid filling meets that path; the module proves it); it decides nothing else, so the outcome is the same without it (`tests/fiber.rs`) |
 //! | valence-3 interior vertex | its hole is one triangle; placed if valid and not already a face (a tetrahedron cannot lose a vertex) |
 //! | border vertex | its open chain is filled as a polygon closed by the new border edge, which must not already be an edge and must not touch a border tube (6.2); with no tube in the barriers, border vertices are kept; a border vertex with one face (an ear) is kept |
 //! | topology | a new edge that already exists elsewhere is refused before the filter is asked (link condition); the mesh's `add_faces` is the last guard |
@@ -40,6 +41,7 @@
 //! this is the paper's FIFO except that re-queued neighbours of a batch are appended after
 //! the whole batch. Other orders take one vertex at a time.
 
+use crate::fiber::FiberTest;
 use crate::fill::{FillContext, Hole, HoleFiller};
 use crate::filter::{Approximation, CandidateProfile, Filter, Nearby, position_in};
 use crate::grid::FaceGrid;
@@ -95,6 +97,8 @@ pub struct Stats {
     pub removed: usize,
     /// Attempts that failed because no valid filling was found.
     pub no_valid_fill: usize,
+    /// Of those, the ones the fiber test turned away ([`Rejection::NoFillAcrossFiber`]).
+    pub no_fill_across_fiber: usize,
     /// Attempts refused before filling (border without tubes, ears, non-manifold, too large).
     pub refused: usize,
     /// Candidate triangles given to the filter.
@@ -228,6 +232,9 @@ pub struct Policies<'p> {
     /// Run the moving phase (`fibers`, `collapse`) only when the subset run left at most one
     /// vertex in [`AUTO_MOVING_DIVISOR`] of those it started with ([`Placement::Auto`]).
     pub moving_if_few_left: bool,
+    /// The fiber test ([`FiberTest`]) before each plain removal's filling: its envelopes
+    /// must be barriers of `filter` and apart from every face of the mesh (see its module).
+    pub fiber_test: Option<&'p FiberTest<'p>>,
 }
 
 /// Simplifies `mesh` in place by the local algorithm of section 5.2, with the validity test
@@ -269,17 +276,19 @@ pub fn simplify_local_from(
     seeds: Option<&[VertexId]>,
     visitor: &mut dyn Visitor,
 ) -> Result<Stats, SimplifyError> {
-    simplify_local_sliding(mesh, barriers, options, seeds, None, visitor)
+    simplify_local_sliding(mesh, barriers, options, seeds, None, None, visitor)
 }
 
 /// [`simplify_local_from`] with the vertices' fibers, which [`Placement::Slide`] needs
-/// (without them, or with [`Placement::Subset`], no vertex moves).
+/// (without them, or with [`Placement::Subset`], no vertex moves), and the fiber test
+/// ([`Policies::fiber_test`]: `fiber_test`'s envelopes must be among `barriers`).
 pub fn simplify_local_sliding(
     mesh: &mut HalfEdgeMesh,
     barriers: &Barriers,
     options: &Options,
     seeds: Option<&[VertexId]>,
     fibers: Option<VertexFibers<'_>>,
+    fiber_test: Option<&FiberTest<'_>>,
     visitor: &mut dyn Visitor,
 ) -> Result<Stats, SimplifyError> {
     let filter = EnvelopeFilter::new(barriers);
@@ -316,6 +325,7 @@ pub fn simplify_local_sliding(
         fibers: fibers.filter(|_| options.placement != Placement::Subset),
         collapse: matches!(options.placement, Placement::Collapse | Placement::Auto),
         moving_if_few_left: options.placement == Placement::Auto,
+        fiber_test,
     };
     run(mesh, &policies, seeds, visitor)
 }
@@ -353,7 +363,8 @@ fn run(
             q
         }
     };
-    let mut local = LocalSimplifier::new(mesh, policies.keep_border);
+    let mut local =
+        LocalSimplifier::new(mesh, policies.keep_border).with_fiber_test(policies.fiber_test);
     let batched = policies.order.is_fifo() && !policies.check_each_step;
     let mut rings = RingBoxes::default();
     'run: loop {
@@ -421,7 +432,10 @@ fn plan_each<T: Sync, R: Send>(batch: &[T], plan: impl Fn(&T) -> R + Sync) -> Ve
 
 /// Counts a failed attempt at `v` and tells the visitor.
 fn rejected(stats: &mut Stats, visitor: &mut dyn Visitor, v: VertexId, reason: Rejection) {
-    if reason == Rejection::NoValidFill {
+    if reason == Rejection::NoFillAcrossFiber {
+        stats.no_valid_fill += 1;
+        stats.no_fill_across_fiber += 1;
+    } else if reason == Rejection::NoValidFill {
         stats.no_valid_fill += 1;
     } else {
         stats.refused += 1;
@@ -910,6 +924,8 @@ pub struct LocalSimplifier<'m> {
     mesh: &'m mut HalfEdgeMesh,
     grid: FaceGrid,
     keep_border: bool,
+    /// Asked before every plain removal's filling ([`Policies::fiber_test`]).
+    fiber_test: Option<&'m FiberTest<'m>>,
     /// Candidate triangles given to the filter so far.
     pub candidate_tests: u64,
 }
@@ -922,8 +938,18 @@ impl<'m> LocalSimplifier<'m> {
             mesh,
             grid,
             keep_border,
+            fiber_test: None,
             candidate_tests: 0,
         }
+    }
+
+    /// The same simplifier with the fiber test before every plain removal's filling:
+    /// `test`'s envelopes must be barriers of the filters it is given and apart from every
+    /// face of the mesh (see [`FiberTest`]).
+    #[must_use]
+    pub fn with_fiber_test(mut self, test: Option<&'m FiberTest<'m>>) -> Self {
+        self.fiber_test = test;
+        self
     }
 
     /// The mesh.
@@ -1083,7 +1109,7 @@ impl<'m> LocalSimplifier<'m> {
             tests += t;
             match plan {
                 Ok(plan) => return (Ok((plan, Way::Plain)), tests),
-                Err(Rejection::NoValidFill) => {}
+                Err(Rejection::NoValidFill | Rejection::NoFillAcrossFiber) => {}
                 Err(other) => return (Err(other), tests),
             }
         }
@@ -1228,16 +1254,36 @@ impl<'m> LocalSimplifier<'m> {
             .map(|&u| position_in(m, &moves, u))
             .collect();
         let region = Aabb::from_points(&corners);
+        // The fiber test (module `fiber`): interior vertices at their current positions.
+        let path = match self.fiber_test {
+            Some(test) if moves.is_empty() && !border => test.path(v, m.position(v), &corners),
+            _ => None,
+        };
         let nearby = Nearby::new(region);
         let mut ctx = FillContext::new(m, &self.grid, filter, &hole)
             .excluding(&excluded)
             .moving(&moves, &stay)
             .near(&nearby);
-        let mut filled = false;
+        let (mut filled, mut across) = (false, true);
         filter.within(&region, &mut || {
+            if let Some(path) = &path {
+                if !ctx.a_triangle_across_may_pass(path) {
+                    let fan: Vec<[DVec3; 3]> = fan
+                        .iter()
+                        .map(|&f| m.face_vertices(f).map(|x| m.position(x)))
+                        .collect();
+                    across = !path.crosses_once(&fan);
+                    if !across {
+                        return;
+                    }
+                }
+            }
             filled = filler.fill(&mut ctx);
         });
         *tests = ctx.tests;
+        if !across {
+            return Err(Rejection::NoFillAcrossFiber);
+        }
         let placed = ctx.placed().to_vec();
         if !filled {
             return Err(Rejection::NoValidFill);

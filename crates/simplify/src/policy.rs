@@ -100,6 +100,9 @@ pub enum Rejection {
     HoleTooLarge,
     /// No valid triangulation of the hole was found.
     NoValidFill,
+    /// No valid triangulation of the hole exists: every triangle on its vertices that meets
+    /// the vertex's fiber path is refused (the fiber test, [`crate::FiberTest`]).
+    NoFillAcrossFiber,
     /// The mesh refused the filling (a topology guard; should not happen after the checks).
     MeshRefused(AddFaceError),
 }

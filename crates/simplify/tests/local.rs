@@ -392,6 +392,7 @@ fn exhaustive_fills_where_the_single_pass_gets_stuck() {
             keep_border: false,
             check_each_step: true,
             fibers: None,
+            fiber_test: None,
             collapse: false,
             moving_if_few_left: false,
         };
@@ -476,6 +477,7 @@ fn stop_rule_and_visitor() {
         keep_border: true,
         check_each_step: false,
         fibers: None,
+        fiber_test: None,
         collapse: false,
         moving_if_few_left: false,
     };

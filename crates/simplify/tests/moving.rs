@@ -56,6 +56,7 @@ fn run(s: &TriangleSoup, env: &Envelopes, placement: Placement) -> (HalfEdgeMesh
         &options,
         None,
         Some(fibers),
+        None,
         &mut (),
     )
     .unwrap();
@@ -373,7 +374,9 @@ fn the_moving_phase_does_not_depend_on_the_thread_count() {
             .unwrap();
         let mut m = HalfEdgeMesh::from_soup(&s).unwrap();
         let stats = pool
-            .install(|| simplify_local_sliding(&mut m, &b, &options, None, Some(fibers), &mut ()))
+            .install(|| {
+                simplify_local_sliding(&mut m, &b, &options, None, Some(fibers), None, &mut ())
+            })
             .unwrap();
         m.sanity_check().unwrap();
         (m.to_soup(), stats)

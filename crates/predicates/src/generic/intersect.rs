@@ -133,6 +133,80 @@ fn segment_triangle_with<K: Kernel>(
     }
 }
 
+/// The algebraic number of crossings of the polyline `path` with the oriented triangles
+/// `triangles` (exact): a segment that crosses a triangle's interior counts `+1` when it
+/// goes to the side its right-hand normal points to ([`Orientation::Positive`] of
+/// `orient3d(t0, t1, t2, end)`), `-1` the other way. `None` when a segment meets a triangle
+/// in any other way (through an edge or a vertex, with an endpoint in its plane, in its
+/// plane) or a triangle is degenerate: the count is then not decided.
+///
+/// ```
+/// use envelope_predicates::generic::polyline_crossings;
+/// use envelope_predicates::Filtered;
+/// use glam::DVec3;
+/// let t = [DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 2.0, 0.0)];
+/// let up = [DVec3::new(0.5, 0.5, -1.0), DVec3::new(0.5, 0.5, 1.0)];
+/// assert_eq!(polyline_crossings::<Filtered>(&up, &[t]), Some(1));
+/// let there_and_back = [up[0], up[1], DVec3::new(0.4, 0.5, -1.0)];
+/// assert_eq!(polyline_crossings::<Filtered>(&there_and_back, &[t]), Some(0));
+/// let through_an_edge = [DVec3::new(1.0, 0.0, -1.0), DVec3::new(1.0, 0.0, 1.0)];
+/// assert_eq!(polyline_crossings::<Filtered>(&through_an_edge, &[t]), None);
+/// ```
+pub fn polyline_crossings<K: Kernel>(path: &[DVec3], triangles: &[[DVec3; 3]]) -> Option<i32> {
+    use Orientation::{Degenerate, Negative, Positive};
+    let mut sum = 0;
+    for t in triangles {
+        for s in path.windows(2) {
+            let (x, y) = (s[0], s[1]);
+            let (sx, sy) = (
+                K::orient3d(t[0], t[1], t[2], x),
+                K::orient3d(t[0], t[1], t[2], y),
+            );
+            if sx == Degenerate || sy == Degenerate {
+                return None;
+            }
+            if sx == sy {
+                continue;
+            }
+            let o = [
+                K::orient3d(x, y, t[0], t[1]),
+                K::orient3d(x, y, t[1], t[2]),
+                K::orient3d(x, y, t[2], t[0]),
+            ];
+            if o.contains(&Positive) && o.contains(&Negative) {
+                continue;
+            }
+            if o.contains(&Degenerate) {
+                return None;
+            }
+            sum += if sy == Positive { 1 } else { -1 };
+        }
+    }
+    Some(sum)
+}
+
+/// Whether every point of `points` (at least one) lies strictly on one side of the plane of
+/// `t` (exact; false for a degenerate `t`).
+///
+/// ```
+/// use envelope_predicates::generic::strictly_one_side_of_plane;
+/// use envelope_predicates::Filtered;
+/// use glam::DVec3;
+/// let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
+/// assert!(strictly_one_side_of_plane::<Filtered>(t, &[DVec3::Z, DVec3::new(5.0, 1.0, 0.1)]));
+/// assert!(!strictly_one_side_of_plane::<Filtered>(t, &[DVec3::Z, DVec3::new(5.0, 1.0, 0.0)]));
+/// ```
+pub fn strictly_one_side_of_plane<K: Kernel>(t: [DVec3; 3], points: &[DVec3]) -> bool {
+    let Some((first, rest)) = points.split_first() else {
+        return false;
+    };
+    let side = K::orient3d(t[0], t[1], t[2], *first);
+    side != Orientation::Degenerate
+        && rest
+            .iter()
+            .all(|&x| K::orient3d(t[0], t[1], t[2], x) == side)
+}
+
 /// True when all three are the same strict side.
 #[inline]
 fn strictly_one_side(o: [Orientation; 3]) -> bool {

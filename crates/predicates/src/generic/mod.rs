@@ -18,7 +18,7 @@ pub use distance::{
     cmp_triangle_triangle,
 };
 pub use intersect::{
-    SegmentTriangle, Shared, adjacent_triangles_intersect, segment_triangle, triangles_intersect,
-    triangles_overlap_with_area,
+    SegmentTriangle, Shared, adjacent_triangles_intersect, polyline_crossings, segment_triangle,
+    strictly_one_side_of_plane, triangles_intersect, triangles_overlap_with_area,
 };
 pub use surface::{Containment, point_in_surface};
