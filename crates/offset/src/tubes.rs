@@ -13,9 +13,13 @@
 //!   correction and their tubes are left open at the ends.
 //! * Ring `i` is `b_i + r_i (cos θ_j u_i + sin θ_j w_i)`, `θ_j = 2πj/k`; consecutive rings
 //!   are joined by two triangles per quad.
-//! * Radii start narrow (5 % of the shortest border edge at the vertex, halved until the exact
-//!   tube proof holds) and grow with the numerical engine ([`crate::engine`]), each ring one
-//!   mover, target the requested `eps` of its border vertex.
+//! * Radii start at their target, the requested `eps` of the ring's border vertex; the exact
+//!   tube proof keeps there every ring it clears. The rings of a face in a contact start
+//!   narrow instead (5 % of the shortest border edge at the vertex, at most a quarter of the
+//!   target, halved while they still meet something) and grow with the numerical engine
+//!   ([`crate::engine`]), each ring one mover. At small epsilons that is one proof and no
+//!   growth; the result is that of starting every ring narrow whenever the growth would have
+//!   reached every target anyway (mech-holes-shark at seven epsilons: the same outputs).
 //!
 //! "Until it would intersect the surface": a tube necessarily crosses the surface and the
 //! envelopes at its own border, so a tube face between rings `i` and `i+1` is exempt against
@@ -147,7 +151,11 @@ fn tube_pairs(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<(u3
 /// pairs as one tree over all faces keeping those with a tube face, without walking the
 /// surface-surface pairs that the envelope proof already decided.
 fn tube_contacts(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<Contact> {
-    let pairs = tube_pairs(layout, input, surfaces);
+    contacts_of(layout, input, tube_pairs(layout, input, surfaces))
+}
+
+/// The meeting pairs of [`tube_pairs`] as contacts.
+fn contacts_of(layout: &Layout, input: &TubeInput<'_>, pairs: Vec<(u32, u32)>) -> Vec<Contact> {
     let nf = input.faces.len() as u32;
     let nf3 = 3 * nf;
     let which = |f: u32| {
@@ -199,6 +207,9 @@ pub(crate) fn build_tubes(
         first_face: Vec::new(),
     };
     let mut movers: Vec<Mover> = Vec::new();
+    // Per mover, the narrow start radius; per tube face, its two rings' movers.
+    let mut narrow: Vec<f64> = Vec::new();
+    let mut face_movers: Vec<[usize; 2]> = Vec::new();
     for (tube, (border, closed)) in loops.iter().enumerate() {
         let m = border.len();
         let pts: Vec<DVec3> = border.iter().map(|&v| soup.position(v)).collect();
@@ -222,9 +233,10 @@ pub(crate) fn build_tubes(
                 })
                 .collect();
             let r0 = (0.05 * shortest).min(target / 4.0);
+            narrow.push(r0);
             let verts: Vec<u32> = (0..k as u32).map(|j| v0 + (i * k) as u32 + j).collect();
             for &d in &dirs {
-                layout.positions.push(pts[i] + d * r0);
+                layout.positions.push(pts[i] + d * target);
             }
             movers.push(Mover {
                 verts,
@@ -233,7 +245,7 @@ pub(crate) fn build_tubes(
                 star: Vec::new(),
                 group: 2,
                 target,
-                t: r0,
+                t: target,
                 step: (0.5 * shortest)
                     .min(global_fraction * input.diagonal)
                     .min(target / policy.k as f64),
@@ -254,13 +266,18 @@ pub(crate) fn build_tubes(
                     let id = layout.faces.len() as u32;
                     layout.faces.push(f);
                     layout.seg.push(([border[i].0, border[i1].0], tube as u32));
+                    face_movers.push([first_mover + i, first_mover + i1]);
                     movers[first_mover + i].star.push(id);
                     movers[first_mover + i1].star.push(id);
                 }
             }
         }
     }
-    // Narrow start: halve every radius until the exact tube proof holds.
+    // Optimistic start: every ring at its target radius. The exact tube proof keeps there
+    // the rings it clears (their movers are done); the rings of every face in a contact go
+    // back to the narrow start (5 % of the shortest border edge at the vertex, at most a
+    // quarter of the target) and are halved while they still meet something; only those
+    // grow (at small epsilons usually none: one proof in all).
     let built;
     let surfaces = match input.surfaces {
         Some(tree) => {
@@ -278,17 +295,30 @@ pub(crate) fn build_tubes(
             &built
         }
     };
-    for _ in 0..12 {
-        if tube_contacts(&layout, input, surfaces).is_empty() {
+    let mut set_back = vec![false; movers.len()];
+    let mut pairs = tube_pairs(&layout, input, surfaces);
+    for _ in 0..13 {
+        if pairs.is_empty() {
             break;
         }
-        for m in &mut movers {
-            m.t *= 0.5;
+        let mut offending = vec![false; movers.len()];
+        for &(a, b) in &pairs {
+            for f in [a, b].into_iter().filter(|&f| f >= nf3) {
+                for i in face_movers[(f - nf3) as usize] {
+                    offending[i] = true;
+                }
+            }
+        }
+        for (i, m) in movers.iter_mut().enumerate().filter(|(i, _)| offending[*i]) {
+            m.t = if set_back[i] { m.t * 0.5 } else { narrow[i] };
+            set_back[i] = true;
             for (kk, &v) in m.verts.iter().enumerate() {
                 layout.positions[v as usize] = m.base[kk] + m.dirs[kk] * m.t;
             }
         }
+        pairs = tube_pairs(&layout, input, surfaces);
     }
+    let grown = set_back.iter().any(|&b| b);
     // Grow.
     let mut sweep: Vec<Aabb> = layout
         .positions
@@ -317,7 +347,9 @@ pub(crate) fn build_tubes(
         &ex,
         Some((surfaces, nf3)),
     );
-    engine::grow(&mut scene, &mut movers, policy);
+    if grown {
+        engine::grow(&mut scene, &mut movers, policy);
+    }
     layout.positions = scene.positions;
     debug_assert!(
         layout.positions[..3 * n as usize]
@@ -326,7 +358,12 @@ pub(crate) fn build_tubes(
             .all(|(a, b)| a == b),
         "the tube stage moved an input or envelope vertex"
     );
-    let contacts = tube_contacts(&layout, input, surfaces);
+    // Nothing moved since the last proof unless some ring grew.
+    let contacts = if grown {
+        tube_contacts(&layout, input, surfaces)
+    } else {
+        contacts_of(&layout, input, pairs)
+    };
     // Output meshes.
     let mut tubes = Vec::with_capacity(loops.len());
     let mut mover_at = 0;

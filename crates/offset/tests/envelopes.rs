@@ -315,3 +315,43 @@ fn folded_vertex_is_pinned_and_the_proof_holds() {
         }
     }
 }
+
+/// Tube rings start at their target radius; the rings of faces the proof finds in a
+/// contact go back to a narrow start and grow from there. Small epsilon on a disk with
+/// holes: every ring at its target. Large (0.7, the holes a unit apart): the holes' tubes would meet, some rings stay
+/// below their target, and the union is still free of intersections (brute force).
+#[test]
+fn tube_rings_at_their_target_unless_blocked() {
+    let d = generate::disk_with_holes(2);
+    let below = |env: &Envelopes| {
+        env.tubes
+            .iter()
+            .flat_map(|t| t.border.iter().zip(&t.radius))
+            .filter(|&(v, &r)| r < env.requested[v.index()])
+            .count()
+    };
+    let env = build(&d, 0.01, Method::Numerical);
+    check(&d, &env);
+    assert_eq!(below(&env), 0);
+    let env = build(&d, 0.7, Method::Numerical);
+    check(&d, &env);
+    assert!(env.proof.tube_contacts.is_empty());
+    assert!(below(&env) > 0, "every ring at its target at 0.7");
+    // Brute force: no two tubes meet (at their targets the holes' tubes would).
+    let tris = |t: &envelope_offset::Tube| -> Vec<[DVec3; 3]> {
+        (0..t.mesh.num_faces())
+            .map(|f| t.mesh.triangle(envelope_mesh::FaceId(f as u32)))
+            .collect()
+    };
+    for (i, a) in env.tubes.iter().enumerate() {
+        for b in &env.tubes[i + 1..] {
+            for ta in tris(a) {
+                assert!(
+                    tris(b)
+                        .iter()
+                        .all(|&tb| !envelope_predicates::triangles_intersect(ta, tb))
+                );
+            }
+        }
+    }
+}
