@@ -146,6 +146,50 @@ fn tube_pairs(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<(u3
     pairs
 }
 
+/// The meeting pairs (global ids, sorted) with a face of `moved` (tube faces, global ids,
+/// sorted) in them: after those faces moved, the pairs of [`tube_pairs`] that can differ
+/// from a proof before (a pair of faces that did not move keeps its answer). A small tree
+/// over the moved faces against the surfaces' tree and one over every tube face.
+fn tube_pairs_moved(
+    layout: &Layout,
+    input: &TubeInput<'_>,
+    surfaces: &Bvh,
+    moved: &[u32],
+) -> Vec<(u32, u32)> {
+    let nf3 = 3 * input.faces.len() as u32;
+    let moved_faces: Vec<[u32; 3]> = moved.iter().map(|&f| layout.faces[f as usize]).collect();
+    let small = Bvh::from_triangles(&layout.positions, &moved_faces);
+    let tubes = Bvh::from_triangles(&layout.positions, &layout.faces[nf3 as usize..]);
+    let meets = |i: u32, j: u32| {
+        !exempt(input.faces, nf3, &layout.seg, i, j)
+            && envelope_predicates::faces_intersect(
+                &layout.positions,
+                layout.faces[i as usize],
+                layout.faces[j as usize],
+            )
+    };
+    let mut pairs: Vec<(u32, u32)> = small
+        .pairs_with_where(&tubes, |k, t| {
+            let (a, b) = (moved[k as usize], t + nf3);
+            a != b && meets(a.min(b), a.max(b))
+        })
+        .into_iter()
+        .map(|(k, t)| {
+            let (a, b) = (moved[k as usize], t + nf3);
+            (a.min(b), a.max(b))
+        })
+        .collect();
+    pairs.extend(
+        small
+            .pairs_with_where(surfaces, |k, f| meets(f, moved[k as usize]))
+            .into_iter()
+            .map(|(k, f)| (f, moved[k as usize])),
+    );
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
+}
+
 /// Every meeting pair with a tube face in it: tube against tube (a tree over the tube faces)
 /// and tube against `surfaces` (the input and envelope faces, [`surface_tree`]). The same
 /// pairs as one tree over all faces keeping those with a tube face, without walking the
@@ -296,6 +340,16 @@ pub(crate) fn build_tubes(
         }
     };
     let mut set_back = vec![false; movers.len()];
+    // The tube faces of the given movers' stars (global ids, sorted).
+    let stars_of = |movers: &[Mover], which: &dyn Fn(usize) -> bool| -> Vec<u32> {
+        let mut f: Vec<u32> = (0..movers.len())
+            .filter(|&i| which(i))
+            .flat_map(|i| movers[i].star.iter().copied())
+            .collect();
+        f.sort_unstable();
+        f.dedup();
+        f
+    };
     let mut pairs = tube_pairs(&layout, input, surfaces);
     for _ in 0..13 {
         if pairs.is_empty() {
@@ -316,7 +370,10 @@ pub(crate) fn build_tubes(
                 layout.positions[v as usize] = m.base[kk] + m.dirs[kk] * m.t;
             }
         }
-        pairs = tube_pairs(&layout, input, surfaces);
+        // Every contact had a face of an offending ring: only pairs with a moved face can
+        // meet now.
+        let moved = stars_of(&movers, &|i| offending[i]);
+        pairs = tube_pairs_moved(&layout, input, surfaces, &moved);
     }
     let grown = set_back.iter().any(|&b| b);
     // Grow.
@@ -358,11 +415,19 @@ pub(crate) fn build_tubes(
             .all(|(a, b)| a == b),
         "the tube stage moved an input or envelope vertex"
     );
-    // Nothing moved since the last proof unless some ring grew.
-    let contacts = if grown {
-        tube_contacts(&layout, input, surfaces)
-    } else {
+    // Nothing moved since the last proof unless some ring grew; then only the grown rings
+    // moved, and when the last proof found nothing, only pairs with their faces can meet.
+    let contacts = if !grown {
         contacts_of(&layout, input, pairs)
+    } else if pairs.is_empty() {
+        let moved = stars_of(&movers, &|i| set_back[i]);
+        contacts_of(
+            &layout,
+            input,
+            tube_pairs_moved(&layout, input, surfaces, &moved),
+        )
+    } else {
+        tube_contacts(&layout, input, surfaces)
     };
     // Output meshes.
     let mut tubes = Vec::with_capacity(loops.len());
@@ -438,7 +503,7 @@ mod tests {
         };
         let n = positions.len() as u32;
         let nf3 = 3 * faces.len() as u32;
-        let mut found = 0;
+        let (mut found, mut found_moved) = (0, 0);
         for _ in 0..40 {
             let mut all_positions: Vec<DVec3> = positions
                 .iter()
@@ -482,9 +547,24 @@ mod tests {
             });
             assert_eq!(fast, reference);
             found += fast.len();
+            // The pairs with a face of a random subset of the tube faces: the reference's.
+            let moved: Vec<u32> = (nf3..layout.faces.len() as u32)
+                .filter(|_| unit() < 0.4)
+                .collect();
+            let with_moved: Vec<(u32, u32)> = reference
+                .iter()
+                .copied()
+                .filter(|(i, j)| moved.contains(i) || moved.contains(j))
+                .collect();
+            let surfaces = surface_tree(&layout, nf3);
+            assert_eq!(
+                tube_pairs_moved(&layout, &input, &surfaces, &moved),
+                with_moved
+            );
+            found_moved += with_moved.len();
         }
         assert!(
-            found > 0,
+            found > 0 && found_moved > 0,
             "no contact in any trial: the test would prove nothing"
         );
     }
