@@ -270,19 +270,6 @@ pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (Chec
         ),
     );
     d.insert(
-        C::TJunctions,
-        Finding::from_iter(
-            geometric::t_junctions(soup, &referenced)
-                .into_iter()
-                .map(|(v, edge)| Element::VertexOnEdge {
-                    vertex: v,
-                    position: soup.position(v),
-                    edge,
-                }),
-            n,
-        ),
-    );
-    d.insert(
         C::UnreferencedVertices,
         Finding::from_iter(topology.unreferenced_vertices.iter().map(|&v| vertex(v)), n),
     );
@@ -316,8 +303,36 @@ pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (Chec
             n,
         ),
     );
-    if options.pairwise {
-        let pairs = geometric::PairwiseFindings::compute(soup);
+    let pairs = options
+        .pairwise
+        .then(|| geometric::PairwiseFindings::compute(soup));
+    // A T-junction (a vertex strictly inside an edge it is not on) makes a zero-area face or
+    // an intersecting pair: the vertex's faces meet the edge's face away from what they
+    // share, unless one of the two is degenerate. So with every face usable (finite
+    // corners) and neither class found, there is none to look for.
+    let no_t_junction = pairs.as_ref().is_some_and(|p| p.intersecting.is_empty())
+        && zero_area.is_empty()
+        && soup
+            .faces
+            .iter()
+            .all(|f| f.iter().all(|v| soup.positions.get(v.index()).is_some_and(|p| p.is_finite())));
+    let t_junctions = if no_t_junction {
+        Vec::new()
+    } else {
+        geometric::t_junctions(soup, &referenced)
+    };
+    d.insert(
+        C::TJunctions,
+        Finding::from_iter(
+            t_junctions.into_iter().map(|(v, edge)| Element::VertexOnEdge {
+                vertex: v,
+                position: soup.position(v),
+                edge,
+            }),
+            n,
+        ),
+    );
+    if let Some(pairs) = pairs {
         let pair = |(a, b): (u32, u32)| Element::FacePair {
             faces: [FaceId(a), FaceId(b)],
         };

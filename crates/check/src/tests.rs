@@ -338,3 +338,33 @@ proptest! {
             &Element::VertexOnEdge { vertex: m, position: s.position(m), edge: if a < b { [a, b] } else { [b, a] } });
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The check skips the T-junction search when no zero-area face and no intersecting
+    /// pair was found (a T-junction makes one of the two): its count is the search's on
+    /// clean meshes and on meshes with a vertex moved onto the midpoint of an edge
+    /// elsewhere (a T-junction and intersections), and with the pairwise test off.
+    #[test]
+    fn t_junction_count_is_the_search_s(face in 0usize..80, corner in 0usize..3, vertex in 0usize..42, snap in any::<bool>()) {
+        let mut s = generate::icosphere(1, 1.0);
+        for p in &mut s.positions {
+            *p = (*p * 1024.0).round() / 1024.0;
+        }
+        let f = s.faces[face % s.faces.len()];
+        let (a, b) = (f[corner], f[(corner + 1) % 3]);
+        let v = VertexId((vertex % s.positions.len()) as u32);
+        if snap && v != a && v != b {
+            s.positions[v.index()] = (s.position(a) + s.position(b)) / 2.0;
+        }
+        let search = geometric::t_junctions(&s, &referenced_vertices(&s)).len();
+        for pairwise in [true, false] {
+            let r = check(&s, &CheckOptions { pairwise, ..CheckOptions::default() });
+            prop_assert_eq!(count(&r, DegeneracyClass::TJunctions), search);
+        }
+        if snap && v != a && v != b {
+            prop_assert!(search > 0);
+        }
+    }
+}
