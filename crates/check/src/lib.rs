@@ -312,10 +312,10 @@ pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (Chec
     // corners) and neither class found, there is none to look for.
     let no_t_junction = pairs.as_ref().is_some_and(|p| p.intersecting.is_empty())
         && zero_area.is_empty()
-        && soup
-            .faces
-            .iter()
-            .all(|f| f.iter().all(|v| soup.positions.get(v.index()).is_some_and(|p| p.is_finite())));
+        && soup.faces.iter().all(|f| {
+            f.iter()
+                .all(|v| soup.positions.get(v.index()).is_some_and(|p| p.is_finite()))
+        });
     let t_junctions = if no_t_junction {
         Vec::new()
     } else {
@@ -324,11 +324,13 @@ pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (Chec
     d.insert(
         C::TJunctions,
         Finding::from_iter(
-            t_junctions.into_iter().map(|(v, edge)| Element::VertexOnEdge {
-                vertex: v,
-                position: soup.position(v),
-                edge,
-            }),
+            t_junctions
+                .into_iter()
+                .map(|(v, edge)| Element::VertexOnEdge {
+                    vertex: v,
+                    position: soup.position(v),
+                    edge,
+                }),
             n,
         ),
     );

@@ -221,8 +221,20 @@ impl Bvh {
                 boxes: Vec::new(),
             };
         }
-        let centers: Vec<[f64; 3]> = boxes.iter().map(|b| b.center().to_array()).collect();
-        let nodes = build(boxes, &centers, &mut items, 0);
+        // Each item with its centre, so the partitions read contiguous memory (the same
+        // comparisons in the same places as on bare ids: the same tree).
+        let mut entries: Vec<Entry> = boxes
+            .iter()
+            .zip(0u32..)
+            .map(|(b, i)| Entry {
+                c: b.center().to_array(),
+                i,
+            })
+            .collect();
+        let nodes = build(boxes, &mut entries, 0);
+        for (slot, e) in items.iter_mut().zip(&entries) {
+            *slot = e.i;
+        }
         let ordered = items.iter().map(|&i| boxes[i as usize]).collect();
         Bvh {
             nodes,
@@ -552,17 +564,17 @@ fn cross_rec<F: Fn(u32, u32) -> Option<(u32, u32)> + Sync>(
 /// split in parallel and relocated; small ones are built sequentially in place. A node's box
 /// is the union of its children's (the same box as the union of its items', min and max
 /// being exact).
-fn build(boxes: &[Aabb], centers: &[[f64; 3]], items: &mut [u32], offset: u32) -> Vec<Node> {
+fn build(boxes: &[Aabb], items: &mut [Entry], offset: u32) -> Vec<Node> {
     if items.len() <= 16 * PAR_THRESHOLD {
         let mut nodes = Vec::with_capacity(items.len() / 2 + 1);
-        build_into(&mut nodes, boxes, centers, items, offset);
+        build_into(&mut nodes, boxes, items, offset);
         return nodes;
     }
-    let mid = split(centers, items);
+    let mid = split(items);
     let (li, ri) = items.split_at_mut(mid);
     let (left, right) = rayon::join(
-        || build(boxes, centers, li, offset),
-        || build(boxes, centers, ri, offset + mid as u32),
+        || build(boxes, li, offset),
+        || build(boxes, ri, offset + mid as u32),
     );
     let mut nodes = Vec::with_capacity(1 + left.len() + right.len());
     let (lo, ro) = (1u32, 1 + left.len() as u32);
@@ -590,18 +602,12 @@ fn build(boxes: &[Aabb], centers: &[[f64; 3]], items: &mut [u32], offset: u32) -
 }
 
 /// Sequential pre-order build appending to `nodes`; returns the index of the subtree root.
-fn build_into(
-    nodes: &mut Vec<Node>,
-    boxes: &[Aabb],
-    centers: &[[f64; 3]],
-    items: &mut [u32],
-    offset: u32,
-) -> u32 {
+fn build_into(nodes: &mut Vec<Node>, boxes: &[Aabb], items: &mut [Entry], offset: u32) -> u32 {
     let me = nodes.len() as u32;
     if items.len() <= LEAF_SIZE {
         let bounds = items
             .iter()
-            .fold(Aabb::EMPTY, |b, &i| b.union(&boxes[i as usize]));
+            .fold(Aabb::EMPTY, |b, e| b.union(&boxes[e.i as usize]));
         let n = items.len() as u32;
         nodes.push(Node {
             bounds,
@@ -612,7 +618,7 @@ fn build_into(
         });
         return me;
     }
-    let mid = split(centers, items);
+    let mid = split(items);
     nodes.push(Node {
         bounds: Aabb::EMPTY,
         a: 0,
@@ -621,8 +627,8 @@ fn build_into(
         leaf: false,
     });
     let (li, ri) = items.split_at_mut(mid);
-    let l = build_into(nodes, boxes, centers, li, offset);
-    let r = build_into(nodes, boxes, centers, ri, offset + mid as u32);
+    let l = build_into(nodes, boxes, li, offset);
+    let r = build_into(nodes, boxes, ri, offset + mid as u32);
     let bounds = nodes[l as usize].bounds.union(&nodes[r as usize].bounds);
     let node = &mut nodes[me as usize];
     node.a = l;
@@ -631,12 +637,19 @@ fn build_into(
     me
 }
 
+/// An item id with its box's centre.
+#[derive(Clone, Copy)]
+struct Entry {
+    c: [f64; 3],
+    i: u32,
+}
+
 /// A median partition of the items along the widest axis of their centres; returns the
 /// position of the median.
-fn split(centers: &[[f64; 3]], items: &mut [u32]) -> usize {
+fn split(items: &mut [Entry]) -> usize {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for &i in items.iter() {
-        let c = centers[i as usize];
+    for e in items.iter() {
+        let c = e.c;
         for k in 0..3 {
             lo[k] = lo[k].min(c[k]);
             hi[k] = hi[k].max(c[k]);
@@ -651,8 +664,68 @@ fn split(centers: &[[f64; 3]], items: &mut [u32]) -> usize {
         2
     };
     let mid = items.len() / 2;
-    items.select_nth_unstable_by(mid, |&i, &j| {
-        centers[i as usize][axis].total_cmp(&centers[j as usize][axis])
-    });
+    items.select_nth_unstable_by(mid, |a, b| a.c[axis].total_cmp(&b.c[axis]));
     mid
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The partition on entries (id and centre together) makes the tree the partition on
+    /// bare ids reading the centres made: the same comparisons at the same places give the
+    /// same permutation. Reference: that build, on random boxes with repeated centres.
+    #[test]
+    fn entries_build_the_tree_bare_ids_built() {
+        fn reference(centers: &[[f64; 3]], items: &mut [u32]) {
+            if items.len() <= LEAF_SIZE {
+                return;
+            }
+            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for &i in items.iter() {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(centers[i as usize][k]);
+                    hi[k] = hi[k].max(centers[i as usize][k]);
+                }
+            }
+            let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+            let axis = if ext[0] >= ext[1] && ext[0] >= ext[2] {
+                0
+            } else if ext[1] >= ext[2] {
+                1
+            } else {
+                2
+            };
+            let mid = items.len() / 2;
+            items.select_nth_unstable_by(mid, |&i, &j| {
+                centers[i as usize][axis].total_cmp(&centers[j as usize][axis])
+            });
+            let (l, r) = items.split_at_mut(mid);
+            reference(centers, l);
+            reference(centers, r);
+        }
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut unit = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        // Below the parallel threshold and above it; coarse grids repeat centres.
+        for (n, grid) in [(1000usize, 0.0), (3000, 8.0), (40_000, 0.0), (40_000, 16.0)] {
+            let boxes: Vec<Aabb> = (0..n)
+                .map(|_| {
+                    let mut p = DVec3::new(unit(), unit(), unit()) * 10.0;
+                    if grid > 0.0 {
+                        p = (p * grid).round() / grid;
+                    }
+                    Aabb::from_points(&[p, p + DVec3::splat(0.1 * unit())])
+                })
+                .collect();
+            let centers: Vec<[f64; 3]> = boxes.iter().map(|b| b.center().to_array()).collect();
+            let mut expected: Vec<u32> = (0..n as u32).collect();
+            reference(&centers, &mut expected);
+            assert_eq!(Bvh::new(&boxes).items, expected, "{n} boxes, grid {grid}");
+        }
+    }
 }
