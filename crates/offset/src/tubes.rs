@@ -119,18 +119,22 @@ fn surface_tree(layout: &Layout, nf3: u32) -> Bvh {
     Bvh::from_triangles(&layout.positions, &layout.faces[..nf3 as usize])
 }
 
+/// Whether faces `i` and `j` (global ids) of `layout` meet and are not exempt (see the
+/// module docs): the question every tube proof asks of a candidate pair.
+fn meeting(layout: &Layout, input: &TubeInput<'_>, nf3: u32, i: u32, j: u32) -> bool {
+    !exempt(input.faces, nf3, &layout.seg, i, j)
+        && envelope_predicates::faces_intersect(
+            &layout.positions,
+            layout.faces[i as usize],
+            layout.faces[j as usize],
+        )
+}
+
 /// The meeting face pairs (global ids, sorted) of [`tube_contacts`].
 fn tube_pairs(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<(u32, u32)> {
     let nf3 = 3 * input.faces.len() as u32;
     let tubes = Bvh::from_triangles(&layout.positions, &layout.faces[nf3 as usize..]);
-    let meets = |i: u32, j: u32| {
-        !exempt(input.faces, nf3, &layout.seg, i, j)
-            && envelope_predicates::faces_intersect(
-                &layout.positions,
-                layout.faces[i as usize],
-                layout.faces[j as usize],
-            )
-    };
+    let meets = |i: u32, j: u32| meeting(layout, input, nf3, i, j);
     let mut pairs: Vec<(u32, u32)> = tubes
         .self_pairs_where(|a, b| meets(a + nf3, b + nf3))
         .into_iter()
@@ -160,14 +164,7 @@ fn tube_pairs_moved(
     let moved_faces: Vec<[u32; 3]> = moved.iter().map(|&f| layout.faces[f as usize]).collect();
     let small = Bvh::from_triangles(&layout.positions, &moved_faces);
     let tubes = Bvh::from_triangles(&layout.positions, &layout.faces[nf3 as usize..]);
-    let meets = |i: u32, j: u32| {
-        !exempt(input.faces, nf3, &layout.seg, i, j)
-            && envelope_predicates::faces_intersect(
-                &layout.positions,
-                layout.faces[i as usize],
-                layout.faces[j as usize],
-            )
-    };
+    let meets = |i: u32, j: u32| meeting(layout, input, nf3, i, j);
     let mut pairs: Vec<(u32, u32)> = small
         .pairs_with_where(&tubes, |k, t| {
             let (a, b) = (moved[k as usize], t + nf3);
