@@ -10,7 +10,7 @@ use glam::DVec3;
 
 /// Faces the geometric tests can look at: indices in range and distinct positions finite.
 /// (Readers guarantee both; a hand-built soup may not, and must not make the checker panic.)
-fn usable(soup: &TriangleSoup, f: [VertexId; 3]) -> bool {
+pub(crate) fn usable(soup: &TriangleSoup, f: [VertexId; 3]) -> bool {
     f.iter()
         .all(|v| soup.positions.get(v.index()).is_some_and(|p| p.is_finite()))
 }

@@ -318,10 +318,7 @@ pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (Chec
     // corners) and neither class found, there is none to look for.
     let no_t_junction = pairs.as_ref().is_some_and(|p| p.intersecting.is_empty())
         && zero_area.is_empty()
-        && soup.faces.iter().all(|f| {
-            f.iter()
-                .all(|v| soup.positions.get(v.index()).is_some_and(|p| p.is_finite()))
-        });
+        && soup.faces.iter().all(|&f| geometric::usable(soup, f));
     let t_junctions = if no_t_junction {
         Vec::new()
     } else {

@@ -25,7 +25,8 @@
 //!   defined only for a manifold, orientable component.
 
 use crate::analysis::{
-    EdgeTable, NONE, UnionFind, corner_fans, fan_counts, next_slot, slot_ends, valid_faces,
+    EdgeTable, NONE, UnionFind, corner_fans, face_is_valid, fan_counts, next_slot, slot_ends,
+    valid_faces,
 };
 use crate::{FaceId, TriangleSoup, VertexId};
 
@@ -171,6 +172,48 @@ impl ParityUnionFind {
         self.parity[rb as usize] = pa ^ pb ^ differ;
         true
     }
+}
+
+/// The connected components of the vertices over `faces` (two vertices of one face are
+/// connected): per vertex its component, numbered in order of the lowest vertex, `None` for a
+/// vertex `0..num_vertices` that no face names; faces with an index out of range or a
+/// repeated index are skipped (as [`analyze`] skips them). Also the number of components.
+///
+/// ```
+/// use envelope_mesh::{generate, vertex_components};
+/// let t = generate::tetrahedron();
+/// let (comp, n) = vertex_components(t.num_vertices() + 1, &t.faces);
+/// assert_eq!((n, comp[0], comp[4]), (1, Some(0), None));
+/// ```
+#[must_use]
+pub fn vertex_components(
+    num_vertices: usize,
+    faces: &[[VertexId; 3]],
+) -> (Vec<Option<u32>>, usize) {
+    let mut uf = UnionFind::new(num_vertices);
+    let mut used = vec![false; num_vertices];
+    for f in faces.iter().filter(|f| face_is_valid(f, num_vertices)) {
+        for v in f {
+            used[v.index()] = true;
+        }
+        uf.union(f[0].0, f[1].0);
+        uf.union(f[0].0, f[2].0);
+    }
+    uf.flatten();
+    let mut id_of_root = vec![None; num_vertices];
+    let mut count = 0;
+    let comp = (0..num_vertices)
+        .map(|v| {
+            used[v].then(|| {
+                let r = uf.root(v as u32) as usize;
+                *id_of_root[r].get_or_insert_with(|| {
+                    count += 1;
+                    count as u32 - 1
+                })
+            })
+        })
+        .collect();
+    (comp, count)
 }
 
 /// Analyses any soup; see the module docs for the conventions. O(n log n) worst case, expected

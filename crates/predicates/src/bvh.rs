@@ -704,13 +704,8 @@ mod tests {
             reference(centers, l);
             reference(centers, r);
         }
-        let mut state = 0x9E37_79B9_7F4A_7C15u64;
-        let mut unit = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::xorshift(0x9E37_79B9_7F4A_7C15);
+        let mut unit = || (next() >> 11) as f64 / (1u64 << 53) as f64;
         // Below the parallel threshold and above it; coarse grids repeat centres.
         for (n, grid) in [(1000usize, 0.0), (3000, 8.0), (40_000, 0.0), (40_000, 16.0)] {
             let boxes: Vec<Aabb> = (0..n)

@@ -46,7 +46,7 @@
 //! [`Rejection::NoFillAcrossFiber`]: crate::Rejection::NoFillAcrossFiber
 
 use crate::local::VertexFibers;
-use envelope_mesh::VertexId;
+use envelope_mesh::{VertexId, vertex_components};
 use envelope_predicates::bvh::Aabb;
 use envelope_predicates::{polyline_crossings, strictly_one_side_of_plane};
 use glam::{DVec2, DVec3};
@@ -66,8 +66,8 @@ use glam::{DVec2, DVec3};
 #[derive(Clone, Debug)]
 pub struct FiberTest<'a> {
     fibers: VertexFibers<'a>,
-    /// Component of each vertex (`u32::MAX` for one in no face).
-    component: Vec<u32>,
+    /// Component of each vertex (`None` for one in no face).
+    component: Vec<Option<u32>>,
     /// Per component: the boxes of its inner and of its outer envelope points.
     boxes: Vec<(Aabb, Aabb)>,
 }
@@ -80,48 +80,14 @@ impl<'a> FiberTest<'a> {
     #[must_use]
     pub fn new(fibers: VertexFibers<'a>, faces: &[[VertexId; 3]]) -> Self {
         let n = fibers.inner.len().min(fibers.outer.len());
-        let mut parent: Vec<u32> = (0..n as u32).collect();
-        fn root(parent: &mut [u32], mut x: u32) -> u32 {
-            while parent[x as usize] != x {
-                let up = parent[parent[x as usize] as usize];
-                parent[x as usize] = up;
-                x = up;
+        let (component, count) = vertex_components(n, faces);
+        let mut boxes = vec![(Aabb::EMPTY, Aabb::EMPTY); count];
+        for (v, c) in component.iter().enumerate() {
+            if let Some(c) = *c {
+                let (bi, bo) = &mut boxes[c as usize];
+                *bi = bi.union(&Aabb::from_points(&[fibers.inner[v]]));
+                *bo = bo.union(&Aabb::from_points(&[fibers.outer[v]]));
             }
-            x
-        }
-        let mut used = vec![false; n];
-        for f in faces {
-            if f.iter().any(|v| v.index() >= n) {
-                continue;
-            }
-            for v in f {
-                used[v.index()] = true;
-            }
-            let a = root(&mut parent, f[0].0);
-            for v in &f[1..] {
-                let b = root(&mut parent, v.0);
-                if a != b {
-                    parent[b as usize] = a;
-                }
-            }
-        }
-        let mut component = vec![u32::MAX; n];
-        let mut boxes: Vec<(Aabb, Aabb)> = Vec::new();
-        let mut id_of_root = vec![u32::MAX; n];
-        for v in 0..n {
-            if !used[v] {
-                continue;
-            }
-            let r = root(&mut parent, v as u32) as usize;
-            if id_of_root[r] == u32::MAX {
-                id_of_root[r] = boxes.len() as u32;
-                boxes.push((Aabb::EMPTY, Aabb::EMPTY));
-            }
-            let c = id_of_root[r];
-            component[v] = c;
-            let (bi, bo) = &mut boxes[c as usize];
-            *bi = bi.union(&Aabb::from_points(&[fibers.inner[v]]));
-            *bo = bo.union(&Aabb::from_points(&[fibers.outer[v]]));
         }
         Self {
             fibers,
@@ -142,7 +108,7 @@ impl<'a> FiberTest<'a> {
     pub(crate) fn path(&self, v: VertexId, position: DVec3, link: &[DVec3]) -> Option<FiberPath> {
         let i = v.index();
         let (p, q) = (*self.fibers.inner.get(i)?, *self.fibers.outer.get(i)?);
-        let c = *self.component.get(i)?;
+        let c = (*self.component.get(i)?)?;
         let (inner_box, outer_box) = *self.boxes.get(c as usize)?;
         let mut b = Aabb::from_points(link);
         b = b.union(&Aabb::from_points(&[position]));
@@ -352,13 +318,13 @@ mod tests {
     /// construction (one component reaching far beyond any link).
     fn path_for(v: DVec3, n: DVec3, h: f64, link: &[DVec3]) -> FiberPath {
         let far = 1e3 * link.iter().fold(v.length(), |m, x| m.max(x.length()));
-        let inner = vec![v - n * h, DVec3::splat(-far)];
-        let outer = vec![v + n * h, DVec3::splat(far)];
+        let inner = vec![v - n * h, DVec3::splat(-far), DVec3::new(-far, far, 0.0)];
+        let outer = vec![v + n * h, DVec3::splat(far), DVec3::new(far, -far, 0.0)];
         let fibers = VertexFibers {
             inner: &inner,
             outer: &outer,
         };
-        let test = FiberTest::new(fibers, &[[VertexId(0), VertexId(1), VertexId(1)]]);
+        let test = FiberTest::new(fibers, &[[VertexId(0), VertexId(1), VertexId(2)]]);
         test.path(VertexId(0), v, link).expect("a path")
     }
 

@@ -213,15 +213,13 @@ impl<'a> FillContext<'a> {
     /// The fiber test's question (see [`crate::fiber`]): whether some triangle on the hole's
     /// vertices that meets `path` is not refused anyway ([`Self::refused_anyway`], whose
     /// refusals are cached for the rest of the fill). False means no valid filling exists
-    /// when the path crosses the fan once.
-    pub(crate) fn a_triangle_across_may_pass(&mut self, path: &FiberPath) -> bool {
-        let corners: Vec<DVec3> = self
-            .hole
-            .vertices
-            .iter()
-            .map(|&v| self.position(v))
-            .collect();
-        path.any_triangle_that_may_meet(&corners, |t| !self.refused_anyway(t))
+    /// when the path crosses the fan once. `corners` are the hole's vertices at their positions, in hole order.
+    pub(crate) fn a_triangle_across_may_pass(
+        &mut self,
+        path: &FiberPath,
+        corners: &[DVec3],
+    ) -> bool {
+        path.any_triangle_that_may_meet(corners, |t| !self.refused_anyway(t))
     }
 
     /// Whether the triangle on hole positions `t` is refused whatever the approximation: a

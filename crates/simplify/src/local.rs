@@ -1267,7 +1267,7 @@ impl<'m> LocalSimplifier<'m> {
         let (mut filled, mut across) = (false, true);
         filter.within(&region, &mut || {
             if let Some(path) = &path {
-                if !ctx.a_triangle_across_may_pass(path) {
+                if !ctx.a_triangle_across_may_pass(path, &corners) {
                     let fan: Vec<[DVec3; 3]> = fan
                         .iter()
                         .map(|&f| m.face_vertices(f).map(|x| m.position(x)))
