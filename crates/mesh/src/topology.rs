@@ -136,29 +136,26 @@ impl ParityUnionFind {
         }
     }
 
-    /// Root of `x` and the parity of `x` relative to it (full path compression, iterative).
+    /// Root of `x` and the parity of `x` relative to it (full path compression, iterative,
+    /// without a stack: one walk up for the root and the parity, one more to point the
+    /// path at the root with each node's parity relative to it).
     fn find(&mut self, x: u32) -> (u32, bool) {
-        let mut path = Vec::new();
         let mut r = x;
+        let mut total = false;
         while self.parent[r as usize] != r {
-            path.push(r);
+            total ^= self.parity[r as usize];
             r = self.parent[r as usize];
         }
-        // Walk back from the node nearest the root, accumulating parity.
-        let mut acc = false;
-        for &y in path.iter().rev() {
-            acc ^= self.parity[y as usize];
-            self.parity[y as usize] = acc;
+        // `acc`: the parity of `y` relative to the root, peeled off node by node.
+        let (mut y, mut acc) = (x, total);
+        while self.parent[y as usize] != r && y != r {
+            let (next, own) = (self.parent[y as usize], self.parity[y as usize]);
             self.parent[y as usize] = r;
+            self.parity[y as usize] = acc;
+            acc ^= own;
+            y = next;
         }
-        (
-            r,
-            if path.is_empty() {
-                false
-            } else {
-                self.parity[x as usize]
-            },
-        )
+        (r, total)
     }
 
     /// Adds the constraint; returns false on a contradiction.
@@ -523,6 +520,50 @@ fn trace_border(
 mod tests {
     use super::*;
     use crate::{degeneracy, generate};
+
+    proptest::proptest! {
+        /// The parity union-find against a brute force: each constraint `(a, b, differ)`
+        /// is refused exactly when the constraints taken before force the opposite, and
+        /// every `find` reports the parity a 2-colouring of the accepted ones gives.
+        #[test]
+        fn parity_union_find_is_the_brute_force(
+            constraints in proptest::collection::vec((0u32..12, 0u32..12, proptest::bool::ANY), 0..40),
+        ) {
+            let mut uf = ParityUnionFind::new(12);
+            let mut accepted: Vec<(u32, u32, bool)> = Vec::new();
+            // Parity of every node relative to `start` through the accepted constraints
+            // (`None`: not connected).
+            let colour = |acc: &[(u32, u32, bool)], start: u32| {
+                let mut c = vec![None; 12];
+                c[start as usize] = Some(false);
+                let mut changed = true;
+                while changed {
+                    changed = false;
+                    for &(a, b, d) in acc {
+                        for (x, y) in [(a, b), (b, a)] {
+                            if let (Some(p), None) = (c[x as usize], c[y as usize]) {
+                                c[y as usize] = Some(p ^ d);
+                                changed = true;
+                            }
+                        }
+                    }
+                }
+                c
+            };
+            for &(a, b, d) in &constraints {
+                let forced = colour(&accepted, a)[b as usize];
+                let ok = uf.relate(a, b, d);
+                proptest::prop_assert_eq!(ok, forced.is_none_or(|p| p == d));
+                if forced.is_none() {
+                    accepted.push((a, b, d));
+                }
+                for x in 0..12 {
+                    let (r, p) = uf.find(x);
+                    proptest::prop_assert_eq!(colour(&accepted, r)[x as usize], Some(p));
+                }
+            }
+        }
+    }
 
     fn one(t: &Topology) -> &Component {
         assert_eq!(t.components.len(), 1, "{t:?}");

@@ -218,6 +218,10 @@ pub struct Envelopes {
     pub method: Method,
     /// The exact non-intersection proof.
     pub proof: Proof,
+    /// Trees over the faces of [`Envelopes::outer`] and of [`Envelopes::inner`] (item = face
+    /// id), the ones the proof searched: `envelope-simplify`'s `Barriers::with_trees`
+    /// takes them instead of building its own.
+    pub trees: [Bvh; 2],
 }
 
 impl Envelopes {
@@ -296,7 +300,7 @@ pub fn build_envelopes(
             outer,
             inner,
             mut proof,
-            tree,
+            trees,
         },
     ) = match options.method {
         Method::Analytical => (Method::Analytical, prove(analytical(), None)),
@@ -339,6 +343,10 @@ pub fn build_envelopes(
     };
     let tubes = match options.tube_segments {
         Some(k) if !topo.is_empty() => {
+            // One tree over the input, outer and inner faces (item = face of the three in
+            // that order), as the tube proofs number them.
+            let [o, i] = trees.clone();
+            let tree = Bvh::join(input_tree.clone(), Bvh::join(o, i));
             let input = tubes::TubeInput {
                 soup,
                 faces: &faces,
@@ -371,6 +379,7 @@ pub fn build_envelopes(
         tubes,
         method,
         proof,
+        trees,
     })
 }
 
@@ -381,8 +390,8 @@ struct Proved {
     outer: Vec<DVec3>,
     inner: Vec<DVec3>,
     proof: Proof,
-    /// The proof's tree over the input, outer and inner faces at these positions.
-    tree: Bvh,
+    /// The proof's trees over the outer and the inner faces at these positions.
+    trees: [Bvh; 2],
 }
 
 impl Proved {
@@ -439,7 +448,7 @@ fn prove_and_repair(
         unchanged: base_unchanged.as_ref().map(|[o, i]| [&o[..], &i[..]]),
         previous: &[],
     };
-    let (contacts, mut tree) = proof::prove_envelopes(
+    let (contacts, mut trees) = proof::prove_envelopes(
         &soup.positions,
         [(&outer, &eps_plus), (&inner, &eps_minus)],
         faces,
@@ -498,7 +507,7 @@ fn prove_and_repair(
             unchanged: Some([&moved[0], &moved[1]]),
             previous: &previous,
         };
-        (proof.contacts, tree) = proof::prove_envelopes(
+        (proof.contacts, trees) = proof::prove_envelopes(
             &soup.positions,
             [(&outer, &eps_plus), (&inner, &eps_minus)],
             faces,
@@ -513,7 +522,7 @@ fn prove_and_repair(
         outer,
         inner,
         proof,
-        tree,
+        trees,
     }
 }
 

@@ -100,15 +100,16 @@ pub(crate) struct Known<'a> {
 /// pairs as one tree over all three would give. `prepared_faces_intersect` decides each (the
 /// f64 pre-tests on each face's plane, computed once, then the exact test).
 ///
-/// Also returns one tree over all those faces (item = face: [`Bvh::join`] of the three),
-/// which the tube stage reuses ([`crate::tubes`]).
+/// Also returns the trees over the outer and the inner faces (item = face id), refits of
+/// `input_tree` (see [`Bvh::refit`]), which the tube stage ([`crate::tubes`]) and the
+/// simplifier's barriers reuse.
 pub(crate) fn prove_envelopes(
     input: &[DVec3],
     envelopes: [(&[DVec3], &[f64]); 2],
     faces: &[[u32; 3]],
     input_tree: &Bvh,
     known: &Known<'_>,
-) -> (Vec<Contact>, Bvh) {
+) -> (Vec<Contact>, [Bvh; 2]) {
     let n = input.len() as u32;
     let nf = faces.len() as u32;
     debug_assert_eq!(input_tree.len(), faces.len());
@@ -143,24 +144,64 @@ pub(crate) fn prove_envelopes(
     // Global face ids `i`, `j` of two different faces.
     let meet =
         |i: u32, j: u32| prepared_faces_intersect(&prepared[i as usize], &prepared[j as usize]);
-    let (outer_tree, inner_tree) = rayon::join(
-        || Bvh::from_triangles(&positions, &all[nf as usize..2 * nf as usize]),
-        || Bvh::from_triangles(&positions, &all[2 * nf as usize..]),
+    // Each face's box once; the envelopes' trees are the input's refitted (the same
+    // answers as trees built over these boxes, see `Bvh::refit`; an envelope face lies
+    // near its input face).
+    let boxes: Vec<Aabb> = all
+        .par_iter()
+        .map(|f| Aabb::from_triangle(f.map(|v| positions[v as usize])))
+        .collect();
+    let surface_boxes = |k: u32| &boxes[(k * nf) as usize..((k + 1) * nf) as usize];
+    let (outer_tree, inner_tree) = (
+        input_tree.refit(surface_boxes(1)),
+        input_tree.refit(surface_boxes(2)),
     );
     let trees = [(input_tree, 0), (&outer_tree, nf), (&inner_tree, 2 * nf)];
     let mut pairs = Vec::new();
     match known.unchanged {
         None => {
-            for (a, &(ta, oa)) in trees.iter().enumerate() {
-                if a > 0 || !known.input_free {
-                    let found = ta.self_pairs_where(|i, j| meet(i + oa, j + oa));
-                    pairs.extend(found.into_iter().map(|(i, j)| (i + oa, j + oa)));
+            // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the union of
+            // the face's box on each surface) overlap, then every pair of their triangles on
+            // any two surfaces (within the input only when it is not known free) whose own
+            // boxes overlap: the same pairs as one search per pair of surfaces would give
+            // (two triangles' boxes overlap only where their prisms' do), for one tree
+            // walk instead of five.
+            let prism: Vec<Aabb> = (0..nf as usize)
+                .into_par_iter()
+                .map(|f| {
+                    boxes[f]
+                        .union(&boxes[f + nf as usize])
+                        .union(&boxes[f + 2 * nf as usize])
+                })
+                .collect();
+            let prism_tree = input_tree.refit(&prism);
+            let test = |x: u32, y: u32, out: &mut Vec<(u32, u32)>| {
+                if boxes[x as usize].overlaps(&boxes[y as usize]) && meet(x, y) {
+                    out.push((x.min(y), x.max(y)));
                 }
-                for &(tb, ob) in &trees[a + 1..] {
-                    let found = ta.pairs_with_where(tb, |i, j| meet(i + oa, j + ob));
-                    pairs.extend(found.into_iter().map(|(i, j)| (i + oa, j + ob)));
+            };
+            let first = u32::from(known.input_free);
+            pairs = prism_tree.self_pairs_emit(|f, g, out| {
+                for s in 0..3 {
+                    for t in 0..3 {
+                        if s.max(t) >= first {
+                            test(s * nf + f, t * nf + g, out);
+                        }
+                    }
                 }
-            }
+            });
+            // The triangles of one face on two surfaces.
+            let own: Vec<(u32, u32)> = (0..nf)
+                .into_par_iter()
+                .flat_map_iter(|f| {
+                    let mut out = Vec::new();
+                    for (s, t) in [(0, 1), (0, 2), (1, 2)] {
+                        test(s * nf + f, t * nf + f, &mut out);
+                    }
+                    out
+                })
+                .collect();
+            pairs.extend(own);
         }
         Some(u) => {
             // Only the changed faces, each against every face (a pair of two changed faces
@@ -204,6 +245,5 @@ pub(crate) fn prove_envelopes(
             b: which(b),
         })
         .collect();
-    let tree = Bvh::join(input_tree.clone(), Bvh::join(outer_tree, inner_tree));
-    (contacts, tree)
+    (contacts, [outer_tree, inner_tree])
 }

@@ -433,9 +433,116 @@ impl Bvh {
         if self.nodes.is_empty() {
             return Vec::new();
         }
-        let mut out = self.self_rec(0, &keep);
+        let emit = |i: u32, j: u32, out: &mut Vec<(u32, u32)>| {
+            if keep(i, j) {
+                out.push((i, j));
+            }
+        };
+        let mut out = collect(|o| self.self_rec(0, &emit, o));
         out.sort_unstable();
         out
+    }
+
+    /// Calls `emit(i, j, out)` once for every pair `i < j` of items with overlapping boxes
+    /// and returns everything the calls pushed onto `out`, sorted: for a caller that turns
+    /// one pair of items into several answers (the envelope proof: one pair of input faces,
+    /// up to nine pairs of triangles of three surfaces). Runs in parallel.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let boxes: Vec<Aabb> = (0..4)
+    ///     .map(|i| Aabb::from_points(&[DVec3::splat(i as f64), DVec3::splat(i as f64 + 1.5)]))
+    ///     .collect();
+    /// let tree = Bvh::new(&boxes);
+    /// let both_ways = tree.self_pairs_emit(|i, j, out| out.extend([(i, j), (j + 10, i)]));
+    /// assert_eq!(both_ways, vec![(0, 1), (1, 2), (2, 3), (11, 0), (12, 1), (13, 2)]);
+    /// ```
+    pub fn self_pairs_emit<F: Fn(u32, u32, &mut Vec<(u32, u32)>) + Sync>(
+        &self,
+        emit: F,
+    ) -> Vec<(u32, u32)> {
+        if self.nodes.is_empty() {
+            return Vec::new();
+        }
+        let mut out = collect(|o| self.self_rec(0, &emit, o));
+        out.sort_unstable();
+        out
+    }
+
+    /// Whether this is a tree over exactly `boxes`: one item per box, each item once, with
+    /// the box it has there (as [`Bvh::new`]`(boxes)` or a [`Bvh::refit`] to them makes it).
+    /// For a caller handed a tree built elsewhere. Linear time.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let at = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let tree = Bvh::new(&[at(0.0), at(5.0)]);
+    /// assert!(tree.has_item_boxes(&[at(0.0), at(5.0)]));
+    /// assert!(!tree.has_item_boxes(&[at(5.0), at(0.0)]));
+    /// assert!(!tree.has_item_boxes(&[at(0.0)]));
+    /// ```
+    #[must_use]
+    pub fn has_item_boxes(&self, boxes: &[Aabb]) -> bool {
+        if boxes.len() != self.items.len() {
+            return false;
+        }
+        let mut seen = vec![false; boxes.len()];
+        self.items.iter().zip(&self.boxes).all(|(&i, b)| {
+            let i = i as usize;
+            i < boxes.len() && !std::mem::replace(&mut seen[i], true) && boxes[i] == *b
+        })
+    }
+
+    /// The same tree shape over other boxes: item `i` gets `boxes[i]`, and every node the
+    /// union of its items' new boxes. Every query and pair search answers exactly what it
+    /// would on [`Bvh::new`]`(boxes)` (the sets of items whose boxes overlap do not depend
+    /// on the shape); only the speed does, so a refit suits boxes that moved little against
+    /// the ones the tree was built for (an envelope face against its input face, at small
+    /// offsets). Linear time, no sorting.
+    ///
+    /// # Panics
+    /// When `boxes` does not have one box per item.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let at = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let tree = Bvh::new(&[at(0.0), at(5.0), at(9.0)]);
+    /// let moved = tree.refit(&[at(0.0), at(8.5), at(9.0)]);
+    /// assert_eq!(moved.self_pairs(), vec![(1, 2)]);
+    /// assert_eq!(moved.overlapping(&at(4.0)), Vec::<u32>::new());
+    /// ```
+    #[must_use]
+    pub fn refit(&self, boxes: &[Aabb]) -> Bvh {
+        assert_eq!(boxes.len(), self.items.len(), "one box per item");
+        let ordered: Vec<Aabb> = self.items.iter().map(|&i| boxes[i as usize]).collect();
+        let mut nodes = self.nodes.clone();
+        // Children come after their parent in every tree this type builds (pre-order
+        // builds, `join` putting the new root first), so one backward pass sees every
+        // child's new box before its parent's.
+        for n in (0..nodes.len()).rev() {
+            let node = nodes[n];
+            nodes[n].bounds = if node.leaf {
+                ordered[node.a as usize..(node.a + node.b) as usize]
+                    .iter()
+                    .fold(Aabb::EMPTY, |b, x| b.union(x))
+            } else {
+                assert!(
+                    node.a as usize > n && node.b as usize > n,
+                    "children after the parent"
+                );
+                nodes[node.a as usize]
+                    .bounds
+                    .union(&nodes[node.b as usize].bounds)
+            };
+        }
+        Bvh {
+            nodes,
+            items: self.items.clone(),
+            boxes: ordered,
+        }
     }
 
     /// All pairs `(i, j)`, `i < j`, of items with overlapping boxes; sorted.
@@ -454,9 +561,12 @@ impl Bvh {
         if self.nodes.is_empty() || other.nodes.is_empty() {
             return Vec::new();
         }
-        let mut out = cross_rec(self, 0, other, 0, &|a: u32, b: u32| {
-            keep(a, b).then_some((a, b))
-        });
+        let pair = |a: u32, b: u32, out: &mut Vec<(u32, u32)>| {
+            if keep(a, b) {
+                out.push((a, b));
+            }
+        };
+        let mut out = collect(|o| cross_rec(self, 0, other, 0, &pair, o));
         out.sort_unstable();
         out
     }
@@ -472,41 +582,48 @@ impl Bvh {
         self.nodes[n as usize].count as usize
     }
 
-    fn self_rec<F: Fn(u32, u32) -> bool + Sync>(&self, n: u32, keep: &F) -> Vec<(u32, u32)> {
+    /// Calls `emit(i, j, out)`, `i < j`, for every overlapping pair within the subtree `n`.
+    fn self_rec<F: Fn(u32, u32, &mut Vec<(u32, u32)>) + Sync>(
+        &self,
+        n: u32,
+        emit: &F,
+        out: &mut Vec<(u32, u32)>,
+    ) {
         let node = &self.nodes[n as usize];
         if node.leaf {
-            let mut out = Vec::new();
             let (s, e) = (node.a as usize, (node.a + node.b) as usize);
             for k in s..e {
                 for l in k + 1..e {
                     if self.boxes[k].overlaps(&self.boxes[l]) {
                         let (i, j) = ordered(self.items[k], self.items[l]);
-                        if keep(i, j) {
-                            out.push((i, j));
-                        }
+                        emit(i, j, out);
                     }
                 }
             }
-            return out;
+            return;
         }
         let (l, r) = (node.a, node.b);
-        let pair = |a: u32, b: u32| {
+        let pair = |a: u32, b: u32, out: &mut Vec<(u32, u32)>| {
             let (i, j) = ordered(a, b);
-            keep(i, j).then_some((i, j))
+            emit(i, j, out);
         };
         if self.size(n) > PAR_THRESHOLD {
-            let ((mut x, y), z) = rayon::join(
-                || rayon::join(|| self.self_rec(l, keep), || self.self_rec(r, keep)),
-                || cross_rec(self, l, self, r, &pair),
+            let ((x, y), z) = rayon::join(
+                || {
+                    rayon::join(
+                        || collect(|o| self.self_rec(l, emit, o)),
+                        || collect(|o| self.self_rec(r, emit, o)),
+                    )
+                },
+                || collect(|o| cross_rec(self, l, self, r, &pair, o)),
             );
-            x.extend(y);
-            x.extend(z);
-            x
+            out.extend(x);
+            out.extend(y);
+            out.extend(z);
         } else {
-            let mut x = self.self_rec(l, keep);
-            x.extend(self.self_rec(r, keep));
-            x.extend(cross_rec(self, l, self, r, &pair));
-            x
+            self.self_rec(l, emit, out);
+            self.self_rec(r, emit, out);
+            cross_rec(self, l, self, r, &pair, out);
         }
     }
 }
@@ -516,46 +633,56 @@ fn ordered(a: u32, b: u32) -> (u32, u32) {
     if a < b { (a, b) } else { (b, a) }
 }
 
-/// Pairs between the subtree `na` of `ta` and the subtree `nb` of `tb`.
-fn cross_rec<F: Fn(u32, u32) -> Option<(u32, u32)> + Sync>(
+/// What `fill` appends to a new vector.
+fn collect<T>(fill: impl FnOnce(&mut Vec<T>)) -> Vec<T> {
+    let mut out = Vec::new();
+    fill(&mut out);
+    out
+}
+
+/// Calls `f(i, j, out)` for every overlapping pair of an item `i` under the node `na` of `ta`
+/// and an item `j` under `nb` of `tb` (one vector for a whole sequential subtree pair: no
+/// allocation per node pair).
+fn cross_rec<F: Fn(u32, u32, &mut Vec<(u32, u32)>) + Sync>(
     ta: &Bvh,
     na: u32,
     tb: &Bvh,
     nb: u32,
     f: &F,
-) -> Vec<(u32, u32)> {
+    out: &mut Vec<(u32, u32)>,
+) {
     let (a, b) = (&ta.nodes[na as usize], &tb.nodes[nb as usize]);
     if !a.bounds.overlaps(&b.bounds) {
-        return Vec::new();
+        return;
     }
     if a.leaf && b.leaf {
-        let mut out = Vec::new();
         for k in a.a as usize..(a.a + a.b) as usize {
             for l in b.a as usize..(b.a + b.b) as usize {
                 if ta.boxes[k].overlaps(&tb.boxes[l]) {
-                    out.extend(f(ta.items[k], tb.items[l]));
+                    f(ta.items[k], tb.items[l], out);
                 }
             }
         }
-        return out;
+        return;
     }
     let (sa, sb) = (ta.size(na), tb.size(nb));
     // Descend the larger side (or the only interior one).
     let descend_a = !a.leaf && (b.leaf || sa >= sb);
     let (x, y) = if descend_a {
-        ((na, a.a, nb, nb), (na, a.b, nb, nb))
+        ((a.a, nb), (a.b, nb))
     } else {
-        ((na, na, nb, b.a), (na, na, nb, b.b))
+        ((na, b.a), (na, b.b))
     };
-    let run = |(_, ca, _, cb): (u32, u32, u32, u32)| cross_rec(ta, ca, tb, cb, f);
     if sa + sb > PAR_THRESHOLD {
-        let (mut l, r) = rayon::join(|| run(x), || run(y));
-        l.extend(r);
-        l
+        let (l, r) = rayon::join(
+            || collect(|o| cross_rec(ta, x.0, tb, x.1, f, o)),
+            || collect(|o| cross_rec(ta, y.0, tb, y.1, f, o)),
+        );
+        out.extend(l);
+        out.extend(r);
     } else {
-        let mut l = run(x);
-        l.extend(run(y));
-        l
+        cross_rec(ta, x.0, tb, x.1, f, out);
+        cross_rec(ta, y.0, tb, y.1, f, out);
     }
 }
 

@@ -116,6 +116,60 @@ fn joined_trees_match_one_tree() {
     }
 }
 
+/// `Bvh::refit` answers like a tree built over the new boxes, whether they moved a little
+/// or were replaced by unrelated ones, on built and joined trees (sizes above the parallel
+/// threshold too); `self_pairs_emit` pushes exactly what it is asked to for those pairs.
+#[test]
+fn refit_trees_match_new_trees_and_emit_matches_pairs() {
+    let mut g = Lcg(23);
+    for (na, nb) in [(1, 0), (2, 3), (300, 0), (9000, 0), (40, 700), (5000, 3000)] {
+        let (a, b) = (random_boxes(&mut g, na), random_boxes(&mut g, nb));
+        let tree = if nb == 0 {
+            Bvh::new(&a)
+        } else {
+            Bvh::join(Bvh::new(&a), Bvh::new(&b))
+        };
+        let old: Vec<Aabb> = a.iter().chain(&b).copied().collect();
+        let nudged: Vec<Aabb> = old
+            .iter()
+            .map(|x| {
+                let d = g.point(0.6) - DVec3::splat(0.3);
+                Aabb::from_points(&[x.min + d, x.max + d + g.point(0.2)])
+            })
+            .collect();
+        let unrelated = random_boxes(&mut g, old.len());
+        for boxes in [&nudged, &unrelated] {
+            let refit = tree.refit(boxes);
+            let built = Bvh::new(boxes);
+            assert_eq!(refit.len(), boxes.len());
+            assert_items_nest(&refit, boxes);
+            assert_eq!(refit.self_pairs(), built.self_pairs(), "{na} + {nb}");
+            for _ in 0..20 {
+                let p = g.point(10.0);
+                let q = Aabb::from_points(&[p, p + g.point(2.0)]);
+                assert_eq!(refit.overlapping(&q), built.overlapping(&q));
+            }
+            let other = Bvh::new(&random_boxes(&mut g, 60));
+            assert_eq!(refit.pairs_with(&other), built.pairs_with(&other));
+            let mut twice: Vec<(u32, u32)> = built
+                .self_pairs()
+                .into_iter()
+                .flat_map(|(i, j)| [(i, j), (j, i + 1_000_000)])
+                .filter(|&(i, j)| (i + j) % 3 != 0)
+                .collect();
+            twice.sort_unstable();
+            let emitted = refit.self_pairs_emit(|i, j, out| {
+                out.extend(
+                    [(i, j), (j, i + 1_000_000)]
+                        .into_iter()
+                        .filter(|&(i, j)| (i + j) % 3 != 0),
+                )
+            });
+            assert_eq!(emitted, twice);
+        }
+    }
+}
+
 #[test]
 fn distance_lower_bound_is_a_lower_bound() {
     let mut g = Lcg(9);

@@ -99,6 +99,13 @@ pub enum BarrierError {
         /// The face.
         face: usize,
     },
+    /// A tree given for an envelope ([`Barriers::with_trees`]) is not one over its faces
+    /// (or there is not one tree per envelope: the first surface without its own).
+    #[error("barrier surface {surface}: the tree given is not one over its faces")]
+    TreeMismatch {
+        /// The surface.
+        surface: usize,
+    },
     /// A coordinate the exact predicates cannot take.
     #[error("barrier surface {surface}: vertex {vertex}: {error}")]
     Coordinate {
@@ -167,6 +174,47 @@ impl Barriers {
         tubes: Vec<TriangleSoup>,
         walls: Vec<TriangleSoup>,
     ) -> Result<Self, BarrierError> {
+        Self::build(envelopes, None, tubes, walls)
+    }
+
+    /// Like [`Barriers::with_walls`], with a tree over each envelope's faces (item = face
+    /// id; `envelope-offset`'s `Envelopes::trees`, the ones its proof searched), so that
+    /// only the tubes and walls need one of their own. The same barriers, answering every
+    /// question the same (the trees only decide where to look).
+    ///
+    /// # Errors
+    /// Those of [`Barriers::new`], and [`BarrierError::TreeMismatch`] when a tree is not
+    /// one over its envelope's faces (another number of items, or other boxes).
+    ///
+    /// ```
+    /// use envelope_mesh::generate;
+    /// use envelope_predicates::bvh::Bvh;
+    /// use envelope_simplify::Barriers;
+    /// use glam::DVec3;
+    /// let (outer, inner) = (generate::icosphere(1, 1.1), generate::icosphere(1, 0.9));
+    /// let tree = |s: &envelope_mesh::TriangleSoup| {
+    ///     let faces: Vec<[u32; 3]> = s.faces.iter().map(|f| f.map(|v| v.0)).collect();
+    ///     Bvh::from_triangles(&s.positions, &faces)
+    /// };
+    /// let trees = vec![tree(&outer), tree(&inner)];
+    /// let b = Barriers::with_trees(vec![outer, inner], trees, vec![], vec![]).unwrap();
+    /// assert!(b.blocks([DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 2.0, 0.0)], [false; 3]));
+    /// ```
+    pub fn with_trees(
+        envelopes: Vec<TriangleSoup>,
+        trees: Vec<Bvh>,
+        tubes: Vec<TriangleSoup>,
+        walls: Vec<TriangleSoup>,
+    ) -> Result<Self, BarrierError> {
+        Self::build(envelopes, Some(trees), tubes, walls)
+    }
+
+    fn build(
+        envelopes: Vec<TriangleSoup>,
+        trees: Option<Vec<Bvh>>,
+        tubes: Vec<TriangleSoup>,
+        walls: Vec<TriangleSoup>,
+    ) -> Result<Self, BarrierError> {
         let mut triangles = Vec::new();
         let mut kinds = Vec::new();
         let has_tubes = tubes.iter().any(|t| t.num_faces() > 0);
@@ -204,17 +252,23 @@ impl Barriers {
             .par_iter()
             .map(|&t| Aabb::from_triangle(t))
             .collect();
-        let (bvh, triangles, kinds, boxes) = if boxes.is_empty() {
-            (None, triangles, kinds, boxes)
-        } else {
-            let (bvh, old) = Bvh::new(&boxes).into_leaf_order();
-            let pick = |i: &u32| *i as usize;
-            (
-                Some(bvh),
-                old.iter().map(|i| triangles[pick(i)]).collect::<Vec<_>>(),
-                old.iter().map(|i| kinds[pick(i)]).collect::<Vec<_>>(),
-                old.iter().map(|i| boxes[pick(i)]).collect::<Vec<_>>(),
-            )
+        let tree = match trees {
+            _ if boxes.is_empty() => None,
+            None => Some(Bvh::new(&boxes)),
+            Some(trees) => Some(joined_tree(&envelopes, trees, &boxes)?),
+        };
+        let (bvh, triangles, kinds, boxes) = match tree {
+            None => (None, triangles, kinds, boxes),
+            Some(tree) => {
+                let (bvh, old) = tree.into_leaf_order();
+                let pick = |i: &u32| *i as usize;
+                (
+                    Some(bvh),
+                    old.iter().map(|i| triangles[pick(i)]).collect::<Vec<_>>(),
+                    old.iter().map(|i| kinds[pick(i)]).collect::<Vec<_>>(),
+                    old.iter().map(|i| boxes[pick(i)]).collect::<Vec<_>>(),
+                )
+            }
         };
         let magnitude = triangles.iter().copied().map(magnitude).fold(0.0, f64::max);
         let slabs = triangles
@@ -533,6 +587,39 @@ impl Barriers {
     }
 }
 
+/// One tree over all barrier triangles (`boxes`, envelopes first in the order given, then
+/// tubes and walls): the envelopes' `trees`, checked against their boxes, joined with one
+/// built over the rest.
+fn joined_tree(
+    envelopes: &[TriangleSoup],
+    trees: Vec<Bvh>,
+    boxes: &[Aabb],
+) -> Result<Bvh, BarrierError> {
+    if trees.len() != envelopes.len() {
+        return Err(BarrierError::TreeMismatch {
+            surface: trees.len().min(envelopes.len()),
+        });
+    }
+    let mut start = 0;
+    let mut joined: Option<Bvh> = None;
+    for (surface, (soup, tree)) in envelopes.iter().zip(trees).enumerate() {
+        let end = start + soup.num_faces();
+        if !tree.has_item_boxes(&boxes[start..end]) {
+            return Err(BarrierError::TreeMismatch { surface });
+        }
+        joined = Some(match joined {
+            None => tree,
+            Some(j) => Bvh::join(j, tree),
+        });
+        start = end;
+    }
+    let rest = Bvh::new(&boxes[start..]);
+    Ok(match joined {
+        None => rest,
+        Some(j) => Bvh::join(j, rest),
+    })
+}
+
 /// Corner ids for [`indexed_triangles_intersect`], with the candidate `t` numbered
 /// `[0, 1, 2]`: a pin corner `j` of `b` (bit `j` of `mask`) at the point of `t[i]` gets id
 /// `i` (they share it), every other corner of `b` an id of its own. `None` when no pin
@@ -676,6 +763,84 @@ mod tests {
 
     fn roof_triangle() -> [DVec3; 3] {
         roof().triangle(envelope_mesh::FaceId(0))
+    }
+
+    fn tree_of(s: &TriangleSoup) -> Bvh {
+        let faces: Vec<[u32; 3]> = s.faces.iter().map(|f| f.map(|v| v.0)).collect();
+        Bvh::from_triangles(&s.positions, &faces)
+    }
+
+    /// Barriers on trees handed in (and refitted ones) answer as those that built their own,
+    /// with a tube and a wall beside the envelopes; a tree that is not over its envelope's
+    /// faces, or a missing one, is refused and named.
+    #[test]
+    fn barriers_on_given_trees_answer_as_built_ones() {
+        use envelope_mesh::generate;
+        let outer = generate::icosphere(2, 1.1);
+        let inner = generate::icosphere(2, 0.9);
+        let tube = generate::torus(1.0, 0.05, 16, 6);
+        let wall = roof();
+        let built = Barriers::with_walls(
+            vec![outer.clone(), inner.clone()],
+            vec![tube.clone()],
+            vec![wall.clone()],
+        )
+        .unwrap();
+        // The outer tree a refit of the inner one (same connectivity, other boxes).
+        let trees = vec![
+            tree_of(&inner).refit(&{
+                let faces: Vec<[DVec3; 3]> = outer.face_ids().map(|f| outer.triangle(f)).collect();
+                faces
+                    .iter()
+                    .map(|&t| Aabb::from_triangle(t))
+                    .collect::<Vec<_>>()
+            }),
+            tree_of(&inner),
+        ];
+        let given = Barriers::with_trees(
+            vec![outer.clone(), inner.clone()],
+            trees,
+            vec![tube.clone()],
+            vec![wall.clone()],
+        )
+        .unwrap();
+        assert_eq!(given.num_triangles(), built.num_triangles());
+        let mut state = 0x5DEE_CE66_D1CE_4E5B_u64;
+        let mut coord = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.6 - 1.3
+        };
+        let (mut blocked, mut free) = (0, 0);
+        for _ in 0..400 {
+            let t = [(); 3].map(|()| DVec3::new(coord(), coord(), coord()) * 0.6);
+            let edges = [true, false, true];
+            let answer = built.blocks(t, edges);
+            assert_eq!(given.blocks(t, edges), answer, "{t:?}");
+            if answer { blocked += 1 } else { free += 1 }
+        }
+        assert!(blocked > 20 && free > 20, "{blocked} blocked, {free} free");
+        let swapped = Barriers::with_trees(
+            vec![outer.clone(), inner.clone()],
+            vec![tree_of(&inner), tree_of(&outer)],
+            vec![],
+            vec![],
+        );
+        assert_eq!(
+            swapped.err(),
+            Some(BarrierError::TreeMismatch { surface: 0 })
+        );
+        let missing = Barriers::with_trees(
+            vec![outer.clone(), inner],
+            vec![tree_of(&outer)],
+            vec![],
+            vec![],
+        );
+        assert_eq!(
+            missing.err(),
+            Some(BarrierError::TreeMismatch { surface: 1 })
+        );
     }
 
     #[test]
