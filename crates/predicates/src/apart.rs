@@ -158,6 +158,57 @@ pub fn straddling_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) 
         // `s2[a2]`: the sign of alpha; `s1[a1]`: that of gamma.
         return s2[a2] == s1[a1];
     }
+    guigue_devillers(p1, s1, p2, s2) == Some(false)
+}
+
+/// Whether two closed triangles with no shared vertex meet, decided in error-bounded f64
+/// when every vertex of each is surely off the other's plane (see [`Planar`]): apart when
+/// one plane has the other triangle on one side, else (each strictly straddles the other's
+/// plane) Guigue and Devillers' two orientations, each surely nonzero (the exact test is
+/// `generic::intersect`'s `straddling_triangles_meet`). `None` when an orientation is too
+/// close to zero for f64 to tell: the exact test decides. For coordinates of at most
+/// [`crate::MAX_ALLOWED_MAGNITUDE`]. Both answers are exact, so a caller may return either.
+///
+/// ```
+/// use envelope_predicates::apart::{straddling_decides, Planar};
+/// use glam::DVec3;
+/// let t1 = [DVec3::new(-1.0, -1.0, 0.0), DVec3::new(2.0, -1.0, 0.0), DVec3::new(-1.0, 2.0, 0.0)];
+/// let through = [DVec3::new(0.2, 0.2, -1.0), DVec3::new(0.3, 0.2, 1.0), DVec3::new(0.2, 0.4, 1.0)];
+/// let beside = through.map(|p| p + DVec3::new(5.0, 0.0, 0.0));
+/// assert_eq!(straddling_decides(&Planar::new(t1), &Planar::new(through)), Some(true));
+/// assert_eq!(straddling_decides(&Planar::new(t1), &Planar::new(beside)), Some(false));
+/// ```
+#[must_use]
+pub fn straddling_decides(p1: &Planar, p2: &Planar) -> Option<bool> {
+    let sides = |plane: &Planar, of: &[DVec3; 3]| -> Option<[bool; 3]> {
+        let mut out = [false; 3];
+        for k in 0..3 {
+            let (v, tol) = plane.value(of[k]);
+            if v > tol {
+                out[k] = true;
+            } else if !(v < -tol) {
+                return None;
+            }
+        }
+        Some(out)
+    };
+    let one_side = |s: [bool; 3]| s[0] == s[1] && s[1] == s[2];
+    let s2 = sides(p1, &p2.t)?;
+    if one_side(s2) {
+        return Some(false);
+    }
+    let s1 = sides(p2, &p1.t)?;
+    if one_side(s1) {
+        return Some(false);
+    }
+    guigue_devillers(p1, s1, p2, s2)
+}
+
+/// Guigue and Devillers' two orientations for triangles with no shared vertex that each
+/// strictly straddle the other's plane, `s1[k]` (`s2[k]`) the exact side of `t1[k]`
+/// (`t2[k]`) of the other plane (`true`: positive): `Some(false)` when either is surely
+/// positive (apart), `Some(true)` when both are surely negative (they meet), else `None`.
+fn guigue_devillers(p1: &Planar, s1: [bool; 3], p2: &Planar, s2: [bool; 3]) -> Option<bool> {
     let alone = |s: [bool; 3]| {
         if s[0] == s[1] {
             2
@@ -177,11 +228,26 @@ pub fn straddling_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) 
     if !s2[j] {
         std::mem::swap(&mut b1, &mut c1);
     }
-    let surely_positive = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| {
+    // The f64 orientation with its error bound: `Some(true)` surely positive, `Some(false)`
+    // surely negative.
+    let sign = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| {
         let (v, tol) = Planar::new([a, b, c]).value(d);
-        v > tol
+        if v > tol {
+            Some(true)
+        } else if v < -tol {
+            Some(false)
+        } else {
+            None
+        }
     };
-    surely_positive(a1, b1, a2, b2) || surely_positive(a1, c1, c2, a2)
+    let (o1, o2) = (sign(a1, b1, a2, b2), sign(a1, c1, c2, a2));
+    if o1 == Some(true) || o2 == Some(true) {
+        Some(false)
+    } else if o1 == Some(false) && o2 == Some(false) {
+        Some(true)
+    } else {
+        None
+    }
 }
 
 /// `L·(p - o)` as an interval that certainly holds the exact value for the f64 points `p`,
@@ -423,6 +489,42 @@ mod tests {
                 "{shared}: {claimed} of {apart} apart pairs claimed"
             );
         }
+    }
+
+    /// `straddling_decides` against the exact test on random pairs (f64 coordinates: apart,
+    /// crossed and touching ones) and on grid pairs (many exact zeros, which it must leave
+    /// to the exact test): every answer it gives is the exact one, and it answers nearly
+    /// every random pair.
+    #[test]
+    fn straddling_decides_only_the_exact_answer() {
+        let mut next = crate::xorshift(0x0DDB_1A5E_5BAD_5EED);
+        let (mut decided, mut meeting, mut random) = (0, 0, 0);
+        for round in 0..90_000 {
+            let grid = round % 3 == 0;
+            let mut c = || {
+                let r = next();
+                if grid {
+                    (r % 5) as f64 - 2.0
+                } else {
+                    (r >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+                }
+            };
+            let t1 = [v(c(), c(), c()), v(c(), c(), c()), v(c(), c(), c())];
+            let t2 = [v(c(), c(), c()), v(c(), c(), c()), v(c(), c(), c())];
+            let exact = crate::generic::triangles_intersect::<crate::Filtered>(t1, t2);
+            let says = straddling_decides(&Planar::new(t1), &Planar::new(t2));
+            assert!(says.is_none_or(|x| x == exact), "{t1:?} {t2:?}: {says:?}");
+            if !grid {
+                random += 1;
+                decided += usize::from(says.is_some());
+                meeting += usize::from(says == Some(true));
+            }
+        }
+        assert!(
+            decided * 100 >= random * 99,
+            "{decided} of {random} decided"
+        );
+        assert!(meeting > 2000, "{meeting} meeting");
     }
 
     /// Soundness against the exact test: on random pairs from a coarse grid (many touching,

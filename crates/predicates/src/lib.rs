@@ -196,10 +196,18 @@ pub fn strictly_one_side_of_plane(t: [DVec3; 3], points: &[DVec3]) -> bool {
 }
 
 /// Closed triangles meet; see [`generic::triangles_intersect`]. The range of the six points
-/// is checked once.
+/// is checked once; in range, pairs whose orientations f64 decides beyond its error bound
+/// (one plane with the other triangle on one side, or crossed pairs by Guigue and
+/// Devillers' two orientations, [`apart::straddling_decides`]) are answered from them, the
+/// same exact answer.
 #[must_use]
 pub fn triangles_intersect(t1: [DVec3; 3], t2: [DVec3; 3]) -> bool {
     if in_range([t1[0], t1[1], t1[2], t2[0], t2[1], t2[2]]) {
+        if let Some(meet) =
+            apart::straddling_decides(&apart::Planar::new(t1), &apart::Planar::new(t2))
+        {
+            return meet;
+        }
         generic::triangles_intersect::<kernel::InRange>(t1, t2)
     } else {
         generic::triangles_intersect::<Filtered>(t1, t2)
