@@ -184,11 +184,11 @@ pub fn straddling_decides(p1: &Planar, p2: &Planar) -> Option<bool> {
         let mut out = [false; 3];
         for k in 0..3 {
             let (v, tol) = plane.value(of[k]);
-            if v > tol {
-                out[k] = true;
-            } else if !(v < -tol) {
+            // Too close to the plane (or a NaN): f64 cannot tell the side.
+            if v.abs().partial_cmp(&tol) != Some(std::cmp::Ordering::Greater) {
                 return None;
             }
+            out[k] = v > tol;
         }
         Some(out)
     };
