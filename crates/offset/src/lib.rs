@@ -218,10 +218,11 @@ pub struct Envelopes {
     pub method: Method,
     /// The exact non-intersection proof.
     pub proof: Proof,
-    /// Trees over the faces of [`Envelopes::outer`] and of [`Envelopes::inner`] (item = face
-    /// id), the ones the proof searched: `envelope-simplify`'s `Barriers::with_trees`
-    /// takes them instead of building its own.
-    pub trees: [Bvh; 2],
+    /// A tree over the faces of [`Envelopes::outer`] then those of [`Envelopes::inner`]
+    /// (item `f`: outer face `f`; item `n + f`, `n` faces: inner face `f`), the one the
+    /// proof searched, with both offsets of a face in one leaf: `envelope-simplify`'s
+    /// `Barriers::with_tree` takes it instead of building its own.
+    pub tree: Bvh,
 }
 
 impl Envelopes {
@@ -300,7 +301,7 @@ pub fn build_envelopes(
             outer,
             inner,
             mut proof,
-            trees,
+            tree,
         },
     ) = match options.method {
         Method::Analytical => (Method::Analytical, prove(analytical(), None)),
@@ -345,8 +346,7 @@ pub fn build_envelopes(
         Some(k) if !topo.is_empty() => {
             // One tree over the input, outer and inner faces (item = face of the three in
             // that order), as the tube proofs number them.
-            let [o, i] = trees.clone();
-            let tree = Bvh::join(input_tree.clone(), Bvh::join(o, i));
+            let surfaces = Bvh::join(input_tree.clone(), tree.clone());
             let input = tubes::TubeInput {
                 soup,
                 faces: &faces,
@@ -354,7 +354,7 @@ pub fn build_envelopes(
                 inner: &inner,
                 requested: &requested,
                 diagonal,
-                surfaces: Some(&tree),
+                surfaces: Some(&surfaces),
             };
             let policy = StepPolicy {
                 k: options.numerical.k,
@@ -379,7 +379,7 @@ pub fn build_envelopes(
         tubes,
         method,
         proof,
-        trees,
+        tree,
     })
 }
 
@@ -390,8 +390,8 @@ struct Proved {
     outer: Vec<DVec3>,
     inner: Vec<DVec3>,
     proof: Proof,
-    /// The proof's trees over the outer and the inner faces at these positions.
-    trees: [Bvh; 2],
+    /// The proof's tree over the outer then the inner faces at these positions.
+    tree: Bvh,
 }
 
 impl Proved {
@@ -448,7 +448,7 @@ fn prove_and_repair(
         unchanged: base_unchanged.as_ref().map(|[o, i]| [&o[..], &i[..]]),
         previous: &[],
     };
-    let (contacts, mut trees) = proof::prove_envelopes(
+    let (contacts, mut tree) = proof::prove_envelopes(
         &soup.positions,
         [(&outer, &eps_plus), (&inner, &eps_minus)],
         faces,
@@ -507,7 +507,7 @@ fn prove_and_repair(
             unchanged: Some([&moved[0], &moved[1]]),
             previous: &previous,
         };
-        (proof.contacts, trees) = proof::prove_envelopes(
+        (proof.contacts, tree) = proof::prove_envelopes(
             &soup.positions,
             [(&outer, &eps_plus), (&inner, &eps_minus)],
             faces,
@@ -522,7 +522,7 @@ fn prove_and_repair(
         outer,
         inner,
         proof,
-        trees,
+        tree,
     }
 }
 

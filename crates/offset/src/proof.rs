@@ -100,16 +100,17 @@ pub(crate) struct Known<'a> {
 /// pairs as one tree over all three would give. `prepared_faces_intersect` decides each (the
 /// f64 pre-tests on each face's plane, computed once, then the exact test).
 ///
-/// Also returns the trees over the outer and the inner faces (item = face id), refits of
-/// `input_tree` (see [`Bvh::refit`]), which the tube stage ([`crate::tubes`]) and the
-/// simplifier's barriers reuse.
+/// Also returns one tree over the outer and the inner faces (item `f`: outer face `f`, item
+/// `nf + f`: inner face `f`), the shape of `input_tree` with both offsets of a face in the
+/// leaf of the face ([`Bvh::interleaved`], [`Bvh::refit`]), which the tube stage
+/// ([`crate::tubes`]) and the simplifier's barriers reuse.
 pub(crate) fn prove_envelopes(
     input: &[DVec3],
     envelopes: [(&[DVec3], &[f64]); 2],
     faces: &[[u32; 3]],
     input_tree: &Bvh,
     known: &Known<'_>,
-) -> (Vec<Contact>, [Bvh; 2]) {
+) -> (Vec<Contact>, Bvh) {
     let n = input.len() as u32;
     let nf = faces.len() as u32;
     debug_assert_eq!(input_tree.len(), faces.len());
@@ -144,19 +145,15 @@ pub(crate) fn prove_envelopes(
     // Global face ids `i`, `j` of two different faces.
     let meet =
         |i: u32, j: u32| prepared_faces_intersect(&prepared[i as usize], &prepared[j as usize]);
-    // Each face's box once; the envelopes' trees are the input's refitted (the same
-    // answers as trees built over these boxes, see `Bvh::refit`; an envelope face lies
-    // near its input face).
+    // Each face's box once; the envelopes' tree is the input's with both offsets of each
+    // face in its leaf, refitted (the same answers as a tree built over these boxes, see
+    // `Bvh::refit`; an envelope face lies near its input face).
     let boxes: Vec<Aabb> = all
         .par_iter()
         .map(|f| Aabb::from_triangle(f.map(|v| positions[v as usize])))
         .collect();
-    let surface_boxes = |k: u32| &boxes[(k * nf) as usize..((k + 1) * nf) as usize];
-    let (outer_tree, inner_tree) = (
-        input_tree.refit(surface_boxes(1)),
-        input_tree.refit(surface_boxes(2)),
-    );
-    let trees = [(input_tree, 0), (&outer_tree, nf), (&inner_tree, 2 * nf)];
+    let envelope_tree = input_tree.interleaved(2).refit(&boxes[nf as usize..]);
+    let trees = [(input_tree, 0), (&envelope_tree, nf)];
     let mut pairs = Vec::new();
     match known.unchanged {
         None => {
@@ -245,5 +242,5 @@ pub(crate) fn prove_envelopes(
             b: which(b),
         })
         .collect();
-    (contacts, [outer_tree, inner_tree])
+    (contacts, envelope_tree)
 }

@@ -470,6 +470,57 @@ impl Bvh {
         out
     }
 
+    /// The same tree shape over `copies` times as many items: every leaf that holds item
+    /// `i` holds the items `i`, `i + n`, ..., `i + (copies - 1) n` instead (`n` = this
+    /// tree's length), keeping this tree's boxes; [`Bvh::refit`] it to the boxes of the new
+    /// items. For surfaces that follow one another face by face (an input and its
+    /// offsets): one tree over all of them whose leaves, and so a caller's storage in leaf
+    /// order, keep the copies of a face together.
+    ///
+    /// # Panics
+    /// When `copies` is zero or the new items do not fit in `u32` ids.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let at = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let tree = Bvh::new(&[at(0.0), at(5.0)]);
+    /// let both = tree.interleaved(2).refit(&[at(0.0), at(5.0), at(0.5), at(9.0)]);
+    /// assert_eq!(both.len(), 4);
+    /// assert_eq!(both.self_pairs(), vec![(0, 2)]);
+    /// ```
+    #[must_use]
+    pub fn interleaved(&self, copies: usize) -> Bvh {
+        assert!(copies > 0, "at least one copy");
+        let n = self.items.len();
+        assert!(
+            (n as u64) * (copies as u64) < u64::from(u32::MAX),
+            "too many items for u32 ids"
+        );
+        let mut items = Vec::with_capacity(n * copies);
+        let mut boxes = Vec::with_capacity(n * copies);
+        let mut nodes = self.nodes.clone();
+        for node in nodes.iter_mut() {
+            node.count *= copies as u32;
+            if node.leaf {
+                let first = items.len() as u32;
+                for k in node.a as usize..(node.a + node.b) as usize {
+                    for c in 0..copies {
+                        items.push(self.items[k] + (c * n) as u32);
+                        boxes.push(self.boxes[k]);
+                    }
+                }
+                node.a = first;
+                node.b *= copies as u32;
+            }
+        }
+        Bvh {
+            nodes,
+            items,
+            boxes,
+        }
+    }
+
     /// Whether this is a tree over exactly `boxes`: one item per box, each item once, with
     /// the box it has there (as [`Bvh::new`]`(boxes)` or a [`Bvh::refit`] to them makes it).
     /// For a caller handed a tree built elsewhere. Linear time.

@@ -138,7 +138,15 @@ fn refit_trees_match_new_trees_and_emit_matches_pairs() {
             })
             .collect();
         let unrelated = random_boxes(&mut g, old.len());
-        for boxes in [&nudged, &unrelated] {
+        // Three copies of every item: the boxes, nudged and unrelated ones.
+        let tripled: Vec<Aabb> = old
+            .iter()
+            .chain(&nudged)
+            .chain(&unrelated)
+            .copied()
+            .collect();
+        let tree3 = tree.interleaved(3);
+        for (boxes, tree) in [(&nudged, &tree), (&unrelated, &tree), (&tripled, &tree3)] {
             let refit = tree.refit(boxes);
             let built = Bvh::new(boxes);
             assert_eq!(refit.len(), boxes.len());

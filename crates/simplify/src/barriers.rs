@@ -99,13 +99,10 @@ pub enum BarrierError {
         /// The face.
         face: usize,
     },
-    /// A tree given for an envelope ([`Barriers::with_trees`]) is not one over its faces
-    /// (or there is not one tree per envelope: the first surface without its own).
-    #[error("barrier surface {surface}: the tree given is not one over its faces")]
-    TreeMismatch {
-        /// The surface.
-        surface: usize,
-    },
+    /// The tree given for the envelopes ([`Barriers::with_tree`]) is not one over their
+    /// faces.
+    #[error("the tree given is not one over the envelopes' faces")]
+    TreeMismatch,
     /// A coordinate the exact predicates cannot take.
     #[error("barrier surface {surface}: vertex {vertex}: {error}")]
     Coordinate {
@@ -177,41 +174,41 @@ impl Barriers {
         Self::build(envelopes, None, tubes, walls)
     }
 
-    /// Like [`Barriers::with_walls`], with a tree over each envelope's faces (item = face
-    /// id; `envelope-offset`'s `Envelopes::trees`, the ones its proof searched), so that
-    /// only the tubes and walls need one of their own. The same barriers, answering every
-    /// question the same (the trees only decide where to look).
+    /// Like [`Barriers::with_walls`], with a tree over the envelopes' faces (item = face
+    /// number counted over the envelopes in the order given; `envelope-offset`'s
+    /// `Envelopes::tree`, the one its proof searched), so that only the tubes and walls need
+    /// one of their own. The same barriers, answering every question the same (the tree only
+    /// decides where to look, and the storage order: the tree's leaf order).
     ///
     /// # Errors
-    /// Those of [`Barriers::new`], and [`BarrierError::TreeMismatch`] when a tree is not
-    /// one over its envelope's faces (another number of items, or other boxes).
+    /// Those of [`Barriers::new`], and [`BarrierError::TreeMismatch`] when the tree is not
+    /// one over the envelopes' faces (another number of items, or other boxes).
     ///
     /// ```
     /// use envelope_mesh::generate;
-    /// use envelope_predicates::bvh::Bvh;
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
     /// use envelope_simplify::Barriers;
     /// use glam::DVec3;
     /// let (outer, inner) = (generate::icosphere(1, 1.1), generate::icosphere(1, 0.9));
-    /// let tree = |s: &envelope_mesh::TriangleSoup| {
-    ///     let faces: Vec<[u32; 3]> = s.faces.iter().map(|f| f.map(|v| v.0)).collect();
-    ///     Bvh::from_triangles(&s.positions, &faces)
-    /// };
-    /// let trees = vec![tree(&outer), tree(&inner)];
-    /// let b = Barriers::with_trees(vec![outer, inner], trees, vec![], vec![]).unwrap();
+    /// let boxes: Vec<Aabb> = [&outer, &inner]
+    ///     .iter()
+    ///     .flat_map(|s| s.face_ids().map(|f| Aabb::from_triangle(s.triangle(f))))
+    ///     .collect();
+    /// let b = Barriers::with_tree(vec![outer, inner], Bvh::new(&boxes), vec![], vec![]).unwrap();
     /// assert!(b.blocks([DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0), DVec3::new(0.0, 2.0, 0.0)], [false; 3]));
     /// ```
-    pub fn with_trees(
+    pub fn with_tree(
         envelopes: Vec<TriangleSoup>,
-        trees: Vec<Bvh>,
+        tree: Bvh,
         tubes: Vec<TriangleSoup>,
         walls: Vec<TriangleSoup>,
     ) -> Result<Self, BarrierError> {
-        Self::build(envelopes, Some(trees), tubes, walls)
+        Self::build(envelopes, Some(tree), tubes, walls)
     }
 
     fn build(
         envelopes: Vec<TriangleSoup>,
-        trees: Option<Vec<Bvh>>,
+        tree: Option<Bvh>,
         tubes: Vec<TriangleSoup>,
         walls: Vec<TriangleSoup>,
     ) -> Result<Self, BarrierError> {
@@ -252,10 +249,10 @@ impl Barriers {
             .par_iter()
             .map(|&t| Aabb::from_triangle(t))
             .collect();
-        let tree = match trees {
+        let tree = match tree {
             _ if boxes.is_empty() => None,
             None => Some(Bvh::new(&boxes)),
-            Some(trees) => Some(joined_tree(&envelopes, trees, &boxes)?),
+            Some(tree) => Some(joined_tree(&envelopes, tree, &boxes)?),
         };
         let (bvh, triangles, kinds, boxes) = match tree {
             None => (None, triangles, kinds, boxes),
@@ -587,37 +584,14 @@ impl Barriers {
     }
 }
 
-/// One tree over all barrier triangles (`boxes`, envelopes first in the order given, then
-/// tubes and walls): the envelopes' `trees`, checked against their boxes, joined with one
-/// built over the rest.
-fn joined_tree(
-    envelopes: &[TriangleSoup],
-    trees: Vec<Bvh>,
-    boxes: &[Aabb],
-) -> Result<Bvh, BarrierError> {
-    if trees.len() != envelopes.len() {
-        return Err(BarrierError::TreeMismatch {
-            surface: trees.len().min(envelopes.len()),
-        });
+/// One tree over all barrier triangles (`boxes`, envelopes first, then tubes and walls): the
+/// envelopes' `tree`, checked against their boxes, joined with one built over the rest.
+fn joined_tree(envelopes: &[TriangleSoup], tree: Bvh, boxes: &[Aabb]) -> Result<Bvh, BarrierError> {
+    let n: usize = envelopes.iter().map(TriangleSoup::num_faces).sum();
+    if !tree.has_item_boxes(&boxes[..n]) {
+        return Err(BarrierError::TreeMismatch);
     }
-    let mut start = 0;
-    let mut joined: Option<Bvh> = None;
-    for (surface, (soup, tree)) in envelopes.iter().zip(trees).enumerate() {
-        let end = start + soup.num_faces();
-        if !tree.has_item_boxes(&boxes[start..end]) {
-            return Err(BarrierError::TreeMismatch { surface });
-        }
-        joined = Some(match joined {
-            None => tree,
-            Some(j) => Bvh::join(j, tree),
-        });
-        start = end;
-    }
-    let rest = Bvh::new(&boxes[start..]);
-    Ok(match joined {
-        None => rest,
-        Some(j) => Bvh::join(j, rest),
-    })
+    Ok(Bvh::join(tree, Bvh::new(&boxes[n..])))
 }
 
 /// Corner ids for [`indexed_triangles_intersect`], with the candidate `t` numbered
@@ -765,16 +739,18 @@ mod tests {
         roof().triangle(envelope_mesh::FaceId(0))
     }
 
-    fn tree_of(s: &TriangleSoup) -> Bvh {
-        let faces: Vec<[u32; 3]> = s.faces.iter().map(|f| f.map(|v| v.0)).collect();
-        Bvh::from_triangles(&s.positions, &faces)
+    fn boxes_of(surfaces: &[&TriangleSoup]) -> Vec<Aabb> {
+        surfaces
+            .iter()
+            .flat_map(|s| s.face_ids().map(|f| Aabb::from_triangle(s.triangle(f))))
+            .collect()
     }
 
-    /// Barriers on trees handed in (and refitted ones) answer as those that built their own,
-    /// with a tube and a wall beside the envelopes; a tree that is not over its envelope's
-    /// faces, or a missing one, is refused and named.
+    /// Barriers on a tree handed in (a refit of the inner envelope's tree with both faces of
+    /// a position in one leaf) answer as those that built their own, with a tube and a wall
+    /// beside the envelopes; a tree that is not over the envelopes' faces is refused.
     #[test]
-    fn barriers_on_given_trees_answer_as_built_ones() {
+    fn barriers_on_a_given_tree_answer_as_built_ones() {
         use envelope_mesh::generate;
         let outer = generate::icosphere(2, 1.1);
         let inner = generate::icosphere(2, 0.9);
@@ -786,22 +762,14 @@ mod tests {
             vec![wall.clone()],
         )
         .unwrap();
-        // The outer tree a refit of the inner one (same connectivity, other boxes).
-        let trees = vec![
-            tree_of(&inner).refit(&{
-                let faces: Vec<[DVec3; 3]> = outer.face_ids().map(|f| outer.triangle(f)).collect();
-                faces
-                    .iter()
-                    .map(|&t| Aabb::from_triangle(t))
-                    .collect::<Vec<_>>()
-            }),
-            tree_of(&inner),
-        ];
-        let given = Barriers::with_trees(
+        let tree = Bvh::new(&boxes_of(&[&inner]))
+            .interleaved(2)
+            .refit(&boxes_of(&[&outer, &inner]));
+        let given = Barriers::with_tree(
             vec![outer.clone(), inner.clone()],
-            trees,
-            vec![tube.clone()],
-            vec![wall.clone()],
+            tree,
+            vec![tube],
+            vec![wall],
         )
         .unwrap();
         assert_eq!(given.num_triangles(), built.num_triangles());
@@ -818,29 +786,28 @@ mod tests {
             let edges = [true, false, true];
             let answer = built.blocks(t, edges);
             assert_eq!(given.blocks(t, edges), answer, "{t:?}");
-            if answer { blocked += 1 } else { free += 1 }
+            if answer {
+                blocked += 1;
+            } else {
+                free += 1;
+            }
         }
         assert!(blocked > 20 && free > 20, "{blocked} blocked, {free} free");
-        let swapped = Barriers::with_trees(
+        // The surfaces the other way round: other boxes at the same items.
+        let swapped = Barriers::with_tree(
             vec![outer.clone(), inner.clone()],
-            vec![tree_of(&inner), tree_of(&outer)],
+            Bvh::new(&boxes_of(&[&inner, &outer])),
             vec![],
             vec![],
         );
-        assert_eq!(
-            swapped.err(),
-            Some(BarrierError::TreeMismatch { surface: 0 })
-        );
-        let missing = Barriers::with_trees(
+        assert_eq!(swapped.err(), Some(BarrierError::TreeMismatch));
+        let short = Barriers::with_tree(
             vec![outer.clone(), inner],
-            vec![tree_of(&outer)],
+            Bvh::new(&boxes_of(&[&outer])),
             vec![],
             vec![],
         );
-        assert_eq!(
-            missing.err(),
-            Some(BarrierError::TreeMismatch { surface: 1 })
-        );
+        assert_eq!(short.err(), Some(BarrierError::TreeMismatch));
     }
 
     #[test]

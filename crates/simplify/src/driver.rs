@@ -563,8 +563,8 @@ pub fn simplify_with(
         .collect();
     // The barriers' tree and the mesh the simplifier edits are independent: built side by side.
     let (barriers, mesh) = rayon::join(
-        // The proof's trees over the envelopes: only the tubes and walls get a new one.
-        || Barriers::with_trees(vec![env.outer, env.inner], env.trees.into(), tubes, walls),
+        // The proof's tree over the envelopes: only the tubes and walls get a new one.
+        || Barriers::with_tree(vec![env.outer, env.inner], env.tree, tubes, walls),
         || HalfEdgeMesh::from_soup(soup),
     );
     let barriers = barriers?.with_pins(&pins);
