@@ -70,6 +70,9 @@ pub struct FiberTest<'a> {
     component: Vec<Option<u32>>,
     /// Per component: the boxes of its inner and of its outer envelope points.
     boxes: Vec<(Aabb, Aabb)>,
+    /// The faces around each vertex (`fan_start[v]..fan_start[v + 1]` in `fan_faces`).
+    fan_start: Vec<u32>,
+    fan_faces: Vec<u32>,
 }
 
 impl<'a> FiberTest<'a> {
@@ -89,10 +92,42 @@ impl<'a> FiberTest<'a> {
                 *bo = bo.union(&Aabb::from_points(&[fibers.outer[v]]));
             }
         }
+        // The faces around each vertex, by counting.
+        let mut fan_start = vec![0u32; n + 1];
+        for f in faces {
+            for v in f.iter().filter(|v| v.index() < n) {
+                fan_start[v.index() + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            fan_start[v + 1] += fan_start[v];
+        }
+        let mut next = fan_start.clone();
+        let mut fan_faces = vec![0u32; fan_start[n] as usize];
+        for (f, tri) in (0u32..).zip(faces) {
+            for v in tri.iter().filter(|v| v.index() < n) {
+                fan_faces[next[v.index()] as usize] = f;
+                next[v.index()] += 1;
+            }
+        }
         Self {
             fibers,
             component,
             boxes,
+            fan_start,
+            fan_faces,
+        }
+    }
+
+    /// The faces (of the `faces` given to [`Self::new`]) around vertex `v`: their envelope
+    /// triangles are where the fiber test's candidates are mostly refused (a hint for
+    /// [`crate::Filter::within_near`]).
+    #[must_use]
+    pub fn faces_around(&self, v: VertexId) -> &[u32] {
+        let i = v.index();
+        match (self.fan_start.get(i), self.fan_start.get(i + 1)) {
+            (Some(&a), Some(&b)) => &self.fan_faces[a as usize..b as usize],
+            _ => &[],
         }
     }
 

@@ -271,6 +271,16 @@ pub trait Filter: Sync {
         let _ = region;
         run();
     }
+
+    /// [`Self::within`], with a second hint: the candidates are likely refused by what lies
+    /// around the input faces `faces` (the local simplifier names those around the removed
+    /// vertex); the envelope filter tests their envelope triangles first
+    /// ([`Barriers::scoped_near`]). The answers must be those without the hints. By default
+    /// [`Self::within`].
+    fn within_near(&self, region: &Aabb, faces: &[u32], run: &mut dyn FnMut()) {
+        let _ = faces;
+        self.within(region, run);
+    }
 }
 
 /// Accepts everything; the default base of [`EnvelopeFilter`].
@@ -338,6 +348,12 @@ impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
     fn within(&self, region: &Aabb, run: &mut dyn FnMut()) {
         self.barriers
             .scoped(region, || self.base.within(region, run));
+    }
+
+    fn within_near(&self, region: &Aabb, faces: &[u32], run: &mut dyn FnMut()) {
+        self.barriers.scoped_near(region, faces, || {
+            self.base.within_near(region, faces, run);
+        });
     }
 }
 

@@ -1265,7 +1265,13 @@ impl<'m> LocalSimplifier<'m> {
             .moving(&moves, &stay)
             .near(&nearby);
         let (mut filled, mut across) = (false, true);
-        filter.within(&region, &mut || {
+        // The input faces around `v`: their envelope triangles refuse most of the fiber
+        // test's candidates (tested first; only the order of the tests changes).
+        let near = match (&path, self.fiber_test) {
+            (Some(_), Some(test)) => test.faces_around(v),
+            _ => &[],
+        };
+        filter.within_near(&region, near, &mut || {
             if let Some(path) = &path {
                 if !ctx.a_triangle_across_may_pass(path, &corners) {
                     let fan: Vec<[DVec3; 3]> = fan
