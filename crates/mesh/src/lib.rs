@@ -35,4 +35,4 @@ pub use halfedge::{
 };
 pub use ids::{EdgeId, FaceId, HalfedgeId, VertexId};
 pub use soup::TriangleSoup;
-pub use topology::{Component, Topology, analyze, vertex_components};
+pub use topology::{Component, Topology, VertexFaces, analyze, vertex_components};

@@ -171,6 +171,60 @@ impl ParityUnionFind {
     }
 }
 
+/// For every vertex, the faces around it (compressed rows: the faces of `v` are
+/// `of(v)`, in increasing face order). A face naming a vertex out of range is left out of
+/// that vertex's row, and a vertex out of range has no faces.
+///
+/// ```
+/// use envelope_mesh::{generate, VertexFaces};
+/// let t = generate::tetrahedron();
+/// let vf = VertexFaces::new(t.num_vertices(), &t.faces);
+/// assert_eq!(vf.of(0).len(), 3);
+/// assert!(vf.of(0).windows(2).all(|w| w[0] < w[1]));
+/// assert!(vf.of(99).is_empty());
+/// ```
+#[derive(Clone, Debug)]
+pub struct VertexFaces {
+    start: Vec<u32>,
+    faces: Vec<u32>,
+}
+
+impl VertexFaces {
+    /// The faces around each of the vertices `0..num_vertices`.
+    #[must_use]
+    pub fn new(num_vertices: usize, faces: &[[VertexId; 3]]) -> Self {
+        let in_range = |v: &&VertexId| v.index() < num_vertices;
+        let mut start = vec![0u32; num_vertices + 1];
+        for f in faces {
+            for v in f.iter().filter(in_range) {
+                start[v.index() + 1] += 1;
+            }
+        }
+        for i in 0..num_vertices {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut out = vec![0u32; start[num_vertices] as usize];
+        for (fi, f) in (0u32..).zip(faces) {
+            for v in f.iter().filter(in_range) {
+                let slot = &mut fill[v.index()];
+                out[*slot as usize] = fi;
+                *slot += 1;
+            }
+        }
+        VertexFaces { start, faces: out }
+    }
+
+    /// The faces around vertex `v` (empty for a vertex out of range).
+    #[must_use]
+    pub fn of(&self, v: usize) -> &[u32] {
+        match (self.start.get(v), self.start.get(v + 1)) {
+            (Some(&a), Some(&b)) => &self.faces[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+}
+
 /// The connected components of the vertices over `faces` (two vertices of one face are
 /// connected): per vertex its component, numbered in order of the lowest vertex, `None` for a
 /// vertex `0..num_vertices` that no face names; faces with an index out of range or a

@@ -20,12 +20,10 @@
 //! triangle the BVH returns is skipped without clipping when it lies apart from the convex
 //! hull of the prism's six corners, or farther from `t`'s box than the closest candidate so
 //! far (both with a margin, see `PRUNE_TOLERANCE`; the offsets are the same either way).
-use envelope_mesh::TriangleSoup;
+use envelope_mesh::{TriangleSoup, VertexFaces};
 use envelope_predicates::bvh::{Aabb, Bvh};
 use glam::DVec3;
 use rayon::prelude::*;
-
-use crate::normals::VertexFaces;
 
 /// Per-vertex `(eps_plus, eps_minus)` by the analytical method; `bvh` is a tree over the
 /// boxes of the input faces (item = face).

@@ -54,7 +54,7 @@ fn xorshift(mut state: u64) -> impl FnMut() -> u64 {
     }
 }
 
-use envelope_mesh::{TriangleSoup, VertexId, analyze};
+use envelope_mesh::{TriangleSoup, VertexFaces, VertexId, analyze};
 use envelope_predicates::bvh::{Aabb, Bvh};
 use glam::DVec3;
 
@@ -67,7 +67,6 @@ pub use proof::{Contact, Proof, Surface};
 pub use tubes::Tube;
 
 use engine::{Mover, Scene, StepPolicy};
-use normals::VertexFaces;
 
 /// How the per-vertex epsilon is found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -19,7 +19,7 @@
 //!
 //! Normals are f64 constructions, unit length up to rounding. Unreferenced vertices get
 //! `DVec3::ZERO` (no face constrains them).
-use envelope_mesh::{TriangleSoup, VertexId};
+use envelope_mesh::{TriangleSoup, VertexFaces, VertexId};
 use envelope_predicates::{Orientation, orient3d};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -31,40 +31,6 @@ pub struct VertexNormals {
     pub normals: Vec<DVec3>,
     /// Vertices with no direction strictly within 90 degrees of all adjacent faces (exact).
     pub invalid: Vec<VertexId>,
-}
-
-/// For every vertex, the faces around it (CSR).
-pub(crate) struct VertexFaces {
-    pub start: Vec<u32>,
-    pub faces: Vec<u32>,
-}
-
-impl VertexFaces {
-    pub fn new(num_vertices: usize, faces: &[[VertexId; 3]]) -> Self {
-        let mut start = vec![0u32; num_vertices + 1];
-        for f in faces {
-            for v in f {
-                start[v.0 as usize + 1] += 1;
-            }
-        }
-        for i in 0..num_vertices {
-            start[i + 1] += start[i];
-        }
-        let mut fill = start.clone();
-        let mut out = vec![0u32; start[num_vertices] as usize];
-        for (fi, f) in faces.iter().enumerate() {
-            for v in f {
-                let slot = &mut fill[v.0 as usize];
-                out[*slot as usize] = fi as u32;
-                *slot += 1;
-            }
-        }
-        VertexFaces { start, faces: out }
-    }
-
-    pub fn of(&self, v: usize) -> &[u32] {
-        &self.faces[self.start[v] as usize..self.start[v + 1] as usize]
-    }
 }
 
 /// True when `n` is strictly within 90 degrees of the oriented normal of every face of `fan`

@@ -62,6 +62,21 @@ impl Planar {
         any
     }
 
+    /// The exact side of `p` of this plane when the f64 orientation tells it beyond its
+    /// error bound ([`Planar::value`]): `Some(true)` positive, `Some(false)` negative, `None`
+    /// too close to the plane to tell (or not a number).
+    #[inline]
+    fn side(&self, p: DVec3) -> Option<bool> {
+        let (v, tol) = self.value(p);
+        if v > tol {
+            Some(true)
+        } else if v < -tol {
+            Some(false)
+        } else {
+            None
+        }
+    }
+
     /// The f64 orientation of `p` against the plane, and a bound on its error: the exact
     /// `orient3d(t0, t1, t2, p)` lies within `tol` of `v` (for coordinates whose products
     /// neither overflow nor underflow below the absolute 1e-300, as in [`projection`]).
@@ -127,30 +142,13 @@ pub fn straddling_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) 
     if shared != gs.iter().filter(|&&b| b).count() || shared > 1 {
         return false;
     }
-    // Sides of `of`'s unshared corners against `plane`: `Some(true)` positive, all surely
-    // off it, not all on one side (that is the plane test's case, not this one's).
-    let sides = |plane: &Planar, of: &[DVec3; 3], own: [bool; 3]| -> Option<[bool; 3]> {
-        let mut out = [false; 3];
-        let (mut pos, mut neg) = (false, false);
-        for k in 0..3 {
-            if own[k] {
-                continue;
-            }
-            let (v, tol) = plane.value(of[k]);
-            if v > tol {
-                out[k] = true;
-                pos = true;
-            } else if v < -tol {
-                neg = true;
-            } else {
-                return None;
-            }
-        }
-        (pos && neg).then_some(out)
-    };
-    let (Some(s1), Some(s2)) = (sides(p2, &p1.t, fs), sides(p1, &p2.t, gs)) else {
+    let (Some(s1), Some(s2)) = (strict_sides(p2, &p1.t, fs), strict_sides(p1, &p2.t, gs)) else {
         return false;
     };
+    // Both sides among the unshared corners (all on one side is the plane test's case).
+    if !straddles(s1, fs) || !straddles(s2, gs) {
+        return false;
+    }
     if shared == 1 {
         // `a1` and `a2`: the corners after the shared one.
         let after = |own: [bool; 3]| own.iter().position(|&b| b).map_or(0, |k| (k + 1) % 3);
@@ -180,28 +178,33 @@ pub fn straddling_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) 
 /// ```
 #[must_use]
 pub fn straddling_decides(p1: &Planar, p2: &Planar) -> Option<bool> {
-    let sides = |plane: &Planar, of: &[DVec3; 3]| -> Option<[bool; 3]> {
-        let mut out = [false; 3];
-        for k in 0..3 {
-            let (v, tol) = plane.value(of[k]);
-            // Too close to the plane (or a NaN): f64 cannot tell the side.
-            if v.abs().partial_cmp(&tol) != Some(std::cmp::Ordering::Greater) {
-                return None;
-            }
-            out[k] = v > tol;
-        }
-        Some(out)
-    };
-    let one_side = |s: [bool; 3]| s[0] == s[1] && s[1] == s[2];
-    let s2 = sides(p1, &p2.t)?;
-    if one_side(s2) {
+    let none = [false; 3];
+    let s2 = strict_sides(p1, &p2.t, none)?;
+    if !straddles(s2, none) {
         return Some(false);
     }
-    let s1 = sides(p2, &p1.t)?;
-    if one_side(s1) {
+    let s1 = strict_sides(p2, &p1.t, none)?;
+    if !straddles(s1, none) {
         return Some(false);
     }
     guigue_devillers(p1, s1, p2, s2)
+}
+
+/// The exact sides of `of`'s corners that `own` does not mark (the shared ones stay
+/// `false`) of `plane` (`true`: positive), when every one is surely off it; else `None`.
+fn strict_sides(plane: &Planar, of: &[DVec3; 3], own: [bool; 3]) -> Option<[bool; 3]> {
+    let mut out = [false; 3];
+    for k in (0..3).filter(|&k| !own[k]) {
+        out[k] = plane.side(of[k])?;
+    }
+    Some(out)
+}
+
+/// Whether the corners that `own` does not mark lie on both sides (see [`strict_sides`]).
+fn straddles(sides: [bool; 3], own: [bool; 3]) -> bool {
+    let mut unshared = (0..3).filter(|&k| !own[k]).map(|k| sides[k]);
+    let first = unshared.next();
+    unshared.any(|s| Some(s) != first)
 }
 
 /// Guigue and Devillers' two orientations for triangles with no shared vertex that each
@@ -228,19 +231,8 @@ fn guigue_devillers(p1: &Planar, s1: [bool; 3], p2: &Planar, s2: [bool; 3]) -> O
     if !s2[j] {
         std::mem::swap(&mut b1, &mut c1);
     }
-    // The f64 orientation with its error bound: `Some(true)` surely positive, `Some(false)`
-    // surely negative.
-    let sign = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| {
-        let (v, tol) = Planar::new([a, b, c]).value(d);
-        if v > tol {
-            Some(true)
-        } else if v < -tol {
-            Some(false)
-        } else {
-            None
-        }
-    };
-    let (o1, o2) = (sign(a1, b1, a2, b2), sign(a1, c1, c2, a2));
+    let o1 = Planar::new([a1, b1, a2]).side(b2);
+    let o2 = Planar::new([a1, c1, c2]).side(a2);
     if o1 == Some(true) || o2 == Some(true) {
         Some(false)
     } else if o1 == Some(false) && o2 == Some(false) {

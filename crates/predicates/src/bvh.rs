@@ -430,17 +430,11 @@ impl Bvh {
     /// All pairs `(i, j)`, `i < j`, of items with overlapping boxes, for which `keep(i, j)` holds;
     /// sorted. Runs in parallel (rayon); `keep` is called once per overlapping pair.
     pub fn self_pairs_where<F: Fn(u32, u32) -> bool + Sync>(&self, keep: F) -> Vec<(u32, u32)> {
-        if self.nodes.is_empty() {
-            return Vec::new();
-        }
-        let emit = |i: u32, j: u32, out: &mut Vec<(u32, u32)>| {
+        self.self_pairs_emit(|i, j, out| {
             if keep(i, j) {
                 out.push((i, j));
             }
-        };
-        let mut out = collect(|o| self.self_rec(0, &emit, o));
-        out.sort_unstable();
-        out
+        })
     }
 
     /// Calls `emit(i, j, out)` once for every pair `i < j` of items with overlapping boxes

@@ -103,17 +103,31 @@ fn joined_trees_match_one_tree() {
         let one = Bvh::new(&all);
         let joined = Bvh::join(Bvh::new(&a), Bvh::new(&b));
         assert_eq!(joined.len(), na + nb);
-        assert_eq!(joined.self_pairs(), one.self_pairs(), "{na} + {nb}");
-        for _ in 0..20 {
-            let p = g.point(10.0);
-            let q = Aabb::from_points(&[p, p + g.point(2.0)]);
-            assert_eq!(joined.overlapping(&q), one.overlapping(&q));
-        }
-        let other = Bvh::new(&random_boxes(&mut g, 60));
-        assert_eq!(joined.pairs_with(&other), one.pairs_with(&other));
-        assert_eq!(other.pairs_with(&joined), other.pairs_with(&one));
-        assert_items_nest(&joined, &all);
+        assert_answers_alike(&mut g, &joined, &one, &all, &format!("{na} + {nb}"));
     }
+}
+
+/// `tree` answers as `reference` (a tree built over `boxes`): its self pairs, 20 random box
+/// queries, its pairs with another random tree both ways; and its items nest in its nodes.
+fn assert_answers_alike(g: &mut Lcg, tree: &Bvh, reference: &Bvh, boxes: &[Aabb], label: &str) {
+    assert_eq!(tree.self_pairs(), reference.self_pairs(), "{label}");
+    for _ in 0..20 {
+        let p = g.point(10.0);
+        let q = Aabb::from_points(&[p, p + g.point(2.0)]);
+        assert_eq!(tree.overlapping(&q), reference.overlapping(&q), "{label}");
+    }
+    let other = Bvh::new(&random_boxes(g, 60));
+    assert_eq!(
+        tree.pairs_with(&other),
+        reference.pairs_with(&other),
+        "{label}"
+    );
+    assert_eq!(
+        other.pairs_with(tree),
+        other.pairs_with(reference),
+        "{label}"
+    );
+    assert_items_nest(tree, boxes);
 }
 
 /// `Bvh::refit` answers like a tree built over the new boxes, whether they moved a little
@@ -150,15 +164,7 @@ fn refit_trees_match_new_trees_and_emit_matches_pairs() {
             let refit = tree.refit(boxes);
             let built = Bvh::new(boxes);
             assert_eq!(refit.len(), boxes.len());
-            assert_items_nest(&refit, boxes);
-            assert_eq!(refit.self_pairs(), built.self_pairs(), "{na} + {nb}");
-            for _ in 0..20 {
-                let p = g.point(10.0);
-                let q = Aabb::from_points(&[p, p + g.point(2.0)]);
-                assert_eq!(refit.overlapping(&q), built.overlapping(&q));
-            }
-            let other = Bvh::new(&random_boxes(&mut g, 60));
-            assert_eq!(refit.pairs_with(&other), built.pairs_with(&other));
+            assert_answers_alike(&mut g, &refit, &built, boxes, &format!("{na} + {nb}"));
             let mut twice: Vec<(u32, u32)> = built
                 .self_pairs()
                 .into_iter()

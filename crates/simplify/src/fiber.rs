@@ -46,7 +46,7 @@
 //! [`Rejection::NoFillAcrossFiber`]: crate::Rejection::NoFillAcrossFiber
 
 use crate::local::VertexFibers;
-use envelope_mesh::{VertexId, vertex_components};
+use envelope_mesh::{VertexFaces, VertexId, vertex_components};
 use envelope_predicates::bvh::Aabb;
 use envelope_predicates::{polyline_crossings, strictly_one_side_of_plane};
 use glam::{DVec2, DVec3};
@@ -70,9 +70,8 @@ pub struct FiberTest<'a> {
     component: Vec<Option<u32>>,
     /// Per component: the boxes of its inner and of its outer envelope points.
     boxes: Vec<(Aabb, Aabb)>,
-    /// The faces around each vertex (`fan_start[v]..fan_start[v + 1]` in `fan_faces`).
-    fan_start: Vec<u32>,
-    fan_faces: Vec<u32>,
+    /// The faces around each vertex.
+    fans: VertexFaces,
 }
 
 impl<'a> FiberTest<'a> {
@@ -92,30 +91,11 @@ impl<'a> FiberTest<'a> {
                 *bo = bo.union(&Aabb::from_points(&[fibers.outer[v]]));
             }
         }
-        // The faces around each vertex, by counting.
-        let mut fan_start = vec![0u32; n + 1];
-        for f in faces {
-            for v in f.iter().filter(|v| v.index() < n) {
-                fan_start[v.index() + 1] += 1;
-            }
-        }
-        for v in 0..n {
-            fan_start[v + 1] += fan_start[v];
-        }
-        let mut next = fan_start.clone();
-        let mut fan_faces = vec![0u32; fan_start[n] as usize];
-        for (f, tri) in (0u32..).zip(faces) {
-            for v in tri.iter().filter(|v| v.index() < n) {
-                fan_faces[next[v.index()] as usize] = f;
-                next[v.index()] += 1;
-            }
-        }
         Self {
             fibers,
             component,
             boxes,
-            fan_start,
-            fan_faces,
+            fans: VertexFaces::new(n, faces),
         }
     }
 
@@ -124,11 +104,7 @@ impl<'a> FiberTest<'a> {
     /// [`crate::Filter::within_near`]).
     #[must_use]
     pub fn faces_around(&self, v: VertexId) -> &[u32] {
-        let i = v.index();
-        match (self.fan_start.get(i), self.fan_start.get(i + 1)) {
-            (Some(&a), Some(&b)) => &self.fan_faces[a as usize..b as usize],
-            _ => &[],
-        }
+        self.fans.of(v.index())
     }
 
     /// Number of connected components of the envelope meshes.
