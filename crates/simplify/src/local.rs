@@ -24,6 +24,7 @@
 //! | candidate triangles | all triples of hole vertices, generated once per hole; a sub-hole considers those whose three vertices are on it |
 //! | degenerate candidates | exactly collinear corners: rejected |
 //! | attempts that cannot succeed | not in the paper: before the filling, the fiber test ([`FiberTest`], module `fiber`) ends an interior vertex's attempt when every triangle on its hole's vertices that meets a path from its inner to its outer envelope point is refused by the barriers (every valid filling meets that path; the module proves it); it decides nothing else, so the outcome is the same without it (`tests/fiber.rs`) |
+//! | fiber verdicts ahead | with a first-in-first-out queue, the fiber test's verdict on every queued vertex is computed before the run, in parallel ([`Doomed`]); it stands in for the attempt while the vertex's fan is as it was (proved there; a debug build re-plans and asserts), so only the other attempts are planned in the batches |
 //! | valence-3 interior vertex | its hole is one triangle; placed if valid and not already a face (a tetrahedron cannot lose a vertex) |
 //! | border vertex | its open chain is filled as a polygon closed by the new border edge, which must not already be an edge and must not touch a border tube (6.2); with no tube in the barriers, border vertices are kept; a border vertex with one face (an ear) is kept |
 //! | topology | a new edge that already exists elsewhere is refused before the filter is asked (link condition); the mesh's `add_faces` is the last guard |
@@ -367,21 +368,42 @@ fn run(
         LocalSimplifier::new(mesh, policies.keep_border).with_fiber_test(policies.fiber_test);
     let batched = policies.order.is_fifo() && !policies.check_each_step;
     let mut rings = RingBoxes::default();
+    let mut doomed = if batched {
+        Doomed::of_queue(&mut local, &queue, policies.filter)
+    } else {
+        Doomed::default()
+    };
     'run: loop {
-        let batch = if batched {
-            independent_batch(&mut queue, local.mesh(), |m, v| rings.get(m, v))
+        let batch: Vec<(VertexId, bool)> = if batched {
+            independent_batch(
+                &mut queue,
+                local.mesh(),
+                |m, v| rings.get(m, v),
+                |v| doomed.holds(v),
+            )
         } else {
-            queue.pop().into_iter().collect()
+            queue.pop().into_iter().map(|v| (v, false)).collect()
         };
         if batch.is_empty() {
             break;
         }
         let plans = {
             let local = &local;
-            plan_each(&batch, |&v| local.plan(v, policies.filter, policies.filler))
+            plan_each(&batch, |&(v, doomed)| {
+                if doomed {
+                    debug_assert_eq!(
+                        local.plan(v, policies.filter, &FillNothing).0.err(),
+                        Some(Rejection::NoFillAcrossFiber),
+                        "the verdict on {v} no longer holds"
+                    );
+                    (Err(Rejection::NoFillAcrossFiber), 0)
+                } else {
+                    local.plan(v, policies.filter, policies.filler)
+                }
+            })
         };
         // Commit in queue order: the same calls, in the same order, as one at a time.
-        for (&v, (plan, tests)) in batch.iter().zip(plans) {
+        for (&(v, _), (plan, tests)) in batch.iter().zip(plans) {
             if policies.stop.should_stop(local.mesh().num_faces()) {
                 break 'run;
             }
@@ -395,6 +417,7 @@ fn run(
                     rings.forget(v);
                     for &w in &removal.hole.vertices {
                         rings.forget(w);
+                        doomed.forget(w);
                         queue.push(local.mesh(), policies.order, w);
                     }
                 }
@@ -427,6 +450,85 @@ fn plan_each<T: Sync, R: Send>(batch: &[T], plan: impl Fn(&T) -> R + Sync) -> Ve
     match batch {
         [one] => vec![plan(one)],
         _ => batch.par_iter().map(&plan).collect(),
+    }
+}
+
+/// The vertices whose removal the fiber test turned away on the starting mesh, as long as
+/// their fan stays as it was (the subset run of a first-in-first-out queue; not in the
+/// paper). At small epsilons that is almost every attempt (armadillo at 1/64 %: 26,130 of
+/// 27,717), and their verdicts are computed together, in parallel, before the run: each
+/// is the plan's own answer (`LocalSimplifier::plan` with a filler that fills nothing).
+///
+/// **Why a verdict holds while the fan stays.** The plan's answer
+/// [`Rejection::NoFillAcrossFiber`] depends on the vertex's fan (its checks, its hole, the
+/// fiber path through it, the crossing count), on fixed positions (the subset run moves
+/// nothing) and on the refusals of the candidate triangles across the path: by the
+/// filter's [`Filter::refuses_anyway`] (independent of the approximation, by its contract)
+/// or by the topology guards (an edge between two hole vertices, or the face on three,
+/// already in the mesh). A removal deletes only faces and edges at the removed vertex;
+/// while the fan stays, its hole vertices are alive, so an edge or face of theirs that
+/// refused a candidate stays too. Every refusal holds, and so does the answer. A vertex's
+/// fan changes only when it is on the hole of a removal ([`Doomed::forget`] it then).
+///
+/// In [`independent_batch`], such a vertex needs no plan, and blocks nobody when taken: its
+/// attempt changes nothing.
+#[derive(Default)]
+struct Doomed(Vec<bool>);
+
+impl Doomed {
+    /// The verdicts of every queued vertex (empty without a fiber test).
+    fn of_queue(
+        local: &mut LocalSimplifier<'_>,
+        queue: &RemovalQueue,
+        filter: &dyn Filter,
+    ) -> Self {
+        if local.fiber_test.is_none() {
+            return Self::default();
+        }
+        let vertices: Vec<VertexId> = local
+            .mesh()
+            .vertices()
+            .filter(|v| queue.queued.get(v.index()).copied().unwrap_or(false))
+            .collect();
+        let verdicts: Vec<(bool, u64)> = {
+            let local = &*local;
+            vertices
+                .par_iter()
+                .map(|&v| {
+                    let (plan, tests) = local.plan(v, filter, &FillNothing);
+                    (matches!(plan, Err(Rejection::NoFillAcrossFiber)), tests)
+                })
+                .collect()
+        };
+        let slots = vertices.iter().map(|v| v.index() + 1).max().unwrap_or(0);
+        let mut doomed = vec![false; slots];
+        for (&v, &(d, tests)) in vertices.iter().zip(&verdicts) {
+            doomed[v.index()] = d;
+            local.candidate_tests += tests;
+        }
+        Self(doomed)
+    }
+
+    /// Whether `v`'s attempt is known to end with [`Rejection::NoFillAcrossFiber`].
+    fn holds(&self, v: VertexId) -> bool {
+        self.0.get(v.index()).copied().unwrap_or(false)
+    }
+
+    /// `v`'s fan changed: its verdict no longer holds.
+    fn forget(&mut self, v: VertexId) {
+        if let Some(d) = self.0.get_mut(v.index()) {
+            *d = false;
+        }
+    }
+}
+
+/// The filler of [`Doomed::of_queue`]'s plans: the fiber test runs before the filling, so a
+/// filling that never succeeds leaves its answer alone.
+struct FillNothing;
+
+impl HoleFiller for FillNothing {
+    fn fill(&self, _: &mut FillContext<'_>) -> bool {
+        false
     }
 }
 
@@ -484,10 +586,18 @@ fn moving_phase(
         collapse: policies.collapse,
     };
     loop {
-        let batch = if policies.check_each_step {
+        let batch: Vec<VertexId> = if policies.check_each_step {
             queue.pop().into_iter().collect()
         } else {
-            independent_batch(&mut queue, local.mesh(), |m, v| moving_box(m, v, fibers))
+            independent_batch(
+                &mut queue,
+                local.mesh(),
+                |m, v| moving_box(m, v, fibers),
+                |_| false,
+            )
+            .into_iter()
+            .map(|(v, _)| v)
+            .collect()
         };
         if batch.is_empty() {
             break;
@@ -832,7 +942,9 @@ const BATCH_LIMIT: usize = 128;
 /// Takes vertices off a first-in-first-out queue for one round of planning: the front
 /// vertex, then, among the next [`BATCH_WINDOW`] - 1, every vertex whose closed box
 /// `reach(mesh, v)` is apart from the boxes of all vertices before it in the window (taken
-/// or not), up to [`BATCH_LIMIT`]. The box must hold everything a plan of the vertex reads
+/// or not), up to [`BATCH_LIMIT`]. Vertices `doomed` (their attempt is known to change
+/// nothing, see [`Doomed`]) are taken on the same rule and marked `true`, but when taken
+/// they neither count towards the window and the limit nor hold back those after them. The box must hold everything a plan of the vertex reads
 /// or its removal changes (the subset run: the one-ring box, [`one_ring_box`], which holds
 /// the vertex's fan and every candidate triangle of its hole): the removals of a batch do
 /// not see each other, nor do they see the skipped vertices' removals, and carrying them
@@ -843,11 +955,13 @@ fn independent_batch(
     queue: &mut RemovalQueue,
     mesh: &HalfEdgeMesh,
     mut reach: impl FnMut(&HalfEdgeMesh, VertexId) -> Aabb,
-) -> Vec<VertexId> {
+    doomed: impl Fn(VertexId) -> bool,
+) -> Vec<(VertexId, bool)> {
     let mut batch = Vec::new();
     let mut skipped = Vec::new();
     let mut boxes: Vec<Aabb> = Vec::new();
-    while batch.len() < BATCH_LIMIT && batch.len() + skipped.len() < BATCH_WINDOW {
+    let mut planned = 0;
+    while planned < BATCH_LIMIT && planned + skipped.len() < BATCH_WINDOW {
         let Some(e) = queue.pop_entry() else {
             break;
         };
@@ -855,12 +969,18 @@ fn independent_batch(
         let b = reach(mesh, v);
         // Latest first: a vertex's neighbours in the queue are mostly just before it.
         let apart = !boxes.iter().rev().any(|x| x.overlaps(&b));
-        boxes.push(b);
+        let known = doomed(v);
         if apart {
             queue.queued[v.index()] = false;
-            batch.push(v);
+            batch.push((v, known));
+            planned += usize::from(!known);
         } else {
             skipped.push(e);
+        }
+        // A doomed vertex taken changes nothing; skipped, it is attempted later, when its
+        // fan may have changed, so it holds back those after it like any other.
+        if !(apart && known) {
+            boxes.push(b);
         }
     }
     queue.put_back(skipped);
