@@ -104,17 +104,27 @@ impl FaceGrid {
             } else {
                 1.0
             },
+            ..Self::empty()
+        };
+        for (f, t, b) in faces {
+            g.insert_with_box(f, t, b);
+        }
+        g
+    }
+
+    /// An index with no face (unit cells).
+    #[must_use]
+    pub fn empty() -> Self {
+        Self {
+            origin: DVec3::ZERO,
+            cell: 1.0,
             cells: HashMap::default(),
             tris: Vec::new(),
             boxes: Vec::new(),
             lows: Vec::new(),
             live: 0,
             extent_sum: 0.0,
-        };
-        for (f, t, b) in faces {
-            g.insert_with_box(f, t, b);
         }
-        g
     }
 
     /// Cell size in use.

@@ -364,15 +364,23 @@ fn run(
             q
         }
     };
-    let mut local =
-        LocalSimplifier::new(mesh, policies.keep_border).with_fiber_test(policies.fiber_test);
     let batched = policies.order.is_fifo() && !policies.check_each_step;
+    // The verdicts ahead read no face index: it is built beside them.
+    let mut local = LocalSimplifier::without_grid(mesh, policies.keep_border)
+        .with_fiber_test(policies.fiber_test);
+    let (grid, (mut doomed, tests)) = rayon::join(
+        || FaceGrid::from_mesh(local.mesh()),
+        || {
+            if batched {
+                Doomed::of_queue(&local, &queue, policies.filter)
+            } else {
+                (Doomed::default(), 0)
+            }
+        },
+    );
+    local.grid = grid;
+    local.candidate_tests += tests;
     let mut rings = RingBoxes::default();
-    let mut doomed = if batched {
-        Doomed::of_queue(&mut local, &queue, policies.filter)
-    } else {
-        Doomed::default()
-    };
     'run: loop {
         let batch: Vec<(VertexId, bool)> = if batched {
             independent_batch(
@@ -476,37 +484,36 @@ fn plan_each<T: Sync, R: Send>(batch: &[T], plan: impl Fn(&T) -> R + Sync) -> Ve
 struct Doomed(Vec<bool>);
 
 impl Doomed {
-    /// The verdicts of every queued vertex (empty without a fiber test).
+    /// The verdicts of every queued vertex (empty without a fiber test), and the number of
+    /// candidates they gave the filter.
     fn of_queue(
-        local: &mut LocalSimplifier<'_>,
+        local: &LocalSimplifier<'_>,
         queue: &RemovalQueue,
         filter: &dyn Filter,
-    ) -> Self {
+    ) -> (Self, u64) {
         if local.fiber_test.is_none() {
-            return Self::default();
+            return (Self::default(), 0);
         }
         let vertices: Vec<VertexId> = local
             .mesh()
             .vertices()
             .filter(|v| queue.queued.get(v.index()).copied().unwrap_or(false))
             .collect();
-        let verdicts: Vec<(bool, u64)> = {
-            let local = &*local;
-            vertices
-                .par_iter()
-                .map(|&v| {
-                    let (plan, tests) = local.plan(v, filter, &FillNothing);
-                    (matches!(plan, Err(Rejection::NoFillAcrossFiber)), tests)
-                })
-                .collect()
-        };
+        let verdicts: Vec<(bool, u64)> = vertices
+            .par_iter()
+            .map(|&v| {
+                let (plan, tests) = local.plan(v, filter, &FillNothing);
+                (matches!(plan, Err(Rejection::NoFillAcrossFiber)), tests)
+            })
+            .collect();
         let slots = vertices.iter().map(|v| v.index() + 1).max().unwrap_or(0);
         let mut doomed = vec![false; slots];
+        let mut total = 0;
         for (&v, &(d, tests)) in vertices.iter().zip(&verdicts) {
             doomed[v.index()] = d;
-            local.candidate_tests += tests;
+            total += tests;
         }
-        Self(doomed)
+        (Self(doomed), total)
     }
 
     /// Whether `v`'s attempt is known to end with [`Rejection::NoFillAcrossFiber`].
@@ -1055,8 +1062,18 @@ impl<'m> LocalSimplifier<'m> {
     pub fn new(mesh: &'m mut HalfEdgeMesh, keep_border: bool) -> Self {
         let grid = FaceGrid::from_mesh(mesh);
         Self {
-            mesh,
             grid,
+            ..Self::without_grid(mesh, keep_border)
+        }
+    }
+
+    /// [`Self::new`] with an empty face index, for plans that read none (the fiber test's
+    /// verdicts, see [`Doomed`]) while the index is built; the caller sets `grid` before
+    /// anything else.
+    fn without_grid(mesh: &'m mut HalfEdgeMesh, keep_border: bool) -> Self {
+        Self {
+            mesh,
+            grid: FaceGrid::empty(),
             keep_border,
             fiber_test: None,
             candidate_tests: 0,
