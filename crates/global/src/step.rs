@@ -262,6 +262,7 @@ fn global_stats(g: &GlobalStats) -> Stats {
         removed: g.removed,
         no_valid_fill: g.no_valid_fill,
         no_fill_across_fiber: 0,
+        answered_ahead: 0,
         refused: g.overlapping,
         candidate_tests: g.filter_tests,
         slid: 0,
@@ -277,6 +278,7 @@ fn add_local(stats: &mut Stats, local: &Stats) {
     stats.removed += local.removed;
     stats.no_valid_fill += local.no_valid_fill;
     stats.no_fill_across_fiber += local.no_fill_across_fiber;
+    stats.answered_ahead += local.answered_ahead;
     stats.refused += local.refused;
     stats.candidate_tests += local.candidate_tests;
     stats.slid += local.slid;

@@ -29,6 +29,7 @@ fn run(
     env: &Envelopes,
     placement: Placement,
     with_test: bool,
+    one_at_a_time: bool,
 ) -> (TriangleSoup, Stats) {
     let fibers = VertexFibers {
         inner: &env.inner.positions,
@@ -38,6 +39,7 @@ fn run(
     let barriers = Barriers::new(vec![env.outer.clone(), env.inner.clone()], vec![]).unwrap();
     let options = Options {
         placement,
+        check_each_step: one_at_a_time,
         ..Options::default()
     };
     let mut m = HalfEdgeMesh::from_soup(s).unwrap();
@@ -55,6 +57,8 @@ fn run(
     (m.to_soup(), stats)
 }
 
+/// One vertex at a time (no batches, so no verdicts ahead): the same removals and mesh
+/// with the test as without.
 #[test]
 fn the_fiber_test_changes_no_outcome() {
     let meshes = [
@@ -67,8 +71,8 @@ fn the_fiber_test_changes_no_outcome() {
         for eps in [0.001, 0.004, 0.02] {
             let env = envelopes(s, eps);
             for placement in [Placement::Subset, Placement::Collapse] {
-                let (with, sw) = run(s, &env, placement, true);
-                let (without, so) = run(s, &env, placement, false);
+                let (with, sw) = run(s, &env, placement, true, true);
+                let (without, so) = run(s, &env, placement, false, true);
                 let what = format!("{name} at {eps}, {placement:?}");
                 assert_eq!(so.no_fill_across_fiber, 0, "{what}");
                 assert_eq!(sw.removed, so.removed, "{what}");
@@ -76,6 +80,7 @@ fn the_fiber_test_changes_no_outcome() {
                 assert_eq!(with.faces, without.faces, "{what}");
                 assert_eq!(with.positions, without.positions, "{what}");
                 assert!(sw.no_fill_across_fiber <= sw.no_valid_fill, "{what}");
+                assert_eq!(sw.answered_ahead, 0, "{what}");
                 turned_away += sw.no_fill_across_fiber;
             }
         }
@@ -84,6 +89,34 @@ fn the_fiber_test_changes_no_outcome() {
         turned_away > 100,
         "the test turned {turned_away} attempts away"
     );
+}
+
+/// In batches, most attempts are answered by the verdicts computed before the run; in a
+/// debug build (the workspace's test command) each such answer is checked against a fresh
+/// plan on the mesh of its batch, so a verdict kept after its vertex's fan changed fails
+/// here (checked by removing the `forget` that drops it). The outputs stay within the
+/// envelopes (certified) and on the input's vertices.
+#[test]
+fn verdicts_ahead_answer_as_plans_would() {
+    let meshes = [
+        ("bumpy sphere", bumpy(3)),
+        ("torus", generate::torus(1.0, 0.3, 48, 16)),
+    ];
+    let (mut ahead, mut removed) = (0, 0);
+    for (name, s) in &meshes {
+        for eps in [0.001, 0.004, 0.02] {
+            let env = envelopes(s, eps);
+            let (out, stats) = run(s, &env, Placement::Subset, true, false);
+            let what = format!("{name} at {eps}");
+            removed += stats.removed;
+            assert!(stats.answered_ahead <= stats.no_fill_across_fiber, "{what}");
+            ahead += stats.answered_ahead;
+            let c = envelope_verify::certify(s, &out, &envelope_verify::Options::new(eps));
+            assert_eq!(c.verdict, envelope_verify::Verdict::Holds, "{what}: {c:?}");
+        }
+    }
+    assert!(ahead > 100, "{ahead} attempts answered ahead");
+    assert!(removed > 100, "{removed} removed");
 }
 
 #[test]
