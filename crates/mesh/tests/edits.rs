@@ -22,6 +22,13 @@ fn invariants(m: &HalfEdgeMesh) -> (i64, Option<u32>, usize, usize) {
     (t.euler, t.genus, t.num_border_loops(), t.components.len())
 }
 
+/// `genus_and_border_loops` (the half-edge count) against the soup analysis.
+fn counts_agree(m: &HalfEdgeMesh) -> Result<(), TestCaseError> {
+    let t = m.topology();
+    prop_assert_eq!(m.genus_and_border_loops(), (t.genus, t.num_border_loops()));
+    Ok(())
+}
+
 #[derive(Clone, Debug)]
 struct Op {
     vertex: u32,
@@ -91,6 +98,7 @@ proptest! {
             let t = m.begin();
             let hole = m.remove_vertex_fan(v).unwrap();
             m.sanity_check().unwrap();
+            counts_agree(&m)?;
             prop_assert!(m.is_isolated(v));
             let ok = match o.action {
                 0 => false,
@@ -119,6 +127,7 @@ proptest! {
         // The compacted soup is a valid input again, with the same topology.
         let again = HalfEdgeMesh::from_soup(&m.to_soup()).unwrap();
         again.sanity_check().unwrap();
+        counts_agree(&m)?;
         prop_assert_eq!(invariants(&again), expected);
         prop_assert_eq!(analyze(&m.to_soup()).genus, expected.1);
     }
@@ -134,6 +143,7 @@ proptest! {
         chosen.dedup();
         m.remove_faces(&chosen).unwrap();
         m.sanity_check().unwrap();
+        counts_agree(&m)?;
         prop_assert_eq!(m.num_faces(), before.num_faces() - chosen.len());
         // Holes may pinch vertices (several gaps); the adjacency must stay valid anyway, and
         // the soup analysis must agree on the face count.

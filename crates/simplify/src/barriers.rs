@@ -246,10 +246,8 @@ impl Barriers {
                     .unwrap_or(0);
                 return Err(BarrierError::IndexOutOfRange { surface, face });
             }
-            for f in soup.face_ids() {
-                triangles.push(soup.triangle(f));
-                kinds.push(kind);
-            }
+            triangles.par_extend(soup.faces.par_iter().map(|f| f.map(|v| soup.position(v))));
+            kinds.resize(triangles.len(), kind);
         }
         // Stored in the leaf order of the tree, so that the triangles a query visits lie
         // near each other in memory (ids are this order's).
@@ -279,14 +277,19 @@ impl Barriers {
                 }
                 (
                     Some(bvh),
-                    old.iter().map(|i| triangles[pick(i)]).collect::<Vec<_>>(),
-                    old.iter().map(|i| kinds[pick(i)]).collect::<Vec<_>>(),
-                    old.iter().map(|i| boxes[pick(i)]).collect::<Vec<_>>(),
+                    old.par_iter()
+                        .map(|i| triangles[pick(i)])
+                        .collect::<Vec<_>>(),
+                    old.par_iter().map(|i| kinds[pick(i)]).collect::<Vec<_>>(),
+                    old.par_iter().map(|i| boxes[pick(i)]).collect::<Vec<_>>(),
                     position,
                 )
             }
         };
-        let magnitude = triangles.iter().copied().map(magnitude).fold(0.0, f64::max);
+        let magnitude = triangles
+            .par_iter()
+            .map(|&t| magnitude(t))
+            .reduce(|| 0.0, f64::max);
         let slabs = triangles
             .par_iter()
             .map(|&t| SlabFilter::new(t, magnitude))
