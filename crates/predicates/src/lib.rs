@@ -355,19 +355,28 @@ impl PreparedFace {
 /// stored planes, then the same exact test), without recomputing either plane.
 #[must_use]
 pub fn prepared_faces_intersect(a: &PreparedFace, b: &PreparedFace) -> bool {
-    let (f, g) = (a.ids, b.ids);
-    let shared = shared_indices(f, g);
+    let (f, g) = (&a.ids, &b.ids);
+    // Most pairs share no index (an envelope face against another surface's): nine
+    // comparisons without a branch tell, and only a pair that shares one is matched up.
+    let [g0, g1, g2] = *g;
+    let in_g = |x: u32| (x == g0) | (x == g1) | (x == g2);
+    let fs = [in_g(f[0]), in_g(f[1]), in_g(f[2])];
+    let any = fs[0] | fs[1] | fs[2];
+    let shared = if any { shared_indices(*f, *g) } else { None };
     if let Some(None) = shared {
         return true;
     }
-    let (t1, t2) = (a.plane.t, b.plane.t);
     if a.small && b.small {
-        let (fs, gs) = (f.map(|x| g.contains(&x)), g.map(|x| f.contains(&x)));
+        let gs = if any {
+            g.map(|x| f.contains(&x))
+        } else {
+            [false; 3]
+        };
         if apart::surely_apart(&a.plane, fs, &b.plane, gs) {
             return false;
         }
     }
-    exact_indexed(t1, t2, shared)
+    exact_indexed(a.plane.t, b.plane.t, shared)
 }
 
 /// True when mesh faces `f` and `g` intersect, adjacency-aware; see
