@@ -72,12 +72,13 @@ impl Aabb {
     #[inline]
     #[must_use]
     pub fn overlaps(&self, o: &Aabb) -> bool {
-        self.min.x <= o.max.x
-            && o.min.x <= self.max.x
-            && self.min.y <= o.max.y
-            && o.min.y <= self.max.y
-            && self.min.z <= o.max.z
-            && o.min.z <= self.max.z
+        // Without short-circuits: one branch for the caller instead of up to six.
+        (self.min.x <= o.max.x)
+            & (o.min.x <= self.max.x)
+            & (self.min.y <= o.max.y)
+            & (o.min.y <= self.max.y)
+            & (self.min.z <= o.max.z)
+            & (o.min.z <= self.max.z)
     }
 
     /// True when `p` is in the closed box (exact).
