@@ -80,11 +80,6 @@ enum Command {
     },
 }
 
-/// mimalloc in place of the system allocator: the simplifier's many short-lived vectors
-/// and large per-stage buffers (see the benches README for the measurement).
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
     // The command runs on a thread of rayon's pool: the local simplifier plans each batch of
