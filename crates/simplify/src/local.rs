@@ -373,7 +373,7 @@ fn run(
     // The verdicts ahead read no face index: it is built beside them.
     let mut local = LocalSimplifier::without_grid(mesh, policies.keep_border)
         .with_fiber_test(policies.fiber_test);
-    let (grid, (mut doomed, tests)) = rayon::join(
+    let (grid, (mut verdicts, tests)) = rayon::join(
         || FaceGrid::from_mesh(local.mesh()),
         || {
             if batched {
@@ -392,7 +392,7 @@ fn run(
                 &mut queue,
                 local.mesh(),
                 |m, v| rings.get(m, v),
-                |v| doomed.holds(v),
+                |v| verdicts.holds(v),
             )
         } else {
             queue.pop().into_iter().map(|v| (v, false)).collect()
@@ -410,6 +410,8 @@ fn run(
                         "the verdict on {v} no longer holds"
                     );
                     (Err(Rejection::NoFillAcrossFiber), 0)
+                } else if verdicts.passed(v) {
+                    local.plan_without_fiber_test(v, policies.filter, policies.filler)
                 } else {
                     local.plan(v, policies.filter, policies.filler)
                 }
@@ -431,7 +433,7 @@ fn run(
                     rings.forget(v);
                     for &w in &removal.hole.vertices {
                         rings.forget(w);
-                        doomed.forget(w);
+                        verdicts.forget(w);
                         queue.push(local.mesh(), policies.order, w);
                     }
                 }
@@ -486,8 +488,24 @@ fn plan_each<T: Sync, R: Send>(batch: &[T], plan: impl Fn(&T) -> R + Sync) -> Ve
 ///
 /// In [`independent_batch`], such a vertex needs no plan and is taken as it comes: its
 /// attempt changes nothing.
+///
+/// A vertex the test let pass on the starting mesh is planned without the test while its fan
+/// stays as it was: the test decides nothing but the reason of a rejection (module `fiber`),
+/// and it would run twice otherwise (once ahead, once in the plan).
 #[derive(Default)]
-struct Doomed(Vec<bool>);
+struct Doomed(Vec<Verdict>);
+
+/// A vertex's fiber verdict on the starting mesh, while its fan is as it was.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum Verdict {
+    /// Not computed, or the fan changed since.
+    #[default]
+    Unknown,
+    /// [`Rejection::NoFillAcrossFiber`].
+    Doomed,
+    /// Anything else: the test turned nothing away (or did not apply).
+    Passed,
+}
 
 impl Doomed {
     /// The verdicts of every queued vertex (empty without a fiber test), and the number of
@@ -513,10 +531,10 @@ impl Doomed {
             })
             .collect();
         let slots = vertices.iter().map(|v| v.index() + 1).max().unwrap_or(0);
-        let mut doomed = vec![false; slots];
+        let mut doomed = vec![Verdict::Unknown; slots];
         let mut total = 0;
         for (&v, &(d, tests)) in vertices.iter().zip(&verdicts) {
-            doomed[v.index()] = d;
+            doomed[v.index()] = if d { Verdict::Doomed } else { Verdict::Passed };
             total += tests;
         }
         (Self(doomed), total)
@@ -524,13 +542,18 @@ impl Doomed {
 
     /// Whether `v`'s attempt is known to end with [`Rejection::NoFillAcrossFiber`].
     fn holds(&self, v: VertexId) -> bool {
-        self.0.get(v.index()).copied().unwrap_or(false)
+        self.0.get(v.index()) == Some(&Verdict::Doomed)
+    }
+
+    /// Whether `v`'s plan may leave the fiber test out (see the type's docs).
+    fn passed(&self, v: VertexId) -> bool {
+        self.0.get(v.index()) == Some(&Verdict::Passed)
     }
 
     /// `v`'s fan changed: its verdict no longer holds.
     fn forget(&mut self, v: VertexId) {
         if let Some(d) = self.0.get_mut(v.index()) {
-            *d = false;
+            *d = Verdict::Unknown;
         }
     }
 }
@@ -1328,6 +1351,20 @@ impl<'m> LocalSimplifier<'m> {
         self.plan_moved(v, Vec::new(), filter, filler)
     }
 
+    /// [`Self::plan`] without the fiber test: the same outcome, but for the reason of a
+    /// rejection ([`Rejection::NoValidFill`] where the test would have said
+    /// [`Rejection::NoFillAcrossFiber`]).
+    fn plan_without_fiber_test(
+        &self,
+        v: VertexId,
+        filter: &dyn Filter,
+        filler: &dyn HoleFiller,
+    ) -> (Result<Plan, Rejection>, u64) {
+        let mut tests = 0;
+        let plan = self.plan_counted(v, Vec::new(), filter, filler, false, &mut tests);
+        (plan, tests)
+    }
+
     /// [`Self::plan`] with vertices at planned positions (`moves`, each vertex once): the
     /// faces around them are taken out of the grid's view and tested at their planned
     /// positions (the filling against them, then each of them that stays against the
@@ -1340,7 +1377,7 @@ impl<'m> LocalSimplifier<'m> {
         filler: &dyn HoleFiller,
     ) -> (Result<Plan, Rejection>, u64) {
         let mut tests = 0;
-        let plan = self.plan_counted(v, moves, filter, filler, &mut tests);
+        let plan = self.plan_counted(v, moves, filter, filler, true, &mut tests);
         (plan, tests)
     }
 
@@ -1350,6 +1387,7 @@ impl<'m> LocalSimplifier<'m> {
         moves: Vec<(VertexId, DVec3)>,
         filter: &dyn Filter,
         filler: &dyn HoleFiller,
+        fiber: bool,
         tests: &mut u64,
     ) -> Result<Plan, Rejection> {
         let m = &*self.mesh;
@@ -1408,7 +1446,9 @@ impl<'m> LocalSimplifier<'m> {
         let region = Aabb::from_points(&corners);
         // The fiber test (module `fiber`): interior vertices at their current positions.
         let path = match self.fiber_test {
-            Some(test) if moves.is_empty() && !border => test.path(v, m.position(v), &corners),
+            Some(test) if fiber && moves.is_empty() && !border => {
+                test.path(v, m.position(v), &corners)
+            }
             _ => None,
         };
         let nearby = Nearby::new(region);
