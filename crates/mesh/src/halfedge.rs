@@ -440,8 +440,7 @@ impl HalfEdgeMesh {
             }
         }
         let genus = counts.iter().try_fold(0u32, |sum, &[v, e, f, b]| {
-            let twice = 2 - b - (v - e + f);
-            (twice >= 0 && twice % 2 == 0).then(|| sum + (twice / 2) as u32)
+            Some(sum + crate::topology::genus_of(v - e + f, b)?)
         });
         let loops = counts.iter().map(|k| k[3] as usize).sum();
         (genus, loops)

@@ -267,6 +267,15 @@ pub fn vertex_components(
     (comp, count)
 }
 
+/// The genus of a connected, manifold, orientable surface with Euler characteristic
+/// `euler` and `border_loops` border loops (`2 - 2g - b = euler`); `None` when that gives no
+/// whole, non-negative genus. [`analyze`] and `HalfEdgeMesh::genus_and_border_loops` both
+/// use it.
+pub(crate) fn genus_of(euler: i64, border_loops: i64) -> Option<u32> {
+    let twice = 2 - border_loops - euler;
+    (twice >= 0 && twice % 2 == 0).then_some((twice / 2) as u32)
+}
+
 /// Analyses any soup; see the module docs for the conventions. O(n log n) worst case, expected
 /// O(n) (a counting sort on edge keys, union-find with path compression).
 ///
@@ -419,10 +428,7 @@ pub fn analyze(soup: &TriangleSoup) -> Topology {
         c.euler = c.vertices as i64 - c.edges as i64 + c.faces as i64;
         euler += c.euler;
         if c.manifold && c.orientable {
-            let twice = 2 - c.border_loops as i64 - c.euler;
-            if twice >= 0 && twice % 2 == 0 {
-                c.genus = Some((twice / 2) as u32);
-            }
+            c.genus = genus_of(c.euler, c.border_loops as i64);
         }
         total_genus = match (total_genus, c.genus) {
             (Some(a), Some(b)) => Some(a + b),

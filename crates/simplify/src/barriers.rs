@@ -2,7 +2,7 @@
 //! tubes a new border edge must not touch (section 6.2), as plain triangle data with one
 //! static BVH over all of them.
 
-use envelope_mesh::{CoordError, TriangleSoup, check_coordinate};
+use envelope_mesh::{CoordError, FaceId, TriangleSoup, check_coordinate};
 use envelope_predicates::bvh::{Aabb, Bvh, NodeKind};
 use envelope_predicates::{
     SegmentTriangle, indexed_triangles_intersect, segment_triangle, triangles_intersect,
@@ -246,7 +246,11 @@ impl Barriers {
                     .unwrap_or(0);
                 return Err(BarrierError::IndexOutOfRange { surface, face });
             }
-            triangles.par_extend(soup.faces.par_iter().map(|f| f.map(|v| soup.position(v))));
+            triangles.par_extend(
+                (0..soup.num_faces())
+                    .into_par_iter()
+                    .map(|f| soup.triangle(FaceId::from_index(f))),
+            );
             kinds.resize(triangles.len(), kind);
         }
         // Stored in the leaf order of the tree, so that the triangles a query visits lie

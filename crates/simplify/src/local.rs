@@ -523,18 +523,18 @@ impl Doomed {
             .vertices()
             .filter(|v| queue.queued.get(v.index()).copied().unwrap_or(false))
             .collect();
-        let verdicts: Vec<(bool, u64)> = vertices
+        let verdicts: Vec<(Verdict, u64)> = vertices
             .par_iter()
-            .map(|&v| {
-                let (plan, tests) = local.plan(v, filter, &FillNothing);
-                (matches!(plan, Err(Rejection::NoFillAcrossFiber)), tests)
+            .map(|&v| match local.plan(v, filter, &FillNothing) {
+                (Err(Rejection::NoFillAcrossFiber), tests) => (Verdict::Doomed, tests),
+                (_, tests) => (Verdict::Passed, tests),
             })
             .collect();
         let slots = vertices.iter().map(|v| v.index() + 1).max().unwrap_or(0);
         let mut doomed = vec![Verdict::Unknown; slots];
         let mut total = 0;
-        for (&v, &(d, tests)) in vertices.iter().zip(&verdicts) {
-            doomed[v.index()] = if d { Verdict::Doomed } else { Verdict::Passed };
+        for (&v, &(verdict, tests)) in vertices.iter().zip(&verdicts) {
+            doomed[v.index()] = verdict;
             total += tests;
         }
         (Self(doomed), total)
@@ -1005,8 +1005,9 @@ fn independent_batch(
     let mut batch = Vec::new();
     let mut skipped = Vec::new();
     let mut boxes: Vec<Aabb> = Vec::new();
-    let (mut planned, mut held) = (0, 0);
-    while planned < BATCH_LIMIT && planned + held < BATCH_WINDOW {
+    let mut planned = 0;
+    // Only vertices to be planned are skipped: doomed ones are always taken.
+    while planned < BATCH_LIMIT && planned + skipped.len() < BATCH_WINDOW {
         let Some(e) = queue.pop_entry() else {
             break;
         };
@@ -1020,7 +1021,6 @@ fn independent_batch(
         // Latest first: a vertex's neighbours in the queue are mostly just before it.
         if boxes.iter().rev().any(|x| x.overlaps(&b)) {
             skipped.push(e);
-            held += 1;
         } else {
             queue.queued[v.index()] = false;
             batch.push((v, false));
