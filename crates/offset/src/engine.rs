@@ -45,8 +45,11 @@ pub(crate) struct Scene<'a> {
     pub faces: Vec<[u32; 3]>,
     /// The swept box of every face: every position it can take while the movers move.
     pub swept: Vec<Aabb>,
-    /// Over `swept[fixed.1..]` (item `i` is face `fixed.1 + i`).
+    /// Over `swept[fixed.1..]` (item `i` is face `fixed.1 + i`), or over the faces
+    /// `only` names (item `i` is face `only[i]`).
     pub bvh: Bvh,
+    /// The faces in `bvh` when not all of them ([`Scene::around`]), increasing.
+    pub only: Option<Vec<u32>>,
     /// A tree over the first `fixed.1` faces, which never move, built by the caller with
     /// their boxes (their swept boxes: see [`Scene::with_fixed`]).
     pub fixed: Option<(&'a Bvh, u32)>,
@@ -84,6 +87,7 @@ impl<'a> Scene<'a> {
         let n = fixed.map_or(0, |f| f.1 as usize);
         let mut scene = Scene {
             bvh: Bvh::new(&swept[n..]),
+            only: None,
             fixed,
             positions,
             alias,
@@ -93,6 +97,45 @@ impl<'a> Scene<'a> {
             boxes: Vec::new(),
         };
         scene.boxes = (0..scene.faces.len() as u32)
+            .map(|f| scene.face_box(f))
+            .collect();
+        scene
+    }
+
+    /// [`Scene::new`] whose tree holds only the faces whose swept box overlaps one of
+    /// `reaches` (each mover's, see [`reach`]): the candidates of those movers are the same,
+    /// and a tree over a few faces is built for a few movers instead of one over all.
+    pub fn around(
+        positions: Vec<DVec3>,
+        alias: Vec<u32>,
+        faces: Vec<[u32; 3]>,
+        swept: Vec<Aabb>,
+        exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
+        reaches: &[Aabb],
+    ) -> Self {
+        let near = Bvh::new(reaches);
+        let only: Vec<u32> = (0..faces.len() as u32)
+            .into_par_iter()
+            .filter(|&f| {
+                let mut hit = false;
+                near.for_each_overlapping(&swept[f as usize], |_| hit = true);
+                hit
+            })
+            .collect();
+        let kept: Vec<Aabb> = only.iter().map(|&f| swept[f as usize]).collect();
+        let mut scene = Scene {
+            bvh: Bvh::new(&kept),
+            only: Some(only),
+            fixed: None,
+            positions,
+            alias,
+            faces,
+            swept,
+            exempt,
+            boxes: Vec::new(),
+        };
+        scene.boxes = (0..scene.faces.len() as u32)
+            .into_par_iter()
             .map(|f| scene.face_box(f))
             .collect();
         scene
@@ -148,10 +191,17 @@ pub(crate) use envelope_predicates::indexed_triangles_intersect as tris_intersec
 /// The faces whose swept box overlaps the swept box of `m`'s star, sorted: every face the
 /// star can meet at any parameter, since every position of every face lies in its swept box.
 fn candidates(scene: &Scene<'_>, m: &Mover) -> Vec<u32> {
-    let reach = m
-        .star
-        .iter()
-        .fold(Aabb::EMPTY, |b, &f| b.union(&scene.swept[f as usize]));
+    let reach = reach(&scene.swept, m);
+    if let Some(only) = &scene.only {
+        debug_assert!(scene.fixed.is_none());
+        // Increasing items of an increasing list: still sorted.
+        return scene
+            .bvh
+            .overlapping(&reach)
+            .into_iter()
+            .map(|i| only[i as usize])
+            .collect();
+    }
     let mut c = match scene.fixed {
         Some((tree, n)) => {
             let mut c = tree.overlapping(&reach);
@@ -163,6 +213,13 @@ fn candidates(scene: &Scene<'_>, m: &Mover) -> Vec<u32> {
     };
     c.shrink_to_fit();
     c
+}
+
+/// The union of the swept boxes of `m`'s star: where the star can be at any parameter.
+pub(crate) fn reach(swept: &[Aabb], m: &Mover) -> Aabb {
+    m.star
+        .iter()
+        .fold(Aabb::EMPTY, |b, &f| b.union(&swept[f as usize]))
 }
 
 /// Exact check of mover `m` at parameter `t` against the scene: each of the mover's
