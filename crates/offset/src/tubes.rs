@@ -373,38 +373,36 @@ pub(crate) fn build_tubes(
         pairs = tube_pairs_moved(&layout, input, surfaces, &moved);
     }
     let grown = set_back.iter().any(|&b| b);
-    // Grow.
-    let mut sweep: Vec<Aabb> = layout
-        .positions
-        .iter()
-        .map(|&p| Aabb::from_points(&[p]))
-        .collect();
-    for m in &movers {
-        for (kk, &v) in m.verts.iter().enumerate() {
-            sweep[v as usize] = engine::sweep_box(m.base[kk], m.dirs[kk], m.target.max(m.t));
-        }
-    }
-    let boxes = engine::swept_face_boxes(&layout.faces, &sweep);
-    let ex = |f: u32, g: u32| exempt(input.faces, nf3, &layout.seg, f, g);
-    let alias: Vec<u32> = (0..layout.positions.len() as u32).collect();
-    // The input and envelope faces do not move here: their swept boxes are their boxes,
-    // which `surfaces` was built over.
-    debug_assert!(
-        (0..nf3 as usize).all(|f| boxes[f]
-            == Aabb::from_triangle(layout.faces[f].map(|v| layout.positions[v as usize])))
-    );
-    let mut scene = Scene::with_fixed(
-        layout.positions.clone(),
-        alias,
-        layout.faces.clone(),
-        boxes,
-        &ex,
-        Some((surfaces, nf3)),
-    );
+    // Grow (only rings set back; none at small epsilons, and then no scene is built).
     if grown {
+        let mut sweep: Vec<Aabb> = layout
+            .positions
+            .iter()
+            .map(|&p| Aabb::from_points(&[p]))
+            .collect();
+        for m in &movers {
+            for (kk, &v) in m.verts.iter().enumerate() {
+                sweep[v as usize] = engine::sweep_box(m.base[kk], m.dirs[kk], m.target.max(m.t));
+            }
+        }
+        let boxes = engine::swept_face_boxes(&layout.faces, &sweep);
+        let ex = |f: u32, g: u32| exempt(input.faces, nf3, &layout.seg, f, g);
+        let alias: Vec<u32> = (0..layout.positions.len() as u32).collect();
+        // The input and envelope faces do not move here: their swept boxes are their boxes,
+        // which `surfaces` was built over.
+        debug_assert!((0..nf3 as usize).all(|f| boxes[f]
+            == Aabb::from_triangle(layout.faces[f].map(|v| layout.positions[v as usize]))));
+        let mut scene = Scene::with_fixed(
+            layout.positions.clone(),
+            alias,
+            layout.faces.clone(),
+            boxes,
+            &ex,
+            Some((surfaces, nf3)),
+        );
         engine::grow(&mut scene, &mut movers, policy);
+        layout.positions = scene.positions;
     }
-    layout.positions = scene.positions;
     debug_assert!(
         layout.positions[..3 * n as usize]
             .iter()
