@@ -386,6 +386,7 @@ fn run(
     local.grid = grid;
     local.candidate_tests += tests;
     let mut rings = RingBoxes::default();
+    let awake = Awake::new();
     'run: loop {
         let batch: Vec<(VertexId, bool)> = if batched {
             independent_batch(
@@ -400,6 +401,7 @@ fn run(
         if batch.is_empty() {
             break;
         }
+        awake.release();
         let plans = {
             let local = &local;
             plan_each(&batch, |&(v, doomed)| {
@@ -417,6 +419,9 @@ fn run(
                 }
             })
         };
+        if batched {
+            awake.hold();
+        }
         // Commit in queue order: the same calls, in the same order, as one at a time.
         for (&(v, ahead), (plan, tests)) in batch.iter().zip(plans) {
             if policies.stop.should_stop(local.mesh().num_faces()) {
@@ -447,6 +452,7 @@ fn run(
             }
         }
     }
+    awake.release();
     let few_left = local.mesh().num_vertices() * AUTO_MOVING_DIVISOR <= stats.vertices_before;
     if (policies.fibers.is_some() || policies.collapse)
         && (few_left || !policies.moving_if_few_left)
@@ -458,6 +464,53 @@ fn run(
     stats.vertices_after = local.mesh().num_vertices();
     stats.faces_after = local.mesh().num_faces();
     Ok(stats)
+}
+
+/// Keeps the other threads of the pool awake between the short parallel rounds of a batched
+/// run: while the calling thread selects and commits (tens of microseconds a batch), each
+/// of them spins on a job of its own until the next round begins or [`Awake::MAX_SPIN`]
+/// passes, so that the next round's work is taken at once rather than after a wake-up. It
+/// does no work of the run's: the outcome never depends on it. mech-holes-shark at 1/64 %
+/// (117 rounds): the rounds' wall time 0.032 -> 0.030 s for 0.047 s of planning.
+struct Awake {
+    round: std::sync::Arc<std::sync::atomic::AtomicU64>,
+    caller: Option<usize>,
+}
+
+impl Awake {
+    const MAX_SPIN: std::time::Duration = std::time::Duration::from_millis(1);
+
+    fn new() -> Self {
+        Self {
+            round: std::sync::Arc::default(),
+            caller: rayon::current_thread_index(),
+        }
+    }
+
+    /// One spinning job for each other thread, until [`Awake::release`].
+    fn hold(&self) {
+        use std::sync::atomic::Ordering::Acquire;
+        let round = self.round.load(Acquire);
+        for _ in 1..rayon::current_num_threads() {
+            let (current, caller) = (self.round.clone(), self.caller);
+            rayon::spawn(move || {
+                // The caller never spins (it is the one that ends the wait).
+                if rayon::current_thread_index() == caller {
+                    return;
+                }
+                let start = std::time::Instant::now();
+                while current.load(Acquire) == round && start.elapsed() < Self::MAX_SPIN {
+                    std::hint::spin_loop();
+                }
+            });
+        }
+    }
+
+    /// Ends the spinning of [`Awake::hold`].
+    fn release(&self) {
+        self.round
+            .fetch_add(1, std::sync::atomic::Ordering::Release);
+    }
 }
 
 /// The plans of one batch, in its order: in parallel, or inline for a single one (the
