@@ -561,11 +561,29 @@ pub fn simplify_with(
         .filter(|&v| used[v] && (env.eps_plus[v] == 0.0 || env.eps_minus[v] == 0.0))
         .map(|v| soup.positions[v])
         .collect();
-    // The barriers' tree and the mesh the simplifier edits are independent: built side by side.
-    let (barriers, mesh) = rayon::join(
+    // The barriers' tree, the mesh the simplifier edits and the fiber test are independent:
+    // built side by side.
+    let (barriers, (mesh, fiber_test)) = rayon::join(
         // The proof's tree over the envelopes: only the tubes and walls get a new one.
         || Barriers::with_tree(vec![env.outer, env.inner], env.tree, tubes, walls),
-        || HalfEdgeMesh::from_soup(soup),
+        || {
+            rayon::join(
+                || HalfEdgeMesh::from_soup(soup),
+                // The fiber test's conditions: envelopes proved apart from the input,
+                // nothing pinned.
+                || {
+                    (env_proved && pins.is_empty()).then(|| {
+                        FiberTest::new(
+                            VertexFibers {
+                                inner: &inner,
+                                outer: &outer,
+                            },
+                            &soup.faces,
+                        )
+                    })
+                },
+            )
+        },
     );
     let barriers = barriers?.with_pins(&pins);
     let mut mesh = mesh?;
@@ -573,16 +591,6 @@ pub fn simplify_with(
         vertices: mesh.num_vertices(),
     });
     let t_simp = Instant::now();
-    // The fiber test's conditions: envelopes proved apart from the input, nothing pinned.
-    let fiber_test = (env_proved && pins.is_empty()).then(|| {
-        FiberTest::new(
-            VertexFibers {
-                inner: &inner,
-                outer: &outer,
-            },
-            &soup.faces,
-        )
-    });
     let input = StepInput {
         barriers: &barriers,
         outer: &outer,
@@ -594,9 +602,9 @@ pub fn simplify_with(
     let stats = outcome.stats;
 
     let simplify_seconds = t_simp.elapsed().as_secs_f64();
-    let out = mesh.to_soup();
     // The half-edge count: the same numbers as `analyze(&out)`, without its edge table.
-    let (genus_out, border_loops_out) = mesh.genus_and_border_loops();
+    let (out, (genus_out, border_loops_out)) =
+        rayon::join(|| mesh.to_soup(), || mesh.genus_and_border_loops());
 
     let verify = if options.verify {
         progress.stage(Stage::Verify);

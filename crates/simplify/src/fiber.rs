@@ -170,6 +170,20 @@ pub(crate) struct FiberPath {
 /// the error is below `4u` (`u = 2^-53`) times that sum; this is a hundred times more.
 const DOT_MARGIN: f64 = 1e-13;
 
+/// The buffers of [`FiberPath::any_triangle_that_may_meet`], kept per thread.
+#[derive(Default)]
+struct Scratch {
+    below: Vec<bool>,
+    above: Vec<bool>,
+    images: Vec<DVec2>,
+    c: Vec<f64>,
+    w: Vec<f64>,
+}
+
+thread_local! {
+    static SCRATCH: std::cell::Cell<Scratch> = std::cell::Cell::default();
+}
+
 impl FiberPath {
     fn new(points: [DVec3; 3], d: DVec3, origin: DVec3, e1: DVec3, e2: DVec3) -> Self {
         let mut path = Self {
@@ -218,13 +232,34 @@ impl FiberPath {
     pub(crate) fn any_triangle_that_may_meet(
         &self,
         corners: &[DVec3],
+        f: impl FnMut([usize; 3]) -> bool,
+    ) -> bool {
+        // This thread's buffers, taken for the call (a call from within `f` would get
+        // fresh ones) and put back after: no allocation per attempt.
+        let mut scratch = SCRATCH.take();
+        let found = self.any_triangle_that_may_meet_in(&mut scratch, corners, f);
+        SCRATCH.set(scratch);
+        found
+    }
+
+    fn any_triangle_that_may_meet_in(
+        &self,
+        scratch: &mut Scratch,
+        corners: &[DVec3],
         mut f: impl FnMut([usize; 3]) -> bool,
     ) -> bool {
         let n = corners.len();
+        let Scratch {
+            below,
+            above,
+            images,
+            c,
+            w,
+        } = scratch;
         // Per corner: below the path, above it (strictly, with margins); its image.
-        let mut below = Vec::with_capacity(n);
-        let mut above = Vec::with_capacity(n);
-        let mut images = Vec::with_capacity(n);
+        below.clear();
+        above.clear();
+        images.clear();
         let mut worst = 0.0f64;
         for &x in corners {
             let (l, m) = self.level(x);
@@ -243,8 +278,9 @@ impl FiberPath {
             .fold(0.0, f64::max)
             + worst;
         let cross_error = 8.0 * scale * worst + 1e-12 * scale * scale + f64::MIN_POSITIVE;
-        let mut c = vec![0.0; n * n];
-        let mut w = vec![0.0; n * n];
+        // Every entry read below (`i != j`) is written first.
+        c.resize(n * n, 0.0);
+        w.resize(n * n, 0.0);
         for i in 0..n {
             for j in i + 1..n {
                 let x = images[i].perp_dot(images[j]);
