@@ -108,7 +108,8 @@ pub(crate) struct PairwiseFindings {
 }
 
 impl PairwiseFindings {
-    pub(crate) fn compute(soup: &TriangleSoup) -> Self {
+    /// `face_tree`: see [`crate::check_with_shared`].
+    pub(crate) fn compute(soup: &TriangleSoup, face_tree: Option<&Bvh>) -> Self {
         // Face ids of the usable faces, and those faces as raw indices.
         let ids: Vec<u32> = soup
             .face_ids()
@@ -119,7 +120,15 @@ impl PairwiseFindings {
             .iter()
             .map(|&f| soup.faces[f as usize].map(|v| v.0))
             .collect();
-        let tree = Bvh::from_triangles(&soup.positions, &faces);
+        // With every face usable, `faces` is all of them in order: the given tree's items.
+        let built;
+        let tree = match face_tree {
+            Some(t) if ids.len() == soup.num_faces() && t.len() == ids.len() => t,
+            _ => {
+                built = Bvh::from_triangles(&soup.positions, &faces);
+                &built
+            }
+        };
         // Each face's plane once: a face meets about a dozen candidates.
         let prepared: Vec<PreparedFace> = faces
             .iter()

@@ -37,6 +37,7 @@ mod json;
 use std::collections::BTreeMap;
 
 use envelope_mesh::{FaceId, Topology, TriangleSoup, VertexId, analyze, degeneracy};
+use envelope_predicates::bvh::Bvh;
 use glam::DVec3;
 
 pub use classes::{DegeneracyClass, Severity};
@@ -212,9 +213,38 @@ pub fn check(soup: &TriangleSoup, options: &CheckOptions) -> CheckReport {
 /// ```
 #[must_use]
 pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (CheckReport, Topology) {
+    let topology = analyze(soup);
+    (check_with_shared(soup, options, &topology, None), topology)
+}
+
+/// [`check`] with what a caller computed already and shares with other work on the same
+/// soup (the simplify driver gives both to the envelopes too): `topology` must be
+/// `envelope_mesh::analyze(soup)`, and `face_tree`, when given,
+/// `Bvh::from_triangles(&soup.positions, faces)` over all of the soup's faces in order
+/// (`[u32; 3]`). The tree serves the pairwise test when every face is usable (finite,
+/// in-range corners; else a tree over the usable ones is built); a tree of another length
+/// is ignored.
+///
+/// ```
+/// use envelope_check::{check, check_with_shared, CheckOptions};
+/// use envelope_mesh::{analyze, generate};
+/// use envelope_predicates::bvh::Bvh;
+/// let soup = generate::icosphere(1, 1.0);
+/// let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
+/// let tree = Bvh::from_triangles(&soup.positions, &faces);
+/// let options = CheckOptions::default();
+/// let shared = check_with_shared(&soup, &options, &analyze(&soup), Some(&tree));
+/// assert_eq!(shared, check(&soup, &options));
+/// ```
+#[must_use]
+pub fn check_with_shared(
+    soup: &TriangleSoup,
+    options: &CheckOptions,
+    topology: &Topology,
+    face_tree: Option<&Bvh>,
+) -> CheckReport {
     use DegeneracyClass as C;
     let n = options.max_examples;
-    let topology = analyze(soup);
     let vertex = |v: VertexId| Element::Vertex {
         vertex: v,
         position: soup.position(v),
@@ -225,26 +255,20 @@ pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (Chec
         quality: None,
     };
     let referenced = referenced_vertices(soup);
+    let edges = degeneracy::edge_findings(soup);
 
     let mut d = BTreeMap::new();
     d.insert(
         C::NonManifoldVertices,
-        Finding::from_iter(
-            degeneracy::non_manifold_vertices(soup)
-                .into_iter()
-                .map(vertex),
-            n,
-        ),
+        Finding::from_iter(edges.non_manifold_vertices.into_iter().map(vertex), n),
     );
     d.insert(
         C::NonManifoldEdges,
         Finding::from_iter(
-            degeneracy::non_manifold_edges(soup)
-                .into_iter()
-                .map(|e| Element::Edge {
-                    edge: e.vertices,
-                    faces: e.faces,
-                }),
+            edges.non_manifold_edges.into_iter().map(|e| Element::Edge {
+                edge: e.vertices,
+                faces: e.faces,
+            }),
             n,
         ),
     );
@@ -300,7 +324,8 @@ pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (Chec
     d.insert(
         C::InconsistentOrientation,
         Finding::from_iter(
-            degeneracy::inconsistent_orientations(soup)
+            edges
+                .inconsistent_orientations
                 .into_iter()
                 .map(|c| Element::Edge {
                     edge: c.edge,
@@ -311,7 +336,7 @@ pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (Chec
     );
     let pairs = options
         .pairwise
-        .then(|| geometric::PairwiseFindings::compute(soup));
+        .then(|| geometric::PairwiseFindings::compute(soup, face_tree));
     // A T-junction (a vertex strictly inside an edge it is not on) makes a zero-area face or
     // an intersecting pair: the vertex's faces meet the edge's face away from what they
     // share, unless one of the two is degenerate. So with every face usable (finite
@@ -351,7 +376,7 @@ pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (Chec
         );
     }
 
-    let report = CheckReport {
+    CheckReport {
         vertices: topology.num_vertices,
         faces: topology.num_faces,
         edges: topology.num_edges,
@@ -362,8 +387,7 @@ pub fn check_with_topology(soup: &TriangleSoup, options: &CheckOptions) -> (Chec
         manifold: topology.manifold,
         orientable: topology.orientable,
         degeneracies: d,
-    };
-    (report, topology)
+    }
 }
 
 /// `referenced[v]`: some face names `v` (faces with out-of-range indices are skipped).

@@ -368,3 +368,40 @@ proptest! {
         }
     }
 }
+
+/// The check with a shared topology and face tree answers what it answers alone: on a clean
+/// mesh, on one with intersecting faces, with an unusable (non-finite) face, where the
+/// given tree is then not the usable faces' and must be left aside, and with a tree of
+/// another length.
+#[test]
+fn shared_topology_and_tree_give_the_same_report() {
+    use envelope_mesh::analyze;
+    use envelope_predicates::bvh::Bvh;
+    let clean = generate::icosphere(2, 1.0);
+    let mut crossing = clean.clone();
+    crossing.positions[0] = -crossing.positions[0];
+    let mut broken = crossing.clone();
+    broken.positions[5] = DVec3::new(f64::NAN, 0.0, 0.0);
+    let other = generate::icosphere(1, 1.0);
+    let tree_of = |s: &TriangleSoup| {
+        let faces: Vec<[u32; 3]> = s.faces.iter().map(|f| f.map(|v| v.0)).collect();
+        Bvh::from_triangles(&s.positions, &faces)
+    };
+    let options = CheckOptions::default();
+    for s in [&clean, &crossing, &broken] {
+        let alone = check(s, &options);
+        let topology = analyze(s);
+        for tree in [Some(tree_of(s)), Some(tree_of(&other)), None] {
+            assert_eq!(
+                check_with_shared(s, &options, &topology, tree.as_ref()),
+                alone
+            );
+        }
+    }
+    assert!(
+        count(
+            &check(&crossing, &options),
+            DegeneracyClass::IntersectingTriangles
+        ) > 0
+    );
+}

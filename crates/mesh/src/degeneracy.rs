@@ -33,6 +33,39 @@ pub struct OrientationConflict {
     pub faces: [FaceId; 2],
 }
 
+/// What [`non_manifold_vertices`], [`non_manifold_edges`] and [`inconsistent_orientations`]
+/// find, from one edge table (each of them builds its own).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct EdgeFindings {
+    /// [`non_manifold_vertices`].
+    pub non_manifold_vertices: Vec<VertexId>,
+    /// [`non_manifold_edges`].
+    pub non_manifold_edges: Vec<NonManifoldEdge>,
+    /// [`inconsistent_orientations`].
+    pub inconsistent_orientations: Vec<OrientationConflict>,
+}
+
+/// [`non_manifold_vertices`], [`non_manifold_edges`] and [`inconsistent_orientations`] at
+/// once: the same answers for one edge table instead of three.
+///
+/// ```
+/// use envelope_mesh::{degeneracy, generate};
+/// let bow_tie = generate::bow_tie();
+/// let all = degeneracy::edge_findings(&bow_tie);
+/// assert_eq!(all.non_manifold_vertices, degeneracy::non_manifold_vertices(&bow_tie));
+/// assert_eq!(all.non_manifold_edges, degeneracy::non_manifold_edges(&bow_tie));
+/// ```
+#[must_use]
+pub fn edge_findings(soup: &TriangleSoup) -> EdgeFindings {
+    let valid = valid_faces(soup);
+    let table = EdgeTable::build(soup, &valid);
+    EdgeFindings {
+        non_manifold_vertices: non_manifold_vertices_of(soup, &valid, &table),
+        non_manifold_edges: non_manifold_edges_of(&table),
+        inconsistent_orientations: inconsistent_orientations_of(soup, &table),
+    }
+}
+
 /// Edges with three or more incident faces, in `(min, max)` order.
 ///
 /// ```
@@ -43,7 +76,10 @@ pub struct OrientationConflict {
 /// ```
 #[must_use]
 pub fn non_manifold_edges(soup: &TriangleSoup) -> Vec<NonManifoldEdge> {
-    let table = EdgeTable::build(soup, &valid_faces(soup));
+    non_manifold_edges_of(&EdgeTable::build(soup, &valid_faces(soup)))
+}
+
+fn non_manifold_edges_of(table: &EdgeTable) -> Vec<NonManifoldEdge> {
     (0..table.num_edges())
         .filter(|&e| table.edge_slots(e).len() > 2)
         .map(|e| NonManifoldEdge {
@@ -59,9 +95,16 @@ pub fn non_manifold_edges(soup: &TriangleSoup) -> Vec<NonManifoldEdge> {
 #[must_use]
 pub fn non_manifold_vertices(soup: &TriangleSoup) -> Vec<VertexId> {
     let valid = valid_faces(soup);
-    let table = EdgeTable::build(soup, &valid);
-    let fans = corner_fans(soup, &table);
-    fan_counts(soup, &valid, &fans)
+    non_manifold_vertices_of(soup, &valid, &EdgeTable::build(soup, &valid))
+}
+
+fn non_manifold_vertices_of(
+    soup: &TriangleSoup,
+    valid: &[bool],
+    table: &EdgeTable,
+) -> Vec<VertexId> {
+    let fans = corner_fans(soup, table);
+    fan_counts(soup, valid, &fans)
         .iter()
         .enumerate()
         .filter(|&(_, &n)| n > 1)
@@ -171,7 +214,13 @@ pub fn duplicate_vertices(soup: &TriangleSoup) -> Vec<Vec<VertexId>> {
 /// ```
 #[must_use]
 pub fn inconsistent_orientations(soup: &TriangleSoup) -> Vec<OrientationConflict> {
-    let table = EdgeTable::build(soup, &valid_faces(soup));
+    inconsistent_orientations_of(soup, &EdgeTable::build(soup, &valid_faces(soup)))
+}
+
+fn inconsistent_orientations_of(
+    soup: &TriangleSoup,
+    table: &EdgeTable,
+) -> Vec<OrientationConflict> {
     let mut out = Vec::new();
     for e in 0..table.num_edges() {
         let sl = table.edge_slots(e);

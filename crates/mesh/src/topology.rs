@@ -625,6 +625,22 @@ mod tests {
         }
     }
 
+    proptest::proptest! {
+        /// `edge_findings` answers what the three finders answer one by one, on random
+        /// soups (repeated, out-of-range and shared indices, any orientation).
+        #[test]
+        fn edge_findings_are_the_three_finders(
+            faces in proptest::collection::vec(proptest::array::uniform3(0u32..9), 0..24),
+        ) {
+            let positions: Vec<[f64; 3]> = (0..8).map(|i| [f64::from(i), f64::from(i * i % 5), 0.0]).collect();
+            let s = TriangleSoup::from_raw(&positions, &faces);
+            let all = degeneracy::edge_findings(&s);
+            proptest::prop_assert_eq!(all.non_manifold_vertices, degeneracy::non_manifold_vertices(&s));
+            proptest::prop_assert_eq!(all.non_manifold_edges, degeneracy::non_manifold_edges(&s));
+            proptest::prop_assert_eq!(all.inconsistent_orientations, degeneracy::inconsistent_orientations(&s));
+        }
+    }
+
     fn one(t: &Topology) -> &Component {
         assert_eq!(t.components.len(), 1, "{t:?}");
         &t.components[0]

@@ -54,7 +54,7 @@ fn xorshift(mut state: u64) -> impl FnMut() -> u64 {
     }
 }
 
-use envelope_mesh::{TriangleSoup, VertexFaces, VertexId, analyze};
+use envelope_mesh::{Topology, TriangleSoup, VertexFaces, VertexId, analyze};
 use envelope_predicates::bvh::{Aabb, Bvh};
 use glam::DVec3;
 
@@ -262,7 +262,52 @@ pub fn build_envelopes(
     soup: &TriangleSoup,
     options: &EnvelopeOptions,
 ) -> Result<Envelopes, EnvelopeError> {
-    let topo = accept_input(soup)?;
+    accept_indices(soup)?;
+    let (topology, input_tree) = rayon::join(|| analyze(soup), || face_tree(soup));
+    build_envelopes_with(soup, options, &topology, &input_tree)
+}
+
+/// The tree [`build_envelopes_with`] wants: `Bvh::from_triangles` over the soup's faces in
+/// order (for a soup whose indices are in range).
+///
+/// ```
+/// use envelope_mesh::generate;
+/// let soup = generate::icosphere(1, 1.0);
+/// assert_eq!(envelope_offset::face_tree(&soup).len(), soup.num_faces());
+/// ```
+#[must_use]
+pub fn face_tree(soup: &TriangleSoup) -> Bvh {
+    let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
+    Bvh::from_triangles(&soup.positions, &faces)
+}
+
+/// [`build_envelopes`] with the input's topology and face tree computed already (the
+/// simplify driver shares them with its input check): `topology` must be
+/// `envelope_mesh::analyze(soup)` and `input_tree` [`face_tree`]`(soup)`. A tree of another
+/// length than the soup's face count is not used (one is built).
+///
+/// ```
+/// use envelope_mesh::{analyze, generate};
+/// use envelope_offset::{build_envelopes, build_envelopes_with, face_tree, EnvelopeOptions, EpsilonField};
+/// let sphere = generate::icosphere(2, 1.0);
+/// let options = EnvelopeOptions::new(EpsilonField::Constant(0.05));
+/// let shared = build_envelopes_with(&sphere, &options, &analyze(&sphere), &face_tree(&sphere)).unwrap();
+/// assert_eq!(shared.eps_plus, build_envelopes(&sphere, &options).unwrap().eps_plus);
+/// ```
+pub fn build_envelopes_with(
+    soup: &TriangleSoup,
+    options: &EnvelopeOptions,
+    topology: &Topology,
+    input_tree: &Bvh,
+) -> Result<Envelopes, EnvelopeError> {
+    let topo = accept_input(soup, topology)?;
+    let built;
+    let input_tree = if input_tree.len() == soup.num_faces() {
+        input_tree
+    } else {
+        built = face_tree(soup);
+        &built
+    };
     let requested = options.epsilon.evaluate(&soup.positions)?;
     let vf = VertexFaces::new(soup.num_vertices(), &soup.faces);
     let vn = normals::vertex_normals_with(soup, &vf);
@@ -275,9 +320,8 @@ pub fn build_envelopes(
     }
     let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
     let diagonal = soup.diagonal();
-    // One tree over the input faces, for the analytical method and every proof.
-    let input_tree = Bvh::from_triangles(&soup.positions, &faces);
-    let analytical = || analytical::analytical_eps(soup, &vf, &normals, &targets, &input_tree);
+    // `input_tree`: one tree over the input faces, for the analytical method and every proof.
+    let analytical = || analytical::analytical_eps(soup, &vf, &normals, &targets, input_tree);
     let numerical = || numerical_eps(soup, &normals, &targets, &options.numerical, diagonal, None);
     let input_free = options.input_free_of_intersections;
     let prove = |(p, m): (Vec<f64>, Vec<f64>), proved: Option<&Proved>| {
@@ -288,7 +332,7 @@ pub fn build_envelopes(
             &faces,
             (p, m),
             (input_free, base),
-            &input_tree,
+            input_tree,
             options.max_repair_rounds,
         )
     };
@@ -525,24 +569,36 @@ fn prove_and_repair(
     }
 }
 
-/// Checks section 3's assumptions; returns the border loops (closed) and chains (open).
-fn accept_input(soup: &TriangleSoup) -> Result<Vec<(Vec<VertexId>, bool)>, EnvelopeError> {
+/// Faces there are, and each names a vertex there is.
+fn accept_indices(soup: &TriangleSoup) -> Result<(), EnvelopeError> {
     if soup.num_faces() == 0 {
         return Err(EnvelopeError::Empty);
     }
     if !soup.indices_in_range() {
         return Err(EnvelopeError::IndexOutOfRange);
     }
-    let topo = analyze(soup);
+    Ok(())
+}
+
+/// Checks section 3's assumptions on the soup and its topology `topo` (`analyze(soup)`);
+/// returns the border loops (closed) and chains (open).
+fn accept_input(
+    soup: &TriangleSoup,
+    topo: &Topology,
+) -> Result<Vec<(Vec<VertexId>, bool)>, EnvelopeError> {
+    accept_indices(soup)?;
     if !topo.manifold {
         return Err(EnvelopeError::NotManifold);
     }
     if !topo.consistently_oriented {
         return Err(EnvelopeError::NotOriented);
     }
-    let mut out: Vec<(Vec<VertexId>, bool)> =
-        topo.border_loops.into_iter().map(|l| (l, true)).collect();
-    out.extend(topo.border_chains.into_iter().map(|l| (l, false)));
+    let mut out: Vec<(Vec<VertexId>, bool)> = topo
+        .border_loops
+        .iter()
+        .map(|l| (l.clone(), true))
+        .collect();
+    out.extend(topo.border_chains.iter().map(|l| (l.clone(), false)));
     Ok(out)
 }
 

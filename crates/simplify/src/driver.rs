@@ -20,9 +20,15 @@
 
 use std::time::Instant;
 
-use envelope_check::{CheckOptions, DegeneracyClass, check_with_topology};
-use envelope_mesh::{BuildError, HalfEdgeMesh, Topology, TriangleSoup, VertexId};
-use envelope_offset::{EnvelopeError, EnvelopeOptions, EpsilonField, Method, build_envelopes};
+use envelope_check::{
+    CheckOptions, CheckReport, DegeneracyClass, check_with_shared, check_with_topology,
+};
+use envelope_mesh::{BuildError, HalfEdgeMesh, Topology, TriangleSoup, VertexId, analyze};
+use envelope_offset::{
+    EnvelopeError, EnvelopeOptions, EpsilonField, Method, build_envelopes, build_envelopes_with,
+    face_tree,
+};
+use envelope_predicates::bvh::Bvh;
 use envelope_verify::{Certificate, Verdict};
 use glam::DVec3;
 use serde_json::{Value, json};
@@ -340,18 +346,39 @@ pub fn input_problems(soup: &TriangleSoup) -> Vec<(DegeneracyClass, usize)> {
 
 /// [`input_problems`] and the soup's topology, which the check computes anyway.
 fn input_problems_and_topology(soup: &TriangleSoup) -> (Vec<(DegeneracyClass, usize)>, Topology) {
-    let (report, topology) = check_with_topology(
+    let (report, topology) = check_with_topology(soup, &problems_only());
+    (problems_of(&report), topology)
+}
+
+/// [`input_problems`] with the soup's topology and face tree given (see
+/// [`check_with_shared`]).
+fn input_problems_with(
+    soup: &TriangleSoup,
+    topology: &Topology,
+    face_tree: Option<&Bvh>,
+) -> Vec<(DegeneracyClass, usize)> {
+    problems_of(&check_with_shared(
         soup,
-        &CheckOptions {
-            max_examples: 0,
-            ..CheckOptions::default()
-        },
-    );
-    let problems = report
+        &problems_only(),
+        topology,
+        face_tree,
+    ))
+}
+
+/// The check of [`input_problems`]: counts, no examples.
+fn problems_only() -> CheckOptions {
+    CheckOptions {
+        max_examples: 0,
+        ..CheckOptions::default()
+    }
+}
+
+/// The error classes a check found, with their counts.
+fn problems_of(report: &CheckReport) -> Vec<(DegeneracyClass, usize)> {
+    report
         .errors()
         .map(|c| (c, report.finding(c).count))
-        .collect();
-    (problems, topology)
+        .collect()
 }
 
 fn quantile(sorted: &[f64], q: f64) -> f64 {
@@ -489,13 +516,25 @@ pub fn simplify_with(
     let start = Instant::now();
     progress.stage(Stage::Check);
     progress.stage(Stage::Envelopes);
+    // The input's topology and face tree, which the check and the envelopes both need:
+    // computed once, side by side (the analysis is sequential, the tree parallel). Not for
+    // a face naming a missing vertex: the check alone reports that.
+    let t_env = Instant::now();
+    let shared = soup
+        .indices_in_range()
+        .then(|| rayon::join(|| analyze(soup), || face_tree(soup)));
     // The input check and the envelopes run side by side (much of the check is sequential);
     // the check's verdict comes first, whatever the envelopes made of a refused input.
-    let ((problems, topo_in), (env, env_seconds)) = rayon::join(
+    let ((problems, own_topology), (env, env_seconds)) = rayon::join(
         // The check gives the topology the driver needs too (border walls, the report).
-        || input_problems_and_topology(soup),
+        || match &shared {
+            Some((topology, tree)) => (input_problems_with(soup, topology, Some(tree)), None),
+            None => {
+                let (problems, topology) = input_problems_and_topology(soup);
+                (problems, Some(topology))
+            }
+        },
         || {
-            let t_env = Instant::now();
             let env = options
                 .epsilon
                 .evaluate(&soup.positions)
@@ -509,7 +548,12 @@ pub fn simplify_with(
                         input_free_of_intersections: true,
                         ..EnvelopeOptions::new(EpsilonField::PerVertex(field))
                     };
-                    Ok(build_envelopes(soup, &env_options)?)
+                    Ok(match &shared {
+                        Some((topology, tree)) => {
+                            build_envelopes_with(soup, &env_options, topology, tree)?
+                        }
+                        None => build_envelopes(soup, &env_options)?,
+                    })
                 });
             (env, t_env.elapsed().as_secs_f64())
         },
@@ -517,6 +561,10 @@ pub fn simplify_with(
     if !problems.is_empty() {
         return Err(DriverError::Unacceptable(problems));
     }
+    let topo_in = match (shared, own_topology) {
+        (Some((topology, _)), _) | (None, Some(topology)) => topology,
+        (None, None) => analyze(soup),
+    };
     let env = env?;
     let env_proved = env.proof.holds();
     let fractions = env.achieved_fractions();
