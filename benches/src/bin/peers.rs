@@ -25,7 +25,7 @@
 //! benches/peers/build.sh && cargo build --release -p envelope-cli
 //! cargo run --release -p envelope-benches --bin peers -- [--quick] [--meshes a,b]
 //!     [--epsilons 1/64%,1%] [--tools envelope,envelope-collapse,cgal,openmesh,meshopt] [--timeout S]
-//!     [--oracle-cpu S] [--oracle-gib G] [--json PATH] [--keep DIR] [--envelope PATH]
+//!     [--repeat N] [--oracle-cpu S] [--oracle-gib G] [--json PATH] [--keep DIR] [--envelope PATH]
 //! ```
 //! Prints one markdown table; writes the raw results as JSON (default
 //! `benches/results/peers-<unix time>.json`). See `benches/README.md`.
@@ -128,6 +128,9 @@ struct Args {
     placement: Option<String>,
     /// `--method` for our simplifier (`local`, the default, `global` or `hybrid`).
     method: Option<String>,
+    /// Runs of every tool per row, taken in turn (tool 1, tool 2, ..., tool 1, ...); the
+    /// table shows the median seconds.
+    repeat: usize,
 }
 
 fn main() -> ExitCode {
@@ -156,7 +159,7 @@ fn main() -> ExitCode {
 fn usage() -> ExitCode {
     eprintln!(
         "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--until NAME] [--epsilons 1/64%,...,1%] \
-         [--tools envelope,envelope-collapse,envelope-hybrid,cgal,openmesh,meshopt] [--timeout S] [--oracle-cpu S] [--oracle-gib G] \
+         [--tools envelope,envelope-collapse,envelope-hybrid,cgal,openmesh,meshopt] [--timeout S] [--repeat N] [--oracle-cpu S] [--oracle-gib G] \
          [--json PATH] [--keep DIR] [--envelope PATH] [--placement auto|subset|slide|collapse] \
          [--method local|global|hybrid]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
@@ -192,6 +195,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
         max_faces: None,
         from: None,
         until: None,
+        repeat: 1,
     };
     let mut it = argv.iter();
     let list = |v: Option<&String>| -> Option<Vec<String>> {
@@ -223,6 +227,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
                     .collect::<Option<_>>()?;
             }
             "--timeout" => a.timeout = it.next()?.parse().ok().filter(|t: &f64| *t > 0.0)?,
+            "--repeat" => a.repeat = it.next()?.parse().ok().filter(|&n: &usize| n > 0)?,
             "--oracle-cpu" => a.oracle_cpu = it.next()?.parse().ok().filter(|&t: &u64| t > 0)?,
             "--oracle-gib" => a.oracle_gib = it.next()?.parse().ok().filter(|&g: &u64| g > 0)?,
             "--json" => a.json = Some(PathBuf::from(it.next()?)),
@@ -263,8 +268,11 @@ enum Status {
 struct Run {
     status: Status,
     faces: Option<usize>,
-    /// Tool-reported seconds (simplification only), else wall.
+    /// Tool-reported seconds (simplification only), else wall; with `--repeat`, the median
+    /// of `samples`.
     seconds: Option<f64>,
+    /// The seconds of every run (`--repeat`), in order.
+    samples: Vec<f64>,
     seconds_source: &'static str,
     /// Ours: the seconds of the built-in certificate (`verify.seconds` in the report), not
     /// part of `seconds` (the peers have nothing like it).
@@ -293,6 +301,7 @@ impl Run {
             status,
             faces: None,
             seconds: None,
+            samples: Vec::new(),
             seconds_source: "",
             cert_seconds: None,
             wall: None,
@@ -713,19 +722,58 @@ fn run(args: &Args) -> Result<(), String> {
                 input_faces: orig.faces.len(),
                 runs: Vec::new(),
             };
-            for &tool in &args.tools {
-                let tag = format!("{mesh}-{}-{}", label.replace('/', "_"), tool.name());
-                let out = dir.join(format!("{tag}.off"));
-                eprint!(
-                    "[{:>6.0} s] {mesh} {label} {} ...",
-                    started.elapsed().as_secs_f64(),
-                    tool.name()
-                );
-                let mut r = run_tool(tool, &progs, &input, &out, eps, args.timeout, &dir, &tag);
+            // Each tool `--repeat` times, in turn (so a slow spell of the machine falls on
+            // all of them); a tool that did not finish a run is not run again.
+            let tag = |tool: Tool| format!("{mesh}-{}-{}", label.replace('/', "_"), tool.name());
+            let mut last: Vec<Option<Run>> = vec![None; args.tools.len()];
+            let mut samples: Vec<Vec<f64>> = vec![Vec::new(); args.tools.len()];
+            for k in 0..args.repeat {
+                for (i, &tool) in args.tools.iter().enumerate() {
+                    if last[i].as_ref().is_some_and(|r| r.status != Status::Ok) {
+                        continue;
+                    }
+                    let out = dir.join(format!("{}.off", tag(tool)));
+                    eprint!(
+                        "[{:>6.0} s] {mesh} {label} {}{} ...",
+                        started.elapsed().as_secs_f64(),
+                        tool.name(),
+                        if args.repeat > 1 {
+                            format!(" (run {} of {})", k + 1, args.repeat)
+                        } else {
+                            String::new()
+                        }
+                    );
+                    let r = run_tool(
+                        tool,
+                        &progs,
+                        &input,
+                        &out,
+                        eps,
+                        args.timeout,
+                        &dir,
+                        &tag(tool),
+                    );
+                    match r.seconds {
+                        Some(x) if r.status == Status::Ok => {
+                            samples[i].push(x);
+                            eprintln!(" {}", secs(x));
+                        }
+                        _ => eprintln!(" {}", summary(&r)),
+                    }
+                    last[i] = Some(r);
+                }
+            }
+            for (i, &tool) in args.tools.iter().enumerate() {
+                let Some(mut r) = last[i].take() else {
+                    continue;
+                };
                 if r.status == Status::Ok {
+                    r.seconds = median(&samples[i]).or(r.seconds);
+                    r.samples = std::mem::take(&mut samples[i]);
+                    let out = dir.join(format!("{}.off", tag(tool)));
                     measure(&mut r, &oracle, &measured_input, &orig, &out, eps);
                 }
-                eprintln!(" {}", summary(&r));
+                eprintln!("           {mesh} {label} {}: {}", tool.name(), summary(&r));
                 row.runs.push((tool, r));
             }
             rows.push(row);
@@ -925,7 +973,8 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
     s.push_str(
         "\ns: the tool's own simplification time (I/O excluded; `*` = wall time of the process; \
          ours: input check, envelopes and simplification, without the built-in certificate, \
-         whose time is the `+x cert`; speed ratios use s). \
+         whose time is the `+x cert`; speed ratios use s; with `--repeat N`, the median of N \
+         runs taken in turn). \
          MiB: peak RSS of the process. d/eps: two-sided Hausdorff distance over epsilon \
          (CGAL bounded_error_Hausdorff_distance, bound 1% eps; `limit`: the oracle process hit \
          its CPU or memory limit, `err`: another oracle failure). cert: envelope-verify's \
@@ -934,6 +983,18 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
          loops and components of input and output by CGAL (OpenMesh for a soup).\n",
     );
     s
+}
+
+/// The median (the mean of the middle two for an even count); `None` for no sample.
+fn median(samples: &[f64]) -> Option<f64> {
+    let mut v = samples.to_vec();
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    match n {
+        0 => None,
+        _ if n % 2 == 1 => Some(v[n / 2]),
+        _ => Some((v[n / 2 - 1] + v[n / 2]) / 2.0),
+    }
 }
 
 fn secs(x: f64) -> String {
@@ -968,6 +1029,7 @@ fn to_json(rows: &[Row], args: &Args, progs: &Programs, stamp: u64) -> Value {
                     },
                     "faces": r.faces,
                     "seconds": r.seconds,
+                    "seconds_samples": r.samples,
                     "seconds_source": r.seconds_source,
                     "certificate_seconds": r.cert_seconds,
                     "wall_seconds": r.wall,
@@ -991,6 +1053,7 @@ fn to_json(rows: &[Row], args: &Args, progs: &Programs, stamp: u64) -> Value {
     json!({
         "unix_time": stamp,
         "timeout_seconds": args.timeout,
+        "repeat": args.repeat,
         "oracle_cpu_seconds": args.oracle_cpu,
         "oracle_address_space_gib": args.oracle_gib,
         "hausdorff_bound_over_eps": HAUSDORFF_BOUND,
@@ -1115,5 +1178,17 @@ mod tests {
         assert!(d.contains("genus Some(1)->Some(0)"), "{d}");
         let d = compare_topology(&topo(0, 2, true), &topo(0, 1, false));
         assert!(d.contains("loops 2->1"), "{d}");
+    }
+}
+
+#[cfg(test)]
+mod median_tests {
+    use super::median;
+
+    #[test]
+    fn median_of_odd_and_even_counts() {
+        assert_eq!(median(&[]), None);
+        assert_eq!(median(&[3.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), Some(2.5));
     }
 }
