@@ -152,11 +152,10 @@ pub(crate) fn prove_envelopes(
         .par_iter()
         .map(|f| Aabb::from_triangle(f.map(|v| positions[v as usize])))
         .collect();
-    let envelope_tree = input_tree.interleaved(2).refit(&boxes[nf as usize..]);
-    let trees = [(input_tree, 0), (&envelope_tree, nf)];
-    let mut pairs = Vec::new();
-    match known.unchanged {
-        None => {
+    let refit = || input_tree.interleaved_refit(2, &boxes[nf as usize..]);
+    let (envelope_tree, mut pairs) = match known.unchanged {
+        // The envelopes' tree is only returned: refitted beside the search.
+        None => rayon::join(refit, || {
             // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the union of
             // the face's box on each surface) overlap, then every pair of their triangles on
             // any two surfaces (within the input only when it is not known free) whose own
@@ -178,7 +177,7 @@ pub(crate) fn prove_envelopes(
                 }
             };
             let first = u32::from(known.input_free);
-            pairs = prism_tree.self_pairs_emit(|f, g, out| {
+            let mut pairs = prism_tree.self_pairs_emit(|f, g, out| {
                 for s in 0..3 {
                     for t in 0..3 {
                         if s.max(t) >= first {
@@ -199,8 +198,12 @@ pub(crate) fn prove_envelopes(
                 })
                 .collect();
             pairs.extend(own);
-        }
+            pairs
+        }),
         Some(u) => {
+            let envelope_tree = refit();
+            let trees = [(input_tree, 0), (&envelope_tree, nf)];
+            let mut pairs = Vec::new();
             // Only the changed faces, each against every face (a pair of two changed faces
             // once: from the lower id); the pairs of unchanged faces keep their answers.
             let is_changed = |f: u32| f >= nf && !u[(f / nf - 1) as usize][(f % nf) as usize];
@@ -232,8 +235,9 @@ pub(crate) fn prove_envelopes(
                     .map(|c| (global(c.a), global(c.b)))
                     .filter(|&(a, b)| !is_changed(a) && !is_changed(b)),
             );
+            (envelope_tree, pairs)
         }
-    }
+    };
     pairs.sort_unstable();
     let contacts = pairs
         .into_iter()

@@ -486,6 +486,31 @@ impl Bvh {
     /// ```
     #[must_use]
     pub fn interleaved(&self, copies: usize) -> Bvh {
+        self.interleaved_nodes(copies, true)
+    }
+
+    /// `self.interleaved(copies).refit(boxes)`, without the copies' boxes that the refit
+    /// replaces at once.
+    ///
+    /// # Panics
+    /// As [`Bvh::interleaved`] and [`Bvh::refit`].
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let at = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let tree = Bvh::new(&[at(0.0), at(5.0)]);
+    /// let boxes = [at(0.0), at(5.0), at(0.5), at(9.0)];
+    /// let both = tree.interleaved_refit(2, &boxes);
+    /// assert_eq!(both.self_pairs(), tree.interleaved(2).refit(&boxes).self_pairs());
+    /// ```
+    #[must_use]
+    pub fn interleaved_refit(&self, copies: usize, boxes: &[Aabb]) -> Bvh {
+        self.interleaved_nodes(copies, false).into_refit(boxes)
+    }
+
+    /// [`Bvh::interleaved`]; without its boxes (none yet) unless `with_boxes`.
+    fn interleaved_nodes(&self, copies: usize, with_boxes: bool) -> Bvh {
         assert!(copies > 0, "at least one copy");
         let n = self.items.len();
         assert!(
@@ -493,7 +518,7 @@ impl Bvh {
             "too many items for u32 ids"
         );
         let mut items = Vec::with_capacity(n * copies);
-        let mut boxes = Vec::with_capacity(n * copies);
+        let mut boxes = Vec::with_capacity(if with_boxes { n * copies } else { 0 });
         let mut nodes = self.nodes.clone();
         for node in nodes.iter_mut() {
             node.count *= copies as u32;
@@ -502,7 +527,9 @@ impl Bvh {
                 for k in node.a as usize..(node.a + node.b) as usize {
                     for c in 0..copies {
                         items.push(self.items[k] + (c * n) as u32);
-                        boxes.push(self.boxes[k]);
+                        if with_boxes {
+                            boxes.push(self.boxes[k]);
+                        }
                     }
                 }
                 node.a = first;
@@ -562,9 +589,19 @@ impl Bvh {
     /// ```
     #[must_use]
     pub fn refit(&self, boxes: &[Aabb]) -> Bvh {
+        Bvh {
+            nodes: self.nodes.clone(),
+            items: self.items.clone(),
+            boxes: Vec::new(),
+        }
+        .into_refit(boxes)
+    }
+
+    /// [`Bvh::refit`] in place: this tree's nodes and items with the new boxes.
+    fn into_refit(mut self, boxes: &[Aabb]) -> Bvh {
         assert_eq!(boxes.len(), self.items.len(), "one box per item");
-        let ordered: Vec<Aabb> = self.items.iter().map(|&i| boxes[i as usize]).collect();
-        let mut nodes = self.nodes.clone();
+        self.boxes = self.items.iter().map(|&i| boxes[i as usize]).collect();
+        let (nodes, ordered) = (&mut self.nodes, &self.boxes);
         // Children come after their parent in every tree this type builds (pre-order
         // builds, `join` putting the new root first), so one backward pass sees every
         // child's new box before its parent's.
@@ -584,11 +621,7 @@ impl Bvh {
                     .union(&nodes[node.b as usize].bounds)
             };
         }
-        Bvh {
-            nodes,
-            items: self.items.clone(),
-            boxes: ordered,
-        }
+        self
     }
 
     /// All pairs `(i, j)`, `i < j`, of items with overlapping boxes; sorted.

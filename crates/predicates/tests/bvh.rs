@@ -160,6 +160,11 @@ fn refit_trees_match_new_trees_and_emit_matches_pairs() {
             .copied()
             .collect();
         let tree3 = tree.interleaved(3);
+        // The fused form is the same tree.
+        assert_eq!(
+            format!("{:?}", tree.interleaved_refit(3, &tripled)),
+            format!("{:?}", tree3.refit(&tripled))
+        );
         for (boxes, tree) in [(&nudged, &tree), (&unrelated, &tree), (&tripled, &tree3)] {
             let refit = tree.refit(boxes);
             let built = Bvh::new(boxes);

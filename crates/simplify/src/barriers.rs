@@ -134,9 +134,9 @@ pub struct Barriers {
     triangles: Vec<[DVec3; 3]>,
     /// Each triangle's box (checked before any plane test).
     boxes: Vec<Aabb>,
-    /// Each triangle's own [`SlabFilter`] (prunes candidates whose corners all lie clearly on
+    /// Each triangle's own [`PointSlab`] (prunes candidates whose corners all lie clearly on
     /// one side of its plane).
-    slabs: Vec<SlabFilter>,
+    slabs: Vec<PointSlab>,
     kinds: Vec<BarrierKind>,
     /// The largest coordinate magnitude of any barrier triangle (the bound `slabs` are
     /// widened for; see [`SlabFilter::new`]).
@@ -296,7 +296,7 @@ impl Barriers {
             .reduce(|| 0.0, f64::max);
         let slabs = triangles
             .par_iter()
-            .map(|&t| SlabFilter::new(t, magnitude))
+            .map(|&t| SlabFilter::new(t, magnitude).points)
             .collect();
         let pinned = vec![0; triangles.len()];
         Ok(Self {
@@ -697,20 +697,44 @@ fn pin_ids(t: [DVec3; 3], b: [DVec3; 3], mask: u8) -> Option<[u32; 3]> {
 /// decisions are the exact predicates'.
 #[derive(Clone, Copy, Debug, Default)]
 struct SlabFilter {
-    /// The normal, then the three in-plane edge normals.
-    axes: [DVec3; 4],
+    /// The axes and widened projections: what [`SlabFilter::separates_points`] reads.
+    points: PointSlab,
     /// `|axis|_1`.
     norm1: [f64; 4],
     /// `t`'s projection on each axis, as computed.
     lo: [f64; 4],
     hi: [f64; 4],
-    /// `lo` and `hi` widened by the slack for coordinates up to `bound` on the other side
-    /// (infinite on an axis that cannot separate: zero or not finite).
+    t_mag: f64,
+}
+
+/// The part of a [`SlabFilter`] that [`SlabFilter::separates_points`] reads (the barriers
+/// keep one per triangle: 168 bytes instead of 272).
+#[derive(Clone, Copy, Debug, Default)]
+struct PointSlab {
+    /// The normal, then the three in-plane edge normals.
+    axes: [DVec3; 4],
+    /// `t`'s projection on each axis widened by the slack for coordinates up to `bound` on
+    /// the other side (infinite on an axis that cannot separate: zero or not finite).
     lo_wide: [f64; 4],
     hi_wide: [f64; 4],
-    t_mag: f64,
-    /// At least `t_mag`: the coordinate magnitude that `lo_wide` and `hi_wide` cover.
+    /// At least `t`'s coordinate magnitude: the one that `lo_wide` and `hi_wide` cover.
     bound: f64,
+}
+
+impl PointSlab {
+    /// [`SlabFilter::separates_points`].
+    fn separates_points(&self, q: [DVec3; 3]) -> bool {
+        (0..4).any(|k| {
+            let d = q.map(|p| self.axes[k].dot(p));
+            d[0].min(d[1]).min(d[2]) > self.hi_wide[k] || d[0].max(d[1]).max(d[2]) < self.lo_wide[k]
+        })
+    }
+
+    /// Whether [`Self::separates_points`] may be asked of triangles whose coordinates are
+    /// at most `mag` in magnitude.
+    fn covers(&self, mag: f64) -> bool {
+        mag <= self.bound
+    }
 }
 
 impl SlabFilter {
@@ -726,22 +750,24 @@ impl SlabFilter {
         ];
         let t_mag = t.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max);
         let mut f = Self {
-            axes,
+            points: PointSlab {
+                axes,
+                lo_wide: [f64::NEG_INFINITY; 4],
+                hi_wide: [f64::INFINITY; 4],
+                bound: bound.max(t_mag),
+            },
             norm1: axes.map(|a| a.abs().element_sum()),
             lo: [0.0; 4],
             hi: [0.0; 4],
-            lo_wide: [f64::NEG_INFINITY; 4],
-            hi_wide: [f64::INFINITY; 4],
             t_mag,
-            bound: bound.max(t_mag),
         };
         for k in 0..4 {
             let d = t.map(|p| axes[k].dot(p));
             f.lo[k] = d[0].min(d[1]).min(d[2]);
             f.hi[k] = d[0].max(d[1]).max(d[2]);
-            if let Some(slack) = f.slack(k, f.bound) {
-                f.lo_wide[k] = f.lo[k] - slack;
-                f.hi_wide[k] = f.hi[k] + slack;
+            if let Some(slack) = f.slack(k, f.points.bound) {
+                f.points.lo_wide[k] = f.lo[k] - slack;
+                f.points.hi_wide[k] = f.hi[k] + slack;
             }
         }
         f
@@ -754,7 +780,7 @@ impl SlabFilter {
     }
 
     fn separates(&self, b: &Aabb) -> bool {
-        let n = self.axes[0];
+        let n = self.points.axes[0];
         let mag = b.min.abs().max_element().max(b.max.abs().max_element());
         let Some(slack) = self.slack(0, mag) else {
             return false;
@@ -765,19 +791,10 @@ impl SlabFilter {
     }
 
     /// The test for the three corners of a triangle `q` on all four axes. The caller knows
-    /// that `q`'s coordinates are at most `self.bound` in magnitude (the slack is
-    /// precomputed for that bound; [`SlabFilter::covers`] tells).
+    /// that `q`'s coordinates are at most `self.points.bound` in magnitude (the slack is
+    /// precomputed for that bound; [`PointSlab::covers`] tells).
     fn separates_points(&self, q: [DVec3; 3]) -> bool {
-        (0..4).any(|k| {
-            let d = q.map(|p| self.axes[k].dot(p));
-            d[0].min(d[1]).min(d[2]) > self.hi_wide[k] || d[0].max(d[1]).max(d[2]) < self.lo_wide[k]
-        })
-    }
-
-    /// Whether [`SlabFilter::separates_points`] may be asked of triangles whose coordinates
-    /// are at most `mag` in magnitude.
-    fn covers(&self, mag: f64) -> bool {
-        mag <= self.bound
+        self.points.separates_points(q)
     }
 }
 
