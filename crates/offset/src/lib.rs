@@ -636,10 +636,12 @@ fn numerical_eps(
     diagonal: f64,
     start: Option<(&[f64], &[f64])>,
 ) -> (Vec<f64>, Vec<f64>) {
+    use rayon::slice::ParallelSliceMut;
     let n = soup.num_vertices();
     let bounds = Aabb::from_points(&soup.positions);
     let mut order: Vec<u32> = (0..n as u32).collect();
-    order.sort_by_cached_key(|&v| (morton(soup.positions[v as usize], &bounds), v));
+    // Keys are distinct (the ids break ties): the parallel sorts give the one order.
+    order.par_sort_by_cached_key(|&v| (morton(soup.positions[v as usize], &bounds), v));
     let mut rank = vec![0u32; n];
     for (new, &old) in order.iter().enumerate() {
         rank[old as usize] = new as u32;
@@ -653,7 +655,7 @@ fn numerical_eps(
         let c = order_pos(soup, &order, f[0]) + order_pos(soup, &order, f[1]);
         morton((c + order_pos(soup, &order, f[2])) / 3.0, &bounds)
     };
-    faces.sort_by_cached_key(|f| (key(f), f.map(|v| v.0)));
+    faces.par_sort_by_cached_key(|f| (key(f), f.map(|v| v.0)));
     let sorted = TriangleSoup::new(
         order.iter().map(|&v| soup.positions[v as usize]).collect(),
         faces,
