@@ -1454,16 +1454,17 @@ impl<'m> LocalSimplifier<'m> {
         if !m.is_manifold_vertex(v) {
             return Err(Rejection::NonManifold);
         }
-        let fan: Vec<FaceId> = m.vertex_faces(v).collect();
+        // The outgoing half-edges once: the fan (`vertex_faces` order) and the ring.
+        let hs: Vec<_> = m.outgoing_halfedges(v).collect();
+        let fan: Vec<FaceId> = hs.iter().filter_map(|&h| m.face(h)).collect();
         if border && fan.len() < 2 {
             return Err(Rejection::Ear);
         }
-        if m.valence(v) > MAX_HOLE {
+        if hs.len() > MAX_HOLE {
             return Err(Rejection::HoleTooLarge);
         }
         // The ring as `remove_vertex_fan` returns it: counter-clockwise from the outgoing
         // half-edge, starting after the border gap at a border vertex.
-        let hs: Vec<_> = m.outgoing_halfedges(v).collect();
         let mut vertices: Vec<VertexId> = hs.iter().map(|&h| m.target(h)).collect();
         if hs.first().is_some_and(|&h| m.is_border_halfedge(h)) {
             vertices.rotate_left(1);
@@ -1472,24 +1473,31 @@ impl<'m> LocalSimplifier<'m> {
             vertices,
             open: border,
         };
-        let mut sorted = hole.vertices.clone();
-        sorted.sort_unstable();
-        sorted.dedup();
-        if sorted.len() != hole.len() {
+        // At most `MAX_HOLE` vertices: pairwise, without sorting a copy.
+        let ring = &hole.vertices;
+        if (1..ring.len()).any(|i| ring[..i].contains(&ring[i])) {
             return Err(Rejection::RepeatedNeighbour);
         }
         // Faces around a moved vertex: stale in the grid; those outside the fan stay, at
-        // their planned positions.
-        let mut excluded = fan.clone();
+        // their planned positions (none move in the subset run: the fan alone is excluded).
+        let mut moved_around = Vec::new();
         let mut stay = Vec::new();
-        for &(u, _) in &moves {
-            for f in m.vertex_faces(u) {
-                if !excluded.contains(&f) {
-                    excluded.push(f);
-                    stay.push(m.face_vertices(f));
+        if !moves.is_empty() {
+            moved_around.clone_from(&fan);
+            for &(u, _) in &moves {
+                for f in m.vertex_faces(u) {
+                    if !moved_around.contains(&f) {
+                        moved_around.push(f);
+                        stay.push(m.face_vertices(f));
+                    }
                 }
             }
         }
+        let excluded: &[FaceId] = if moves.is_empty() {
+            &fan
+        } else {
+            &moved_around
+        };
         // Every candidate of the filling has its corners among the hole's vertices.
         let corners: Vec<DVec3> = hole
             .vertices
@@ -1506,7 +1514,7 @@ impl<'m> LocalSimplifier<'m> {
         };
         let nearby = Nearby::new(region);
         let mut ctx = FillContext::new(m, &self.grid, filter, &hole)
-            .excluding(&excluded)
+            .excluding(excluded)
             .moving(&moves, &stay)
             .near(&nearby);
         let (mut filled, mut across) = (false, true);
@@ -1551,7 +1559,7 @@ impl<'m> LocalSimplifier<'m> {
                 mesh: m,
                 grid: &self.grid,
                 placed: &placed,
-                excluded: &excluded,
+                excluded,
                 moved: &moves,
                 extra: &others,
                 nearby: None,
