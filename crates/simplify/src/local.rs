@@ -1455,8 +1455,10 @@ impl<'m> LocalSimplifier<'m> {
             return Err(Rejection::NonManifold);
         }
         // The outgoing half-edges once: the fan (`vertex_faces` order) and the ring.
-        let hs: Vec<_> = m.outgoing_halfedges(v).collect();
-        let fan: Vec<FaceId> = hs.iter().filter_map(|&h| m.face(h)).collect();
+        let mut hs = Vec::with_capacity(8);
+        hs.extend(m.outgoing_halfedges(v));
+        let mut fan: Vec<FaceId> = Vec::with_capacity(hs.len());
+        fan.extend(hs.iter().filter_map(|&h| m.face(h)));
         if border && fan.len() < 2 {
             return Err(Rejection::Ear);
         }
