@@ -331,14 +331,11 @@ impl FiberPath {
     /// The algebraic number of crossings of the path with the oriented triangles `fan`,
     /// when every crossing is transversal through a triangle's interior; `None` otherwise
     /// (exact, [`polyline_crossings`]; a triangle all of whose corners lie strictly below
-    /// or above the path along `d` is left out first, f64 with margins).
-    pub(crate) fn crossings(&self, fan: &[[DVec3; 3]]) -> Option<i32> {
-        let near: Vec<[DVec3; 3]> = fan
-            .iter()
-            .filter(|t| !self.apart_by_level(t))
-            .copied()
-            .collect();
-        polyline_crossings(&self.points, &near)
+    /// or above the path along `d` is left out first, f64 with margins; `fan` is filtered
+    /// in place).
+    pub(crate) fn crossings(&self, mut fan: Vec<[DVec3; 3]>) -> Option<i32> {
+        fan.retain(|t| !self.apart_by_level(t));
+        polyline_crossings(&self.points, &fan)
     }
 
     /// Whether all corners of `t` lie strictly below or strictly above every point of the
@@ -350,7 +347,7 @@ impl FiberPath {
     }
 
     /// Condition 3 of the [module docs](self) for the oriented fan triangles `fan`.
-    pub(crate) fn crosses_once(&self, fan: &[[DVec3; 3]]) -> bool {
+    pub(crate) fn crosses_once(&self, fan: Vec<[DVec3; 3]>) -> bool {
         matches!(self.crossings(fan), Some(1 | -1))
     }
 }
@@ -406,7 +403,7 @@ mod tests {
             });
             assert!(!found);
             assert_eq!(asked > 0, across, "height {height}: {asked} asked");
-            assert!(path.crosses_once(&fan(v, &link)));
+            assert!(path.crosses_once(fan(v, &link)));
         }
     }
 
@@ -418,7 +415,7 @@ mod tests {
         let link = hexagon(|_| -0.5);
         let path = path_for(v, DVec3::Z, 0.1, &link);
         let mut triangles = fan(v, &link);
-        assert_eq!(path.crossings(&triangles).map(i32::abs), Some(1));
+        assert_eq!(path.crossings(triangles.clone()).map(i32::abs), Some(1));
         // Two more sheets across the fiber, one each way: the count stays odd but the
         // crossings are three; reversed, the count is three.
         let sheet = |z: f64| {
@@ -429,7 +426,7 @@ mod tests {
             ]
         };
         let flip = |t: [DVec3; 3]| [t[0], t[2], t[1]];
-        let once = path.crossings(&triangles).unwrap();
+        let once = path.crossings(triangles.clone()).unwrap();
         let s = sheet(0.05);
         triangles.push(if once == 1 { s } else { flip(s) });
         triangles.push(if once == 1 {
@@ -437,8 +434,8 @@ mod tests {
         } else {
             flip(sheet(-0.05))
         });
-        assert_eq!(path.crossings(&triangles).map(i32::abs), Some(3));
-        assert!(!path.crosses_once(&triangles));
+        assert_eq!(path.crossings(triangles.clone()).map(i32::abs), Some(3));
+        assert!(!path.crosses_once(triangles.clone()));
     }
 
     proptest! {

@@ -141,7 +141,9 @@ impl Nearby {
             return None;
         }
         Some(self.faces.get_or_init(|| {
-            let mut faces = Vec::new();
+            // Room for the usual few dozen: no regrowth (a hole's region holds its fan's
+            // neighbourhood).
+            let mut faces = Vec::with_capacity(64);
             grid.any_overlapping(&self.region, |f, g| {
                 faces.push((grid.bounds(f), f, g));
                 false

@@ -1533,7 +1533,7 @@ impl<'m> LocalSimplifier<'m> {
                         .iter()
                         .map(|&f| m.face_vertices(f).map(|x| m.position(x)))
                         .collect();
-                    across = !path.crosses_once(&fan);
+                    across = !path.crosses_once(fan);
                     if !across {
                         return;
                     }
