@@ -389,7 +389,7 @@ pub fn build_envelopes_with(
         Some(k) if !topo.is_empty() => {
             // One tree over the input, outer and inner faces (item = face of the three in
             // that order), as the tube proofs number them.
-            let surfaces = Bvh::join(input_tree.clone(), tree.clone());
+            let surfaces = Bvh::join(input_tree, &tree);
             let input = tubes::TubeInput {
                 soup,
                 faces: &faces,

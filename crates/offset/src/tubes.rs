@@ -28,7 +28,9 @@
 //! The paper leaves this rule open; it bounds the radius by roughly the one-ring size.
 use envelope_mesh::{FaceId, TriangleSoup, VertexId};
 use envelope_predicates::bvh::{Aabb, Bvh};
+use envelope_predicates::{PreparedFace, prepared_faces_intersect};
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::engine::{self, Mover, Scene, StepPolicy};
 use crate::proof::{Contact, Surface};
@@ -131,18 +133,38 @@ fn meeting(layout: &Layout, input: &TubeInput<'_>, nf3: u32, i: u32, j: u32) -> 
 }
 
 /// The meeting face pairs (global ids, sorted) of [`tube_contacts`].
+///
+/// Each tube face meets a dozen candidates or more (its neighbours around and along the
+/// tube): its plane is computed once ([`PreparedFace`]; the answers of [`meeting`]).
 fn tube_pairs(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<(u32, u32)> {
     let nf3 = 3 * input.faces.len() as u32;
-    let tubes = Bvh::from_triangles(&layout.positions, &layout.faces[nf3 as usize..]);
-    let meets = |i: u32, j: u32| meeting(layout, input, nf3, i, j);
+    let tube_faces = &layout.faces[nf3 as usize..];
+    let (tubes, prepared) = rayon::join(
+        || Bvh::from_triangles(&layout.positions, tube_faces),
+        || {
+            tube_faces
+                .par_iter()
+                .map(|&f| PreparedFace::new(&layout.positions, f))
+                .collect::<Vec<_>>()
+        },
+    );
+    // Two tube faces are never exempt.
     let mut pairs: Vec<(u32, u32)> = tubes
-        .self_pairs_where(|a, b| meets(a + nf3, b + nf3))
+        .self_pairs_where(|a, b| {
+            prepared_faces_intersect(&prepared[a as usize], &prepared[b as usize])
+        })
         .into_iter()
         .map(|(a, b)| (a + nf3, b + nf3))
         .collect();
     pairs.extend(
         tubes
-            .pairs_with_where(surfaces, |t, f| meets(f, t + nf3))
+            .pairs_with_where(surfaces, |t, f| {
+                !exempt(input.faces, nf3, &layout.seg, f, t + nf3)
+                    && prepared_faces_intersect(
+                        &PreparedFace::new(&layout.positions, layout.faces[f as usize]),
+                        &prepared[t as usize],
+                    )
+            })
             .into_iter()
             .map(|(t, f)| (f, t + nf3)),
     );

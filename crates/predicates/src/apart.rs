@@ -66,7 +66,7 @@ impl Planar {
     /// error bound ([`Planar::value`]): `Some(true)` positive, `Some(false)` negative, `None`
     /// too close to the plane to tell (or not a number).
     #[inline]
-    fn side(&self, p: DVec3) -> Option<bool> {
+    pub(crate) fn side(&self, p: DVec3) -> Option<bool> {
         let (v, tol) = self.value(p);
         if v > tol {
             Some(true)

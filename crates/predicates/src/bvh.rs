@@ -257,7 +257,9 @@ impl Bvh {
     /// One tree over the items of `a` then those of `b`: item `i` of `b` becomes item
     /// `a.len() + i`. The root's children are the two trees as they are (no rebuild), so a
     /// query or pair search answers exactly what it would on the two separately, and the
-    /// pairs of [`Bvh::self_pairs`] are those of `a`, of `b`, and between them.
+    /// pairs of [`Bvh::self_pairs`] are those of `a`, of `b`, and between them. Both are
+    /// borrowed: their nodes, items and boxes are copied once into vectors of the joined
+    /// sizes (the trees joined are often kept: the proof's, the input's).
     ///
     /// ```
     /// use envelope_predicates::bvh::{Aabb, Bvh};
@@ -265,24 +267,24 @@ impl Bvh {
     /// let unit = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
     /// let a = Bvh::new(&[unit(0.0), unit(5.0)]);
     /// let b = Bvh::new(&[unit(0.5), unit(9.0)]);
-    /// let ab = Bvh::join(a, b);
+    /// let ab = Bvh::join(&a, &b);
     /// assert_eq!(ab.len(), 4);
     /// assert_eq!(ab.self_pairs(), vec![(0, 2)]);
     /// assert_eq!(ab.overlapping(&unit(8.5)), vec![3]);
     /// ```
     #[must_use]
-    pub fn join(a: Bvh, b: Bvh) -> Bvh {
+    pub fn join(a: &Bvh, b: &Bvh) -> Bvh {
         let shift = a.items.len() as u32;
         assert!(
             (shift as usize + b.items.len()) < u32::MAX as usize,
             "too many items for u32 ids"
         );
         if b.nodes.is_empty() {
-            return a;
+            return a.clone();
         }
         if a.nodes.is_empty() {
             let items = b.items.iter().map(|&i| i + shift).collect();
-            return Bvh { items, ..b };
+            return Bvh { items, ..b.clone() };
         }
         let (ra, rb) = (&a.nodes[0], &b.nodes[0]);
         let (la, lb) = (1u32, 1 + a.nodes.len() as u32);
@@ -310,9 +312,11 @@ impl Bvh {
         };
         nodes.extend(a.nodes.iter().map(|n| moved(n, la, 0)));
         nodes.extend(b.nodes.iter().map(|n| moved(n, lb, shift)));
-        let mut items = a.items;
+        let mut items = Vec::with_capacity(a.items.len() + b.items.len());
+        items.extend_from_slice(&a.items);
         items.extend(b.items.iter().map(|&i| i + shift));
-        let mut boxes = a.boxes;
+        let mut boxes = Vec::with_capacity(a.boxes.len() + b.boxes.len());
+        boxes.extend_from_slice(&a.boxes);
         boxes.extend_from_slice(&b.boxes);
         Bvh {
             nodes,

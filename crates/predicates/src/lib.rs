@@ -174,11 +174,15 @@ pub fn segment_triangle(p: DVec3, q: DVec3, t: [DVec3; 3]) -> SegmentTriangle {
 }
 
 /// The algebraic number of crossings of a polyline with oriented triangles; see
-/// [`generic::polyline_crossings`]. The range of all the points is checked once.
+/// [`generic::polyline_crossings`]. The range of all the points is checked once; in range,
+/// the side of each path point against each triangle's plane is asked once, of the plane's
+/// error-bounded f64 orientation first ([`apart::Planar`]), of `orient3d` when that cannot
+/// tell.
 #[must_use]
 pub fn polyline_crossings(path: &[DVec3], triangles: &[[DVec3; 3]]) -> Option<i32> {
     if range::all_in_range(path) && triangles.iter().all(|t| range::all_in_range(t)) {
-        generic::polyline_crossings::<kernel::InRange>(path, triangles)
+        // In range: each plane side first in error-bounded f64 (the same answers).
+        generic::polyline_crossings_prefiltered::<kernel::InRange>(path, triangles)
     } else {
         generic::polyline_crossings::<Filtered>(path, triangles)
     }

@@ -101,7 +101,7 @@ fn joined_trees_match_one_tree() {
         let (a, b) = (random_boxes(&mut g, na), random_boxes(&mut g, nb));
         let all: Vec<Aabb> = a.iter().chain(&b).copied().collect();
         let one = Bvh::new(&all);
-        let joined = Bvh::join(Bvh::new(&a), Bvh::new(&b));
+        let joined = Bvh::join(&Bvh::new(&a), &Bvh::new(&b));
         assert_eq!(joined.len(), na + nb);
         assert_answers_alike(&mut g, &joined, &one, &all, &format!("{na} + {nb}"));
     }
@@ -141,7 +141,7 @@ fn refit_trees_match_new_trees_and_emit_matches_pairs() {
         let tree = if nb == 0 {
             Bvh::new(&a)
         } else {
-            Bvh::join(Bvh::new(&a), Bvh::new(&b))
+            Bvh::join(&Bvh::new(&a), &Bvh::new(&b))
         };
         let old: Vec<Aabb> = a.iter().chain(&b).copied().collect();
         let nudged: Vec<Aabb> = old

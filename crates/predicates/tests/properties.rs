@@ -305,6 +305,37 @@ proptest! {
     }
 }
 
+/// The crossing number of `polyline_crossings`' docs, segment by segment, triangle by
+/// triangle, with the exact kernel's `orient3d` for every side: the reference.
+fn crossings_by_definition(path: &[DVec3], tris: &[[DVec3; 3]]) -> Option<i32> {
+    use Orientation::{Degenerate, Negative, Positive};
+    let mut sum = 0;
+    for t in tris {
+        for s in path.windows(2) {
+            let (x, y) = (s[0], s[1]);
+            let (sx, sy) = (
+                Exact::orient3d(t[0], t[1], t[2], x),
+                Exact::orient3d(t[0], t[1], t[2], y),
+            );
+            if sx == Degenerate || sy == Degenerate {
+                return None;
+            }
+            if sx == sy {
+                continue;
+            }
+            let o = [(0, 1), (1, 2), (2, 0)].map(|(i, j)| Exact::orient3d(x, y, t[i], t[j]));
+            if o.contains(&Positive) && o.contains(&Negative) {
+                continue;
+            }
+            if o.contains(&Degenerate) {
+                return None;
+            }
+            sum += if sy == Positive { 1 } else { -1 };
+        }
+    }
+    Some(sum)
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
 
@@ -341,6 +372,46 @@ proptest! {
             prop_assert_eq!(n, first - last);
             prop_assert_eq!(Some(n), g::polyline_crossings::<K>(&path, &tris));
         }
+    }
+
+    /// The crate's `polyline_crossings` (in range: each plane side of the path's points
+    /// asked once, of the f64 plane first) and the generic one on the checking kernel answer
+    /// what the definition does, `None` included: paths of one to twelve points (past the cached
+    /// length of eight) through triangles (degenerate ones among them, on the grid of small
+    /// integers), crossing them, or with path points in their planes, on edges, at corners.
+    #[test]
+    fn polyline_crossings_match_the_exact_kernel(
+        tris in prop::collection::vec((point(), point(), point()), 1..5),
+        path in prop::collection::vec((point(), 0u8..6), 1..13),
+        on_planes in any::<bool>(),
+    ) {
+        use envelope_predicates::polyline_crossings;
+        let tris: Vec<[DVec3; 3]> = tris.iter().map(|&(a, b, c)| [a, b, c]).collect();
+        // Some path points put on a triangle's plane, edge or corner (only when `on_planes`:
+        // any of them makes the count undecided), or above and below its centroid
+        // (consecutive ones then cross it).
+        let path: Vec<DVec3> = path
+            .iter()
+            .enumerate()
+            .map(|(i, &(p, k))| {
+                // Points two by two around one triangle.
+                let t = tris[(i / 2) % tris.len()];
+                let centroid = (t[0] + t[1] + t[2]) / 3.0;
+                let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+                match k {
+                    0 => p,
+                    1..=3 if !on_planes => p,
+                    1 => t[0] + (t[1] - t[0]) * 0.5,
+                    2 => t[0] + (t[1] - t[0]) * 0.25 + (t[2] - t[0]) * 0.5,
+                    3 => t[2],
+                    4 => centroid + normal,
+                    _ => centroid - normal,
+                }
+            })
+            .collect();
+        let expected = crossings_by_definition(&path, &tris);
+        prop_assert_eq!(polyline_crossings(&path, &tris), expected);
+        prop_assert_eq!(g::polyline_crossings::<K>(&path, &tris), expected);
     }
 
     /// `strictly_one_side_of_plane` is every point's `orient3d` equal and non-zero.

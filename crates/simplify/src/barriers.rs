@@ -268,7 +268,7 @@ impl Barriers {
         let tree = match tree {
             _ if boxes.is_empty() => None,
             None => Some(Bvh::new(&boxes)),
-            Some(tree) => Some(joined_tree(&envelopes, tree, &boxes)?),
+            Some(tree) => Some(joined_tree(&envelopes, &tree, &boxes)?),
         };
         let (bvh, triangles, kinds, boxes, position) = match tree {
             None => (None, triangles, kinds, boxes, Vec::new()),
@@ -655,12 +655,16 @@ impl Barriers {
 
 /// One tree over all barrier triangles (`boxes`, envelopes first, then tubes and walls): the
 /// envelopes' `tree`, checked against their boxes, joined with one built over the rest.
-fn joined_tree(envelopes: &[TriangleSoup], tree: Bvh, boxes: &[Aabb]) -> Result<Bvh, BarrierError> {
+fn joined_tree(
+    envelopes: &[TriangleSoup],
+    tree: &Bvh,
+    boxes: &[Aabb],
+) -> Result<Bvh, BarrierError> {
     let n: usize = envelopes.iter().map(TriangleSoup::num_faces).sum();
     if !tree.has_item_boxes(&boxes[..n]) {
         return Err(BarrierError::TreeMismatch);
     }
-    Ok(Bvh::join(tree, Bvh::new(&boxes[n..])))
+    Ok(Bvh::join(tree, &Bvh::new(&boxes[n..])))
 }
 
 /// Corner ids for [`indexed_triangles_intersect`], with the candidate `t` numbered

@@ -6,6 +6,7 @@ use super::basic::{
     TriangleLocation, collinear, locate_2d, locate_coplanar, normal_axis, proj, segments_intersect,
     segments_intersect_2d,
 };
+use crate::apart::Planar;
 use crate::{Kernel, Orientation, Sign};
 
 /// How a closed segment `pq` meets a closed triangle.
@@ -153,15 +154,49 @@ fn segment_triangle_with<K: Kernel>(
 /// assert_eq!(polyline_crossings::<Filtered>(&through_an_edge, &[t]), None);
 /// ```
 pub fn polyline_crossings<K: Kernel>(path: &[DVec3], triangles: &[[DVec3; 3]]) -> Option<i32> {
+    crossings::<K>(path, triangles, false)
+}
+
+/// [`polyline_crossings`] with the sides of the path's points against each triangle's plane
+/// told first by the plane in error-bounded f64 ([`Planar`]: its sign is the exact one when
+/// it answers) and by `K::orient3d` only when it cannot: the same answer, for coordinates in
+/// the exact predicates' range (the bound of [`Planar`] assumes them).
+pub(crate) fn polyline_crossings_prefiltered<K: Kernel>(
+    path: &[DVec3],
+    triangles: &[[DVec3; 3]],
+) -> Option<i32> {
+    crossings::<K>(path, triangles, true)
+}
+
+/// Paths up to this many points have the sides of their points against a triangle's plane
+/// worked out once (a point ends one segment and starts the next); longer ones per segment.
+const CACHED_PATH: usize = 8;
+
+fn crossings<K: Kernel>(path: &[DVec3], triangles: &[[DVec3; 3]], prefilter: bool) -> Option<i32> {
     use Orientation::{Degenerate, Negative, Positive};
+    let cached = path.len() <= CACHED_PATH;
+    let mut sides = [Degenerate; CACHED_PATH];
     let mut sum = 0;
     for t in triangles {
-        for s in path.windows(2) {
+        let plane = prefilter.then(|| Planar::new(*t));
+        let side = |x: DVec3| match plane.as_ref().and_then(|p| p.side(x)) {
+            Some(true) => Positive,
+            Some(false) => Negative,
+            None => K::orient3d(t[0], t[1], t[2], x),
+        };
+        // Read in the order the segments ask: the same answers, the same first `None`.
+        if cached && path.len() >= 2 {
+            for (s, &x) in sides.iter_mut().zip(path) {
+                *s = side(x);
+            }
+        }
+        for (k, s) in path.windows(2).enumerate() {
             let (x, y) = (s[0], s[1]);
-            let (sx, sy) = (
-                K::orient3d(t[0], t[1], t[2], x),
-                K::orient3d(t[0], t[1], t[2], y),
-            );
+            let (sx, sy) = if cached {
+                (sides[k], sides[k + 1])
+            } else {
+                (side(x), side(y))
+            };
             if sx == Degenerate || sy == Degenerate {
                 return None;
             }

@@ -17,6 +17,7 @@ pub use distance::{
     cmp_point_segment, cmp_point_triangle, cmp_segment_segment, cmp_segment_triangle,
     cmp_triangle_triangle,
 };
+pub(crate) use intersect::polyline_crossings_prefiltered;
 pub use intersect::{
     SegmentTriangle, Shared, adjacent_triangles_intersect, polyline_crossings, segment_triangle,
     strictly_one_side_of_plane, triangles_intersect, triangles_overlap_with_area,
