@@ -157,10 +157,11 @@ pub fn polyline_crossings<K: Kernel>(path: &[DVec3], triangles: &[[DVec3; 3]]) -
     crossings::<K>(path, triangles, false)
 }
 
-/// [`polyline_crossings`] with the sides of the path's points against each triangle's plane
-/// told first by the plane in error-bounded f64 ([`Planar`]: its sign is the exact one when
-/// it answers) and by `K::orient3d` only when it cannot: the same answer, for coordinates in
-/// the exact predicates' range (the bound of [`Planar`] assumes them).
+/// [`polyline_crossings`] with every orientation (the sides of the path's points against each
+/// triangle's plane, and of a triangle's edges against a crossing segment) told first in
+/// error-bounded f64 ([`Planar`]: its sign is the exact one when it answers) and by
+/// `K::orient3d` only when it cannot: the same answer, for coordinates in the exact
+/// predicates' range (the bound of [`Planar`] assumes them).
 pub(crate) fn polyline_crossings_prefiltered<K: Kernel>(
     path: &[DVec3],
     triangles: &[[DVec3; 3]],
@@ -203,11 +204,14 @@ fn crossings<K: Kernel>(path: &[DVec3], triangles: &[[DVec3; 3]], prefilter: boo
             if sx == sy {
                 continue;
             }
-            let o = [
-                K::orient3d(x, y, t[0], t[1]),
-                K::orient3d(x, y, t[1], t[2]),
-                K::orient3d(x, y, t[2], t[0]),
-            ];
+            let o = [(0, 1), (1, 2), (2, 0)].map(|(i, j)| {
+                let filtered = prefilter.then(|| Planar::new([x, y, t[i]]).side(t[j]));
+                match filtered.flatten() {
+                    Some(true) => Positive,
+                    Some(false) => Negative,
+                    None => K::orient3d(x, y, t[i], t[j]),
+                }
+            });
             if o.contains(&Positive) && o.contains(&Negative) {
                 continue;
             }
