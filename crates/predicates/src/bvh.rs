@@ -325,6 +325,25 @@ impl Bvh {
         }
     }
 
+    /// Every item once, in the order of the leaves that hold them (depth first): a spatially
+    /// coherent order. Work done item by item in it reads nearby data one after another (and
+    /// a query per item walks the tree's nodes near the previous one's).
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let unit = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let tree = Bvh::new(&[unit(9.0), unit(0.0), unit(8.0), unit(1.0)]);
+    /// let mut order = tree.leaf_order().to_vec();
+    /// assert_eq!(order.len(), 4);
+    /// order.sort_unstable();
+    /// assert_eq!(order, vec![0, 1, 2, 3]);
+    /// ```
+    #[must_use]
+    pub fn leaf_order(&self) -> &[u32] {
+        &self.items
+    }
+
     /// Number of items.
     #[must_use]
     pub fn len(&self) -> usize {
