@@ -129,15 +129,21 @@ impl PairwiseFindings {
                 &built
             }
         };
-        // Each face's plane once: a face meets about a dozen candidates.
-        let prepared: Vec<PreparedFace> = faces
+        // Each face's plane once (a face meets about a dozen candidates), stored in the
+        // tree's leaf order: the pairs come leaf by leaf, so the faces they read are then
+        // near each other in memory (in a scanned mesh's own order they are not).
+        let order = tree.leaf_order();
+        let mut rank = vec![0u32; order.len()];
+        for (k, &i) in order.iter().enumerate() {
+            rank[i as usize] = k as u32;
+        }
+        let prepared: Vec<PreparedFace> = order
             .iter()
-            .map(|&f| PreparedFace::new(&soup.positions, f))
+            .map(|&i| PreparedFace::new(&soup.positions, faces[i as usize]))
             .collect();
+        let prepared_of = |i: u32| &prepared[rank[i as usize] as usize];
         let intersecting: Vec<(u32, u32)> = tree
-            .self_pairs_where(|i, j| {
-                prepared_faces_intersect(&prepared[i as usize], &prepared[j as usize])
-            })
+            .self_pairs_where(|i, j| prepared_faces_intersect(prepared_of(i), prepared_of(j)))
             .into_iter()
             .map(|(i, j)| (ids[i as usize], ids[j as usize]))
             .collect();
