@@ -305,32 +305,39 @@ proptest! {
     }
 }
 
-/// The crossing number of `polyline_crossings`' docs, segment by segment, triangle by
-/// triangle, with the exact kernel's `orient3d` for every side: the reference.
+/// The crossing number of `polyline_crossings`' docs, from other exact predicates: undecided
+/// when a path point lies in a triangle's plane (a degenerate triangle's plane is
+/// everywhere) or a segment crosses a triangle through an edge or a vertex; otherwise each
+/// segment that crosses a triangle's interior (`segment_triangle` on the exact kernel) counts
+/// `+1` when it ends on the positive side, `-1` when on the negative one.
 fn crossings_by_definition(path: &[DVec3], tris: &[[DVec3; 3]]) -> Option<i32> {
-    use Orientation::{Degenerate, Negative, Positive};
+    use envelope_predicates::TriangleLocation::Interior;
+    use envelope_predicates::{SegmentTriangle, TriangleLocation};
+    if path.len() < 2 {
+        return Some(0);
+    }
+    let in_a_plane = tris.iter().any(|t| {
+        path.iter()
+            .any(|&x| Exact::orient3d(t[0], t[1], t[2], x) == Orientation::Degenerate)
+    });
+    if in_a_plane {
+        return None;
+    }
     let mut sum = 0;
     for t in tris {
         for s in path.windows(2) {
-            let (x, y) = (s[0], s[1]);
-            let (sx, sy) = (
-                Exact::orient3d(t[0], t[1], t[2], x),
-                Exact::orient3d(t[0], t[1], t[2], y),
-            );
-            if sx == Degenerate || sy == Degenerate {
-                return None;
+            match g::segment_triangle::<Exact>(s[0], s[1], *t) {
+                SegmentTriangle::Crossing(Interior) => {
+                    let end = Exact::orient3d(t[0], t[1], t[2], s[1]);
+                    sum += if end == Orientation::Positive { 1 } else { -1 };
+                }
+                SegmentTriangle::Crossing(
+                    TriangleLocation::Edge(_) | TriangleLocation::Vertex(_),
+                ) => {
+                    return None;
+                }
+                _ => {}
             }
-            if sx == sy {
-                continue;
-            }
-            let o = [(0, 1), (1, 2), (2, 0)].map(|(i, j)| Exact::orient3d(x, y, t[i], t[j]));
-            if o.contains(&Positive) && o.contains(&Negative) {
-                continue;
-            }
-            if o.contains(&Degenerate) {
-                return None;
-            }
-            sum += if sy == Positive { 1 } else { -1 };
         }
     }
     Some(sum)
