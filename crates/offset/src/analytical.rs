@@ -39,9 +39,13 @@ pub(crate) fn analytical_eps(
     // faces and positions, that the one before read (in the input's order they may be far
     // apart: armadillo at 1/64 %, one thread, 0.069 -> 0.045 s for this step). Each face's
     // result depends on nothing else, so the order changes no number.
-    let order: Vec<u32> = match bvh.leaf_order() {
-        o if o.len() == faces.len() => o.to_vec(),
-        _ => (0..faces.len() as u32).collect(),
+    let in_id_order: Vec<u32>;
+    let order: &[u32] = match bvh.leaf_order() {
+        o if o.len() == faces.len() => o,
+        _ => {
+            in_id_order = (0..faces.len() as u32).collect();
+            &in_id_order
+        }
     };
     let in_order: Vec<[f64; 2]> = order
         .par_iter()
