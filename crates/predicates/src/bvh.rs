@@ -182,6 +182,25 @@ struct Node {
     leaf: bool,
 }
 
+impl Node {
+    /// This node in a tree whose nodes of its own tree start at `links` and whose items at
+    /// `first` (the children's links, or a leaf's first item position, shifted).
+    fn moved(&self, links: u32, first: u32) -> Node {
+        if self.leaf {
+            Node {
+                a: self.a + first,
+                ..*self
+            }
+        } else {
+            Node {
+                a: self.a + links,
+                b: self.b + links,
+                ..*self
+            }
+        }
+    }
+}
+
 /// A bounding-volume hierarchy over item boxes.
 #[derive(Clone, Debug)]
 pub struct Bvh {
@@ -296,22 +315,8 @@ impl Bvh {
             count: ra.count + rb.count,
             leaf: false,
         });
-        let moved = |n: &Node, links: u32, first: u32| {
-            if n.leaf {
-                Node {
-                    a: n.a + first,
-                    ..*n
-                }
-            } else {
-                Node {
-                    a: n.a + links,
-                    b: n.b + links,
-                    ..*n
-                }
-            }
-        };
-        nodes.extend(a.nodes.iter().map(|n| moved(n, la, 0)));
-        nodes.extend(b.nodes.iter().map(|n| moved(n, lb, shift)));
+        nodes.extend(a.nodes.iter().map(|n| n.moved(la, 0)));
+        nodes.extend(b.nodes.iter().map(|n| n.moved(lb, shift)));
         let mut items = Vec::with_capacity(a.items.len() + b.items.len());
         items.extend_from_slice(&a.items);
         items.extend(b.items.iter().map(|&i| i + shift));
@@ -323,6 +328,53 @@ impl Bvh {
             items,
             boxes,
         }
+    }
+
+    /// [`Bvh::join`] that takes `self` and grows its storage in place instead of copying it
+    /// (`self`'s root moves to the end of its nodes; the new root takes its place). The same
+    /// tree: every query, pair search and the leaf order answer as [`Bvh::join`]'s does.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let unit = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let (a, b) = (Bvh::new(&[unit(0.0), unit(5.0)]), Bvh::new(&[unit(0.5), unit(9.0)]));
+    /// let joined = Bvh::join(&a, &b);
+    /// let grown = a.joined(&b);
+    /// assert_eq!(grown.self_pairs(), joined.self_pairs());
+    /// assert_eq!(grown.leaf_order(), joined.leaf_order());
+    /// assert_eq!(grown.overlapping(&unit(8.5)), vec![3]);
+    /// ```
+    #[must_use]
+    pub fn joined(mut self, b: &Bvh) -> Bvh {
+        let shift = self.items.len() as u32;
+        assert!(
+            (shift as usize + b.items.len()) < u32::MAX as usize,
+            "too many items for u32 ids"
+        );
+        if b.nodes.is_empty() {
+            return self;
+        }
+        if self.nodes.is_empty() {
+            return Bvh::join(&self, b);
+        }
+        let root = self.nodes[0];
+        // No node has the root as a child: the others keep their places and links.
+        let la = self.nodes.len() as u32;
+        self.nodes.push(root);
+        let lb = la + 1;
+        self.nodes[0] = Node {
+            bounds: root.bounds.union(&b.nodes[0].bounds),
+            a: la,
+            b: lb,
+            count: root.count + b.nodes[0].count,
+            leaf: false,
+        };
+        self.nodes
+            .extend(b.nodes.iter().map(|n| n.moved(lb, shift)));
+        self.items.extend(b.items.iter().map(|&i| i + shift));
+        self.boxes.extend_from_slice(&b.boxes);
+        self
     }
 
     /// Every item once, in the order of the leaves that hold them (depth first): a spatially
@@ -581,14 +633,49 @@ impl Bvh {
     /// ```
     #[must_use]
     pub fn has_item_boxes(&self, boxes: &[Aabb]) -> bool {
-        if boxes.len() != self.items.len() {
+        self.has_item_boxes_of(boxes.len(), |i| boxes[i as usize])
+    }
+
+    /// [`Bvh::has_item_boxes`] with the boxes given by a function: whether this is a tree
+    /// over items `0..n`, each once, item `i` with the box `box_of(i)` (called only for
+    /// `i < n`, once per item). For boxes a caller would otherwise gather only to compare.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let at = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let tree = Bvh::new(&[at(0.0), at(5.0)]);
+    /// assert!(tree.has_item_boxes_of(2, |i| at(5.0 * f64::from(i))));
+    /// assert!(!tree.has_item_boxes_of(2, |i| at(f64::from(i))));
+    /// assert!(!tree.has_item_boxes_of(3, |i| at(5.0 * f64::from(i))));
+    /// ```
+    #[must_use]
+    pub fn has_item_boxes_of(&self, n: usize, box_of: impl Fn(u32) -> Aabb) -> bool {
+        if n != self.items.len() {
             return false;
         }
-        let mut seen = vec![false; boxes.len()];
+        let mut seen = vec![false; n];
         self.items.iter().zip(&self.boxes).all(|(&i, b)| {
-            let i = i as usize;
-            i < boxes.len() && !std::mem::replace(&mut seen[i], true) && boxes[i] == *b
+            (i as usize) < n && !std::mem::replace(&mut seen[i as usize], true) && box_of(i) == *b
         })
+    }
+
+    /// The item boxes in leaf order: entry `k` is the box of item [`Bvh::leaf_order`]`()[k]`
+    /// (after [`Bvh::into_leaf_order`], the box of item `k`).
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let unit = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let boxes = [unit(9.0), unit(0.0), unit(8.0)];
+    /// let tree = Bvh::new(&boxes);
+    /// for (k, &i) in tree.leaf_order().iter().enumerate() {
+    ///     assert_eq!(tree.leaf_boxes()[k], boxes[i as usize]);
+    /// }
+    /// ```
+    #[must_use]
+    pub fn leaf_boxes(&self) -> &[Aabb] {
+        &self.boxes
     }
 
     /// The same tree shape over other boxes: item `i` gets `boxes[i]`, and every node the

@@ -104,6 +104,11 @@ fn joined_trees_match_one_tree() {
         let joined = Bvh::join(&Bvh::new(&a), &Bvh::new(&b));
         assert_eq!(joined.len(), na + nb);
         assert_answers_alike(&mut g, &joined, &one, &all, &format!("{na} + {nb}"));
+        // The in-place join: the same tree, leaf order and leaf boxes included.
+        let grown = Bvh::new(&a).joined(&Bvh::new(&b));
+        assert_eq!(grown.leaf_order(), joined.leaf_order(), "{na} + {nb}");
+        assert_eq!(grown.leaf_boxes(), joined.leaf_boxes(), "{na} + {nb}");
+        assert_answers_alike(&mut g, &grown, &one, &all, &format!("{na} + {nb} in place"));
     }
 }
 

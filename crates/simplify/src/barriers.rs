@@ -131,9 +131,9 @@ pub enum BarrierError {
 /// ```
 #[derive(Clone, Debug, Default)]
 pub struct Barriers {
+    /// The triangles, in the leaf order of `bvh` (whose leaf boxes, [`Bvh::leaf_boxes`], are
+    /// their boxes, checked before any plane test).
     triangles: Vec<[DVec3; 3]>,
-    /// Each triangle's box (checked before any plane test).
-    boxes: Vec<Aabb>,
     /// Each triangle's own [`PointSlab`] (prunes candidates whose corners all lie clearly on
     /// one side of its plane).
     slabs: Vec<PointSlab>,
@@ -220,15 +220,14 @@ impl Barriers {
         tubes: Vec<TriangleSoup>,
         walls: Vec<TriangleSoup>,
     ) -> Result<Self, BarrierError> {
-        let mut triangles = Vec::new();
-        let mut kinds = Vec::new();
         let has_tubes = tubes.iter().any(|t| t.num_faces() > 0);
-        let all = envelopes
+        let surfaces: Vec<(&TriangleSoup, BarrierKind)> = envelopes
             .iter()
             .map(|s| (s, BarrierKind::Envelope))
             .chain(tubes.iter().map(|s| (s, BarrierKind::Tube)))
-            .chain(walls.iter().map(|s| (s, BarrierKind::Wall)));
-        for (surface, (soup, kind)) in all.enumerate() {
+            .chain(walls.iter().map(|s| (s, BarrierKind::Wall)))
+            .collect();
+        for (surface, &(soup, _)) in surfaces.iter().enumerate() {
             for (vertex, p) in soup.positions.iter().enumerate() {
                 for x in p.to_array() {
                     check_coordinate(x).map_err(|error| BarrierError::Coordinate {
@@ -246,48 +245,57 @@ impl Barriers {
                     .unwrap_or(0);
                 return Err(BarrierError::IndexOutOfRange { surface, face });
             }
-            triangles.par_extend(
-                (0..soup.num_faces())
-                    .into_par_iter()
-                    .map(|f| soup.triangle(FaceId::from_index(f))),
-            );
-            kinds.resize(triangles.len(), kind);
         }
-        // Stored in the leaf order of the tree, so that the triangles a query visits lie
-        // near each other in memory (ids are this order's).
-        let boxes: Vec<Aabb> = triangles
-            .par_iter()
-            .map(|&t| Aabb::from_triangle(t))
+        // Triangle `g` (numbered over the surfaces in the order given, face by face) is face
+        // `g - firsts[s]` of the last surface `s` with `firsts[s] <= g`.
+        let firsts: Vec<u32> = surfaces
+            .iter()
+            .scan(0u32, |next, (soup, _)| {
+                let first = *next;
+                *next += soup.num_faces() as u32;
+                Some(first)
+            })
             .collect();
-        let mut envelope_faces = Vec::with_capacity(envelopes.len());
-        let mut first = 0u32;
-        for e in &envelopes {
-            envelope_faces.push((first, e.num_faces() as u32));
-            first += e.num_faces() as u32;
-        }
-        let tree = match tree {
-            _ if boxes.is_empty() => None,
-            None => Some(Bvh::new(&boxes)),
-            Some(tree) => Some(joined_tree(&envelopes, &tree, &boxes)?),
+        let count = surfaces
+            .iter()
+            .map(|(soup, _)| soup.num_faces())
+            .sum::<usize>() as u32;
+        let triangle = |g: u32| {
+            let s = firsts.partition_point(|&f| f <= g) - 1;
+            let (soup, kind) = surfaces[s];
+            (
+                soup.triangle(FaceId::from_index((g - firsts[s]) as usize)),
+                kind,
+            )
         };
-        let (bvh, triangles, kinds, boxes, position) = match tree {
-            None => (None, triangles, kinds, boxes, Vec::new()),
+        let box_of = |g: u32| Aabb::from_triangle(triangle(g).0);
+        let envelope_faces: Vec<(u32, u32)> = envelopes
+            .iter()
+            .zip(&firsts)
+            .map(|(e, &first)| (first, e.num_faces() as u32))
+            .collect();
+        let tree = match tree {
+            _ if count == 0 => None,
+            None => {
+                let boxes: Vec<Aabb> = (0..count).into_par_iter().map(box_of).collect();
+                Some(Bvh::new(&boxes))
+            }
+            Some(tree) => Some(joined_tree(&envelopes, tree, count, box_of)?),
+        };
+        // Stored in the leaf order of the tree, so that the triangles a query visits lie
+        // near each other in memory (ids are this order's); each triangle's box is the
+        // tree's own copy of it.
+        let (bvh, triangles, kinds, position) = match tree {
+            None => (None, Vec::new(), Vec::new(), Vec::new()),
             Some(tree) => {
                 let (bvh, old) = tree.into_leaf_order();
-                let pick = |i: &u32| *i as usize;
                 let mut position = vec![0u32; old.len()];
                 for (new, &o) in (0u32..).zip(&old) {
                     position[o as usize] = new;
                 }
-                (
-                    Some(bvh),
-                    old.par_iter()
-                        .map(|i| triangles[pick(i)])
-                        .collect::<Vec<_>>(),
-                    old.par_iter().map(|i| kinds[pick(i)]).collect::<Vec<_>>(),
-                    old.par_iter().map(|i| boxes[pick(i)]).collect::<Vec<_>>(),
-                    position,
-                )
+                let (triangles, kinds): (Vec<[DVec3; 3]>, Vec<BarrierKind>) =
+                    old.par_iter().map(|&g| triangle(g)).unzip();
+                (Some(bvh), triangles, kinds, position)
             }
         };
         let magnitude = triangles
@@ -301,7 +309,6 @@ impl Barriers {
         let pinned = vec![0; triangles.len()];
         Ok(Self {
             triangles,
-            boxes,
             slabs,
             kinds,
             magnitude,
@@ -413,10 +420,11 @@ impl Barriers {
         // Barrier corners are at most `magnitude`: `plane` covers them; the barriers' own
         // filters cover `t` when its corners are too (else they are skipped: no pruning).
         let plane = SlabFilter::new(t, self.magnitude);
+        let boxes = bvh.leaf_boxes();
         let meets = |i: u32| {
             let i = i as usize;
             i < self.triangles.len()
-                && self.boxes[i].overlaps(&query)
+                && boxes[i].overlaps(&query)
                 && self.item_meets(i, self.triangles[i], self.kinds[i], &plane, t, border_edges)
         };
         let mut recent = RECENT_BLOCKERS.get();
@@ -438,7 +446,7 @@ impl Barriers {
                     bvh.for_each_overlapping(&region, |i| {
                         let k = i as usize;
                         items.push(Gathered {
-                            bounds: self.boxes[k],
+                            bounds: boxes[k],
                             corners: self.triangles[k],
                             index: i,
                             kind: self.kinds[k],
@@ -653,18 +661,21 @@ impl Barriers {
     }
 }
 
-/// One tree over all barrier triangles (`boxes`, envelopes first, then tubes and walls): the
-/// envelopes' `tree`, checked against their boxes, joined with one built over the rest.
+/// One tree over all `count` barrier triangles (`box_of(g)` the box of triangle `g`:
+/// envelopes first, then tubes and walls): the envelopes' `tree`, checked against their
+/// boxes, joined in place with one built over the rest.
 fn joined_tree(
     envelopes: &[TriangleSoup],
-    tree: &Bvh,
-    boxes: &[Aabb],
+    tree: Bvh,
+    count: u32,
+    box_of: impl Fn(u32) -> Aabb + Sync,
 ) -> Result<Bvh, BarrierError> {
-    let n: usize = envelopes.iter().map(TriangleSoup::num_faces).sum();
-    if !tree.has_item_boxes(&boxes[..n]) {
+    let n: u32 = envelopes.iter().map(|e| e.num_faces() as u32).sum();
+    if !tree.has_item_boxes_of(n as usize, &box_of) {
         return Err(BarrierError::TreeMismatch);
     }
-    Ok(Bvh::join(tree, &Bvh::new(&boxes[n..])))
+    let rest: Vec<Aabb> = (n..count).into_par_iter().map(&box_of).collect();
+    Ok(tree.joined(&Bvh::new(&rest)))
 }
 
 /// Corner ids for [`indexed_triangles_intersect`], with the candidate `t` numbered
