@@ -83,13 +83,11 @@ impl FaceGrid {
     /// An index of every face of `mesh`, with the cell size the mean box extent of its faces.
     #[must_use]
     pub fn from_mesh(mesh: &HalfEdgeMesh) -> Self {
-        let faces: Vec<(FaceId, [VertexId; 3], Aabb)> = mesh
-            .faces()
-            .map(|f| {
-                let t = mesh.face_vertices(f);
-                (f, t, Aabb::from_triangle(t.map(|v| mesh.position(v))))
-            })
-            .collect();
+        let mut faces: Vec<(FaceId, [VertexId; 3], Aabb)> = Vec::with_capacity(mesh.num_faces());
+        faces.extend(mesh.faces().map(|f| {
+            let t = mesh.face_vertices(f);
+            (f, t, Aabb::from_triangle(t.map(|v| mesh.position(v))))
+        }));
         let mean = faces.iter().map(|x| max_extent(&x.2)).sum::<f64>() / faces.len().max(1) as f64;
         let origin = faces.iter().fold(Aabb::EMPTY, |acc, x| acc.union(&x.2)).min;
         let origin = if origin.is_finite() {
@@ -106,6 +104,11 @@ impl FaceGrid {
             },
             ..Self::empty()
         };
+        // Every face's slot at once (not grown face by face).
+        let slots = faces.iter().map(|x| x.0.index() + 1).max().unwrap_or(0);
+        g.tris.resize(slots, [VertexId::INVALID; 3]);
+        g.boxes.resize(slots, Aabb::EMPTY);
+        g.lows.resize(slots, [0; 3]);
         for (f, t, b) in faces {
             g.insert_with_box(f, t, b);
         }
