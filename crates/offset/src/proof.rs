@@ -137,14 +137,6 @@ pub(crate) fn prove_envelopes(
         };
         (s, FaceId(f % nf))
     };
-    // Each face's plane once (each meets about a dozen candidates), in parallel.
-    let prepared: Vec<PreparedFace> = all
-        .par_iter()
-        .map(|&f| PreparedFace::new(&positions, f))
-        .collect();
-    // Global face ids `i`, `j` of two different faces.
-    let meet =
-        |i: u32, j: u32| prepared_faces_intersect(&prepared[i as usize], &prepared[j as usize]);
     // Each face's box once; the envelopes' tree is the input's with both offsets of each
     // face in its leaf, refitted (the same answers as a tree built over these boxes, see
     // `Bvh::refit`; an envelope face lies near its input face).
@@ -156,6 +148,15 @@ pub(crate) fn prove_envelopes(
     let (envelope_tree, mut pairs) = match known.unchanged {
         // The envelopes' tree is only returned: refitted beside the search.
         None => rayon::join(refit, || {
+            // Each face's plane once (each meets about a dozen candidates), in parallel.
+            let prepared: Vec<PreparedFace> = all
+                .par_iter()
+                .map(|&f| PreparedFace::new(&positions, f))
+                .collect();
+            // Global face ids `i`, `j` of two different faces.
+            let meet = |i: u32, j: u32| {
+                prepared_faces_intersect(&prepared[i as usize], &prepared[j as usize])
+            };
             // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the union of
             // the face's box on each surface) overlap, then every pair of their triangles on
             // any two surfaces (within the input only when it is not known free) whose own
@@ -201,6 +202,12 @@ pub(crate) fn prove_envelopes(
             pairs
         }),
         Some(u) => {
+            // The same answer as on prepared faces, for the few pairs with a changed face
+            // (no plane prepared for the faces no pair asks about).
+            let meet = |i: u32, j: u32| {
+                let face = |k: u32| PreparedFace::new(&positions, all[k as usize]);
+                prepared_faces_intersect(&face(i), &face(j))
+            };
             let envelope_tree = refit();
             let trees = [(input_tree, 0), (&envelope_tree, nf)];
             let mut pairs = Vec::new();
