@@ -322,7 +322,8 @@ pub fn build_envelopes_with(
     let diagonal = soup.diagonal();
     // `input_tree`: one tree over the input faces, for the analytical method and every proof.
     let analytical = || analytical::analytical_eps(soup, &vf, &normals, &targets, input_tree);
-    let numerical = || {
+    // From zero, or from proved offsets (`start`).
+    let numerical = |start: Option<(&[f64], &[f64])>| {
         numerical_eps(
             soup,
             &vf,
@@ -330,7 +331,7 @@ pub fn build_envelopes_with(
             &targets,
             &options.numerical,
             diagonal,
-            None,
+            start,
         )
     };
     let input_free = options.input_free_of_intersections;
@@ -358,13 +359,13 @@ pub fn build_envelopes_with(
         },
     ) = match options.method {
         Method::Analytical => (Method::Analytical, prove(analytical(), None)),
-        Method::Numerical => (Method::Numerical, prove(numerical(), None)),
+        Method::Numerical => (Method::Numerical, prove(numerical(None), None)),
         Method::Auto => {
             let short = |e: &[f64]| e.iter().zip(&targets).any(|(x, r)| x < r);
             let a = prove(analytical(), None);
             if !a.proof.holds() {
                 // Repair gave up: numerical from scratch, and the better of the two.
-                let n = prove(numerical(), None);
+                let n = prove(numerical(None), None);
                 if n.proof.holds() || n.total() > a.total() {
                     (Method::Numerical, n)
                 } else {
@@ -374,18 +375,7 @@ pub fn build_envelopes_with(
                 // Clipping or repair cut some offsets: grow those numerically from the
                 // proved analytical envelopes (the others stay), and prove the result (the
                 // pairs of faces that did not move were proved with the analytical ones).
-                let n = prove(
-                    numerical_eps(
-                        soup,
-                        &vf,
-                        &normals,
-                        &targets,
-                        &options.numerical,
-                        diagonal,
-                        Some((&a.eps_plus, &a.eps_minus)),
-                    ),
-                    Some(&a),
-                );
+                let n = prove(numerical(Some((&a.eps_plus, &a.eps_minus))), Some(&a));
                 if n.proof.holds() && n.total() >= a.total() {
                     (Method::Numerical, n)
                 } else {
@@ -1141,16 +1131,22 @@ mod proof_tests {
         );
     }
 
+    /// Two spheres of radius 1, 0.2 apart along x, with their vertex faces and normals.
+    fn spheres_apart() -> (TriangleSoup, VertexFaces, Vec<DVec3>) {
+        let soup = two_spheres(3, DVec3::new(2.2, 0.0, 0.0));
+        let vf = VertexFaces::new(soup.num_vertices(), &soup.faces);
+        let normals = normals::vertex_normals_with(&soup, &vf).normals;
+        (soup, vf, normals)
+    }
+
     /// The growth on the part of the mesh its few movers reach gives the offsets of the
     /// growth on the whole mesh: two spheres 0.2 apart, both outer envelopes grown from zero
     /// where they face each other (they compete for the gap: the order of the moves shows),
     /// and a few inner offsets of the second grown from half their target.
     #[test]
     fn near_growth_is_the_whole_mesh_growth() {
-        let soup = two_spheres(3, DVec3::new(2.2, 0.0, 0.0));
+        let (soup, vf, normals) = spheres_apart();
         let n = soup.num_vertices();
-        let vf = VertexFaces::new(n, &soup.faces);
-        let normals = normals::vertex_normals_with(&soup, &vf).normals;
         let target = vec![0.15; n];
         let x = |v: usize| soup.positions[v].x;
         let facing = |v: usize| if v < n / 2 { x(v) > 0.85 } else { x(v) < 1.35 };
@@ -1211,10 +1207,8 @@ mod proof_tests {
     /// target of 0.15 (it stops at the second's outer envelope, about 0.05 away).
     #[test]
     fn few_movers_grow_as_with_the_whole_scene() {
-        let soup = two_spheres(3, DVec3::new(2.2, 0.0, 0.0));
+        let (soup, vf, normals) = spheres_apart();
         let n = soup.num_vertices();
-        let vf = VertexFaces::new(n, &soup.faces);
-        let normals = normals::vertex_normals_with(&soup, &vf).normals;
         let target = vec![0.15; n];
         let facing = |v: usize| v < n / 2 && soup.positions[v].x > 0.8;
         let plus: Vec<f64> = (0..n).map(|v| if facing(v) { 0.0 } else { 0.15 }).collect();
