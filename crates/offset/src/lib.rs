@@ -1140,17 +1140,17 @@ mod proof_tests {
     }
 
     /// The growth on the part of the mesh its few movers reach gives the offsets of the
-    /// growth on the whole mesh: two spheres 0.2 apart, both outer envelopes grown from zero
-    /// where they face each other (they compete for the gap: the order of the moves shows),
-    /// and a few inner offsets of the second grown from half their target.
+    /// growth on the whole mesh, on two spheres 0.2 apart: the first's outer envelope grown
+    /// from zero where it faces the second, whose outer envelope does not move and stops it
+    /// (the faces that stop a mover are there); then both outer envelopes grown where they
+    /// face each other (they compete for the gap: the order of the moves shows). A few inner
+    /// offsets of the second grow from half their target in both.
     #[test]
     fn near_growth_is_the_whole_mesh_growth() {
         let (soup, vf, normals) = spheres_apart();
         let n = soup.num_vertices();
         let target = vec![0.15; n];
         let x = |v: usize| soup.positions[v].x;
-        let facing = |v: usize| if v < n / 2 { x(v) > 0.85 } else { x(v) < 1.35 };
-        let plus: Vec<f64> = (0..n).map(|v| if facing(v) { 0.0 } else { 0.15 }).collect();
         let minus: Vec<f64> = (0..n)
             .map(|v| {
                 if v >= n / 2 && v % 97 == 0 {
@@ -1162,43 +1162,53 @@ mod proof_tests {
             .collect();
         let bounds = Aabb::from_points(&soup.positions);
         let params = NumericalParams::default();
-        let near = Near {
-            soup: &soup,
-            vf: &vf,
-            normals: &normals,
-            requested: &target,
-            start: (&plus, &minus),
-            bounds: &bounds,
-        };
-        let part = near.grow(&params, soup.diagonal()).expect("few movers");
-        let whole = numerical_eps_sorted(
-            &soup,
-            &normals,
-            &target,
-            &params,
-            soup.diagonal(),
-            Some((&plus, &minus)),
-            &bounds,
-        );
-        assert_eq!(part, whole);
-        // The growth did something: the fronts stopped each other (0.2 apart, 0.15 each),
-        // and grew.
-        let front = |v: usize| facing(v) && (x(v) - 1.1).abs() < 0.11;
-        assert!((0..n).filter(|&v| front(v)).count() > 1);
-        assert!(
-            (0..n).any(|v| front(v) && whole.0[v] < 0.15),
-            "{:?}",
-            whole.0
-        );
-        assert!((0..n).any(|v| facing(v) && whole.0[v] > 0.0));
-        assert!((n / 2..n).any(|v| v % 97 == 0 && whole.1[v] > 0.075));
-        // Many movers: the whole mesh's growth.
-        let zeros = vec![0.0; n];
-        let many = Near {
-            start: (&zeros, &zeros),
-            ..near
-        };
-        assert!(many.grow(&params, soup.diagonal()).is_none());
+        for both in [false, true] {
+            let facing = |v: usize| {
+                if v < n / 2 {
+                    x(v) > 0.85
+                } else {
+                    both && x(v) < 1.35
+                }
+            };
+            let plus: Vec<f64> = (0..n).map(|v| if facing(v) { 0.0 } else { 0.15 }).collect();
+            let near = Near {
+                soup: &soup,
+                vf: &vf,
+                normals: &normals,
+                requested: &target,
+                start: (&plus, &minus),
+                bounds: &bounds,
+            };
+            let part = near.grow(&params, soup.diagonal()).expect("few movers");
+            let whole = numerical_eps_sorted(
+                &soup,
+                &normals,
+                &target,
+                &params,
+                soup.diagonal(),
+                Some((&plus, &minus)),
+                &bounds,
+            );
+            assert_eq!(part, whole, "both fronts: {both}");
+            // The growth did something: the fronts were stopped (0.2 apart, 0.15 each),
+            // and grew.
+            let front = |v: usize| facing(v) && (x(v) - 1.1).abs() < 0.11;
+            assert!((0..n).filter(|&v| front(v)).count() > 1);
+            assert!(
+                (0..n).any(|v| front(v) && whole.0[v] < 0.15),
+                "{:?}",
+                whole.0
+            );
+            assert!((0..n).any(|v| facing(v) && whole.0[v] > 0.0));
+            assert!((n / 2..n).any(|v| v % 97 == 0 && whole.1[v] > 0.075));
+            // Many movers: the whole mesh's growth.
+            let zeros = vec![0.0; n];
+            let many = Near {
+                start: (&zeros, &zeros),
+                ..near
+            };
+            assert!(many.grow(&params, soup.diagonal()).is_none());
+        }
     }
 
     /// The growth's tree over the faces its few movers can reach gives the offsets of the
