@@ -298,46 +298,24 @@ impl Bvh {
     /// ```
     #[must_use]
     pub fn join(a: &Bvh, b: &Bvh) -> Bvh {
-        let shift = a.items.len() as u32;
-        assert!(
-            (shift as usize + b.items.len()) < u32::MAX as usize,
-            "too many items for u32 ids"
-        );
-        if b.nodes.is_empty() {
-            return a.clone();
+        // `a` copied once, into vectors with room for `b`.
+        fn with_room<T: Clone>(from: &[T], more: usize) -> Vec<T> {
+            let mut v = Vec::with_capacity(from.len() + more);
+            v.extend_from_slice(from);
+            v
         }
-        if a.nodes.is_empty() {
-            let items = b.items.iter().map(|&i| i + shift).collect();
-            return Bvh { items, ..b.clone() };
-        }
-        let (ra, rb) = (&a.nodes[0], &b.nodes[0]);
-        let (la, lb) = (1u32, 1 + a.nodes.len() as u32);
-        let mut nodes = Vec::with_capacity(1 + a.nodes.len() + b.nodes.len());
-        nodes.push(Node {
-            bounds: ra.bounds.union(&rb.bounds),
-            a: la,
-            b: lb,
-            count: ra.count + rb.count,
-            leaf: false,
-        });
-        nodes.extend(a.nodes.iter().map(|n| n.moved(la, 0)));
-        nodes.extend(b.nodes.iter().map(|n| n.moved(lb, shift)));
-        let mut items = Vec::with_capacity(a.items.len() + b.items.len());
-        items.extend_from_slice(&a.items);
-        items.extend(b.items.iter().map(|&i| i + shift));
-        let mut boxes = Vec::with_capacity(a.boxes.len() + b.boxes.len());
-        boxes.extend_from_slice(&a.boxes);
-        boxes.extend_from_slice(&b.boxes);
         Bvh {
-            nodes,
-            items,
-            boxes,
+            nodes: with_room(&a.nodes, 1 + b.nodes.len()),
+            items: with_room(&a.items, b.items.len()),
+            boxes: with_room(&a.boxes, b.boxes.len()),
         }
+        .joined(b)
     }
 
-    /// [`Bvh::join`] that takes `self` and grows its storage in place instead of copying it
-    /// (`self`'s root moves to the end of its nodes; the new root takes its place). The same
-    /// tree: every query, pair search and the leaf order answer as [`Bvh::join`]'s does.
+    /// [`Bvh::join`] that takes `self` and grows its own vectors instead of copying them:
+    /// the new root goes in front of `self`'s nodes (moved one place up, their links with
+    /// them) and `b`'s follow, so children still come after their parent (what
+    /// [`Bvh::refit`] walks backwards on). The same tree as [`Bvh::join`]'s, node for node.
     ///
     /// ```
     /// use envelope_predicates::bvh::{Aabb, Bvh};
@@ -361,20 +339,25 @@ impl Bvh {
             return self;
         }
         if self.nodes.is_empty() {
-            return Bvh::join(&self, b);
+            // No nodes, no items: `b`'s ids stay as they are.
+            return b.clone();
         }
-        let root = self.nodes[0];
-        // No node has the root as a child: the others keep their places and links.
-        let la = self.nodes.len() as u32;
-        self.nodes.push(root);
-        let lb = la + 1;
-        self.nodes[0] = Node {
-            bounds: root.bounds.union(&b.nodes[0].bounds),
-            a: la,
-            b: lb,
-            count: root.count + b.nodes[0].count,
-            leaf: false,
-        };
+        let (ra, rb) = (self.nodes[0], b.nodes[0]);
+        let lb = 1 + self.nodes.len() as u32;
+        self.nodes.reserve(1 + b.nodes.len());
+        self.nodes.insert(
+            0,
+            Node {
+                bounds: ra.bounds.union(&rb.bounds),
+                a: 1,
+                b: lb,
+                count: ra.count + rb.count,
+                leaf: false,
+            },
+        );
+        for n in &mut self.nodes[1..] {
+            *n = n.moved(1, 0);
+        }
         self.nodes
             .extend(b.nodes.iter().map(|n| n.moved(lb, shift)));
         self.items.extend(b.items.iter().map(|&i| i + shift));

@@ -109,6 +109,9 @@ fn joined_trees_match_one_tree() {
         assert_eq!(grown.leaf_order(), joined.leaf_order(), "{na} + {nb}");
         assert_eq!(grown.leaf_boxes(), joined.leaf_boxes(), "{na} + {nb}");
         assert_answers_alike(&mut g, &grown, &one, &all, &format!("{na} + {nb} in place"));
+        // Refitted (children after their parent, as a backward pass needs them).
+        let refitted = grown.refit(&all);
+        assert_answers_alike(&mut g, &refitted, &one, &all, &format!("{na} + {nb} refit"));
     }
 }
 
