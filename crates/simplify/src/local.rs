@@ -24,7 +24,7 @@
 //! | candidate triangles | all triples of hole vertices, generated once per hole; a sub-hole considers those whose three vertices are on it |
 //! | degenerate candidates | exactly collinear corners: rejected |
 //! | attempts that cannot succeed | not in the paper: before the filling, the fiber test ([`FiberTest`], module `fiber`) ends an interior vertex's attempt when every triangle on its hole's vertices that meets a path from its inner to its outer envelope point is refused by the barriers (every valid filling meets that path; the module proves it); it decides nothing else, so the outcome is the same without it (`tests/fiber.rs`) |
-//! | fiber verdicts ahead | with a first-in-first-out queue, the fiber test's verdict on every queued vertex is computed before the run, in parallel ([`Doomed`]); it stands in for the attempt while the vertex's fan is as it was (proved there; a debug build re-plans and asserts), so only the other attempts are planned in the batches |
+//! | fiber verdicts ahead | with a first-in-first-out queue, the fiber test's verdict on each vertex queued at the start, computed on a copy of the starting mesh, in queue order, by the threads that would otherwise wait while the calling thread selects and commits, or by the calling thread when the queue reaches it first ([`Doomed`]; a vertex whose fan changed before needs none); it stands in for the attempt while the vertex's fan is as it was (proved there; a debug build re-plans and asserts), so only the other attempts are planned in the batches |
 //! | valence-3 interior vertex | its hole is one triangle; placed if valid and not already a face (a tetrahedron cannot lose a vertex) |
 //! | border vertex | its open chain is filled as a polygon closed by the new border edge, which must not already be an edge and must not touch a border tube (6.2); with no tube in the barriers, border vertices are kept; a border vertex with one face (an ear) is kept |
 //! | topology | a new edge that already exists elsewhere is refused before the filter is asked (link condition); the mesh's `add_faces` is the last guard |
@@ -55,9 +55,9 @@ use crate::{Barriers, EnvelopeFilter, Exhaustive, Greedy};
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
 use glam::DVec3;
-use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, VecDeque};
+use std::sync::atomic::{AtomicU8, AtomicU64, AtomicUsize, Ordering as Mem};
 use thiserror::Error;
 
 /// Vertices of larger valence are not tried (their candidate lists grow cubically).
@@ -102,8 +102,8 @@ pub struct Stats {
     pub no_valid_fill: usize,
     /// Of those, the ones the fiber test turned away ([`Rejection::NoFillAcrossFiber`]).
     pub no_fill_across_fiber: usize,
-    /// Of those, the ones answered by a verdict computed before the run, without a plan
-    /// (see `Doomed` in the module docs' table, "fiber verdicts ahead").
+    /// Of those, the ones answered by a verdict on the starting mesh, without a plan (see
+    /// `Doomed` in the module docs' table, "fiber verdicts ahead").
     pub answered_ahead: usize,
     /// Attempts refused before filling (border without tubes, ears, non-manifold, too large).
     pub refused: usize,
@@ -370,97 +370,104 @@ fn run(
         }
     };
     let batched = policies.order.is_fifo() && !policies.check_each_step;
-    // The verdicts ahead read no face index: it is built beside them.
+    // The verdicts are computed on a copy of the starting mesh (see `Doomed`).
+    let mut start = (batched && policies.fiber_test.is_some()).then(|| mesh.clone());
+    let verdicts = Doomed::new(
+        start.as_mut().map(|m| {
+            let s = LocalSimplifier::without_grid(m, policies.keep_border)
+                .with_fiber_test(policies.fiber_test);
+            (s, policies.filter)
+        }),
+        &queue,
+    );
     let mut local = LocalSimplifier::without_grid(mesh, policies.keep_border)
         .with_fiber_test(policies.fiber_test);
-    let (grid, (mut verdicts, tests)) = rayon::join(
-        || FaceGrid::from_mesh(local.mesh()),
-        || {
-            if batched {
-                Doomed::of_queue(&local, &queue, policies.filter)
-            } else {
-                (Doomed::default(), 0)
-            }
-        },
-    );
-    local.grid = grid;
-    local.candidate_tests += tests;
     let mut rings = RingBoxes::default();
     let awake = Awake::new();
-    'run: loop {
-        let batch: Vec<(VertexId, bool)> = if batched {
-            independent_batch(
-                &mut queue,
-                local.mesh(),
-                |m, v| rings.get(m, v),
-                |v| verdicts.holds(v),
-            )
-        } else {
-            queue.pop().into_iter().map(|v| (v, false)).collect()
-        };
-        if batch.is_empty() {
-            break;
+    rayon::in_place_scope(|scope| -> Result<(), SimplifyError> {
+        // The other threads take verdicts ahead while this one builds the face index (the
+        // verdicts read none), selects and commits.
+        if batched {
+            awake.hold(scope, &verdicts);
+        }
+        local.grid = FaceGrid::from_mesh(local.mesh());
+        'run: loop {
+            let batch: Vec<(VertexId, bool)> = if batched {
+                independent_batch(
+                    &mut queue,
+                    local.mesh(),
+                    |m, v| rings.get(m, v),
+                    |v| verdicts.holds(v),
+                )
+            } else {
+                queue.pop().into_iter().map(|v| (v, false)).collect()
+            };
+            if batch.is_empty() {
+                break;
+            }
+            awake.release();
+            let plans = {
+                let local = &local;
+                plan_each(
+                    &batch,
+                    |&(_, doomed)| doomed,
+                    |&(v, _)| {
+                        let known = usize::from(verdicts.passed(v));
+                        2 * local.mesh().valence(v) + known
+                    },
+                    |&(v, doomed)| {
+                        if doomed {
+                            debug_assert_eq!(
+                                local.plan(v, policies.filter, &FillNothing).0.err(),
+                                Some(Rejection::NoFillAcrossFiber),
+                                "the verdict on {v} no longer holds"
+                            );
+                            (Err(Rejection::NoFillAcrossFiber), 0)
+                        } else if verdicts.passed(v) {
+                            local.plan_without_fiber_test(v, policies.filter, policies.filler)
+                        } else {
+                            local.plan(v, policies.filter, policies.filler)
+                        }
+                    },
+                )
+            };
+            if batched {
+                awake.hold(scope, &verdicts);
+            }
+            // Commit in queue order: the same calls, in the same order, as one at a time.
+            for (&(v, ahead), (plan, tests)) in batch.iter().zip(plans) {
+                if policies.stop.should_stop(local.mesh().num_faces()) {
+                    break 'run;
+                }
+                stats.attempts += 1;
+                stats.answered_ahead += usize::from(ahead);
+                visitor.on_attempt(v);
+                local.candidate_tests += tests;
+                match plan.and_then(|p| local.apply(v, p)) {
+                    Ok(removal) => {
+                        stats.removed += 1;
+                        visitor.on_removed(v, &removal.faces);
+                        rings.forget(v);
+                        for &w in &removal.hole.vertices {
+                            rings.forget(w);
+                            verdicts.forget(w);
+                            queue.push(local.mesh(), policies.order, w);
+                        }
+                    }
+                    Err(reason) => rejected(&mut stats, visitor, v, reason),
+                }
+                if policies.check_each_step {
+                    let check = local
+                        .sanity_check()
+                        .and_then(|()| queue.sanity_check(local.mesh()));
+                    check.map_err(|message| SimplifyError::SanityCheck { after: v, message })?;
+                }
+            }
         }
         awake.release();
-        let plans = {
-            let local = &local;
-            plan_each(
-                &batch,
-                |&(_, doomed)| doomed,
-                |&(v, _)| {
-                    let known = usize::from(verdicts.passed(v));
-                    2 * local.mesh().valence(v) + known
-                },
-                |&(v, doomed)| {
-                    if doomed {
-                        debug_assert_eq!(
-                            local.plan(v, policies.filter, &FillNothing).0.err(),
-                            Some(Rejection::NoFillAcrossFiber),
-                            "the verdict on {v} no longer holds"
-                        );
-                        (Err(Rejection::NoFillAcrossFiber), 0)
-                    } else if verdicts.passed(v) {
-                        local.plan_without_fiber_test(v, policies.filter, policies.filler)
-                    } else {
-                        local.plan(v, policies.filter, policies.filler)
-                    }
-                },
-            )
-        };
-        if batched {
-            awake.hold();
-        }
-        // Commit in queue order: the same calls, in the same order, as one at a time.
-        for (&(v, ahead), (plan, tests)) in batch.iter().zip(plans) {
-            if policies.stop.should_stop(local.mesh().num_faces()) {
-                break 'run;
-            }
-            stats.attempts += 1;
-            stats.answered_ahead += usize::from(ahead);
-            visitor.on_attempt(v);
-            local.candidate_tests += tests;
-            match plan.and_then(|p| local.apply(v, p)) {
-                Ok(removal) => {
-                    stats.removed += 1;
-                    visitor.on_removed(v, &removal.faces);
-                    rings.forget(v);
-                    for &w in &removal.hole.vertices {
-                        rings.forget(w);
-                        verdicts.forget(w);
-                        queue.push(local.mesh(), policies.order, w);
-                    }
-                }
-                Err(reason) => rejected(&mut stats, visitor, v, reason),
-            }
-            if policies.check_each_step {
-                let check = local
-                    .sanity_check()
-                    .and_then(|()| queue.sanity_check(local.mesh()));
-                check.map_err(|message| SimplifyError::SanityCheck { after: v, message })?;
-            }
-        }
-    }
-    awake.release();
+        Ok(())
+    })?;
+    local.candidate_tests += verdicts.used_tests();
     let few_left = local.mesh().num_vertices() * AUTO_MOVING_DIVISOR <= stats.vertices_before;
     if (policies.fibers.is_some() || policies.collapse)
         && (few_left || !policies.moving_if_few_left)
@@ -474,14 +481,16 @@ fn run(
     Ok(stats)
 }
 
-/// Keeps the other threads of the pool awake between the short parallel rounds of a batched
+/// Keeps the other threads of the pool busy between the short parallel rounds of a batched
 /// run: while the calling thread selects and commits (tens of microseconds a batch), each
-/// of them spins on a job of its own until the next round begins or [`Awake::MAX_SPIN`]
-/// passes, so that the next round's work is taken at once rather than after a wake-up. It
-/// does no work of the run's: the outcome never depends on it. mech-holes-shark at 1/64 %
-/// (117 rounds): the rounds' wall time 0.032 -> 0.030 s for 0.047 s of planning.
+/// of them takes fiber verdicts ahead of the queue ([`Doomed::take_one`]), then spins until
+/// the next round begins or [`Awake::MAX_SPIN`] passes, so that the next round's work is
+/// taken at once rather than after a wake-up. It decides nothing: a verdict is the same
+/// whichever thread computes it and whenever, so the outcome never depends on it.
+/// mech-holes-shark at 1/64 % (117 rounds): the spinning alone took the rounds' wall time
+/// from 0.032 to 0.030 s for 0.047 s of planning.
 struct Awake {
-    round: std::sync::Arc<std::sync::atomic::AtomicU64>,
+    round: AtomicU64,
     caller: Option<usize>,
 }
 
@@ -490,34 +499,33 @@ impl Awake {
 
     fn new() -> Self {
         Self {
-            round: std::sync::Arc::default(),
+            round: AtomicU64::new(0),
             caller: rayon::current_thread_index(),
         }
     }
 
-    /// One spinning job for each other thread, until [`Awake::release`].
-    fn hold(&self) {
-        use std::sync::atomic::Ordering::Acquire;
-        let round = self.round.load(Acquire);
+    /// One job for each other thread, until [`Awake::release`]: verdicts, then spinning.
+    fn hold<'s>(&'s self, scope: &rayon::Scope<'s>, verdicts: &'s Doomed<'_>) {
+        let round = self.round.load(Mem::Acquire);
         for _ in 1..rayon::current_num_threads() {
-            let (current, caller) = (self.round.clone(), self.caller);
-            rayon::spawn(move || {
-                // The caller never spins (it is the one that ends the wait).
-                if rayon::current_thread_index() == caller {
+            scope.spawn(move |_| {
+                // The caller never waits here (it is the one that ends the wait).
+                if rayon::current_thread_index() == self.caller {
                     return;
                 }
+                let current = || self.round.load(Mem::Acquire) == round;
+                while current() && verdicts.take_one() {}
                 let start = std::time::Instant::now();
-                while current.load(Acquire) == round && start.elapsed() < Self::MAX_SPIN {
+                while current() && start.elapsed() < Self::MAX_SPIN {
                     std::hint::spin_loop();
                 }
             });
         }
     }
 
-    /// Ends the spinning of [`Awake::hold`].
+    /// Ends the jobs of [`Awake::hold`] (each after the verdict it is computing).
     fn release(&self) {
-        self.round
-            .fetch_add(1, std::sync::atomic::Ordering::Release);
+        self.round.fetch_add(1, Mem::Release);
     }
 }
 
@@ -537,7 +545,6 @@ fn plan_each<T: Sync, R: Send>(
     cost: impl Fn(&T) -> usize,
     plan: impl Fn(&T) -> R + Sync,
 ) -> Vec<R> {
-    use std::sync::atomic::{AtomicUsize, Ordering};
     let mut heavy: Vec<usize> = (0..batch.len()).filter(|&i| !inline(&batch[i])).collect();
     heavy.sort_by_key(|&i| std::cmp::Reverse(cost(&batch[i])));
     let mut planned: Vec<Option<R>> = batch.iter().map(|_| None).collect();
@@ -548,7 +555,7 @@ fn plan_each<T: Sync, R: Send>(
         let take = || {
             let mut out = Vec::new();
             loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
+                let k = next.fetch_add(1, Mem::Relaxed);
                 let Some(&i) = heavy.get(k) else {
                     return out;
                 };
@@ -567,11 +574,19 @@ fn plan_each<T: Sync, R: Send>(
         .collect()
 }
 
-/// The vertices whose removal the fiber test turned away on the starting mesh, as long as
-/// their fan stays as it was (the subset run of a first-in-first-out queue; not in the
-/// paper). At small epsilons that is almost every attempt (armadillo at 1/64 %: 26,130 of
-/// 27,717), and their verdicts are computed together, in parallel, before the run: each
-/// is the plan's own answer (`LocalSimplifier::plan` with a filler that fills nothing).
+/// The vertices whose removal the fiber test turned away on the starting mesh, as long as their
+/// fan stays as it was (the subset run of a first-in-first-out queue; not in the paper). At
+/// small epsilons that is almost every attempt (armadillo at 1/64 %: 26,130 of 27,717). Each
+/// verdict is the plan's own answer (`LocalSimplifier::plan` with a filler that fills nothing)
+/// on a copy of the starting mesh, taken in vertex order (the queue's when it starts with every
+/// vertex): by the other threads while the calling thread selects and commits ([`Awake`]), and
+/// by the calling thread when the queue reaches a vertex whose verdict nobody has taken yet (it
+/// takes others ahead while it waits for one being computed). A verdict is the same whoever
+/// computes it and whenever, and the queue only asks for the verdicts of vertices whose fan
+/// never changed: the outcome is the same as with every verdict computed before the run, and
+/// the same for any number of threads. A vertex whose fan changes before the queue reaches it
+/// needs no verdict (mech-holes-shark at 1/64 %: 1,455 of 5,246, of which about 1,220 are
+/// never computed; the others were taken ahead before their fan changed).
 ///
 /// **Why a verdict holds while the fan stays.** The plan's answer
 /// [`Rejection::NoFillAcrossFiber`] depends on the vertex's fan (its checks, its hole, the
@@ -590,73 +605,174 @@ fn plan_each<T: Sync, R: Send>(
 /// A vertex the test let pass on the starting mesh is planned without the test while its fan
 /// stays as it was: the test decides nothing but the reason of a rejection (module `fiber`),
 /// and it would run twice otherwise (once ahead, once in the plan).
-#[derive(Default)]
-struct Doomed(Vec<Verdict>);
+struct Doomed<'s> {
+    /// The starting mesh's simplifier (on a copy, without a face index) and the filter;
+    /// `None`: no verdicts (no fiber test, or not a batched run).
+    start: Option<(LocalSimplifier<'s>, &'s dyn Filter)>,
+    /// Per vertex, its [`Verdict`] (as `u8`).
+    state: Vec<AtomicU8>,
+    /// Per vertex, the candidates its verdict gave the filter, until counted.
+    tests: Vec<AtomicU64>,
+    /// The candidates of the verdicts the run used.
+    used: AtomicU64,
+    /// The vertices queued at the start, in vertex order.
+    order: Vec<VertexId>,
+    /// Per vertex, its place in `order` (`u32::MAX`: none).
+    place: Vec<u32>,
+    /// The next place of `order` a thread takes ahead.
+    next: AtomicUsize,
+}
 
 /// A vertex's fiber verdict on the starting mesh, while its fan is as it was.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
 enum Verdict {
-    /// Not computed, or the fan changed since.
-    #[default]
-    Unknown,
+    /// Not computed yet.
+    Open,
+    /// Being computed by a thread.
+    Taken,
     /// [`Rejection::NoFillAcrossFiber`].
     Doomed,
     /// Anything else: the test turned nothing away (or did not apply).
     Passed,
+    /// None: the fan changed, or the vertex was not queued at the start.
+    Unknown,
 }
 
-impl Doomed {
-    /// The verdicts of every queued vertex (empty without a fiber test), and the number of
-    /// candidates they gave the filter.
-    fn of_queue(
-        local: &LocalSimplifier<'_>,
-        queue: &RemovalQueue,
-        filter: &dyn Filter,
-    ) -> (Self, u64) {
-        if local.fiber_test.is_none() {
-            return (Self::default(), 0);
+impl<'s> Doomed<'s> {
+    /// The verdicts of the vertices `queue` holds, none computed yet (none at all without
+    /// `start`).
+    fn new(start: Option<(LocalSimplifier<'s>, &'s dyn Filter)>, queue: &RemovalQueue) -> Self {
+        let (order, slots) = match &start {
+            Some((s, _)) => {
+                let order: Vec<VertexId> = s
+                    .mesh()
+                    .vertices()
+                    .filter(|v| queue.queued.get(v.index()).copied().unwrap_or(false))
+                    .collect();
+                let slots = order.last().map_or(0, |v| v.index() + 1);
+                (order, slots)
+            }
+            None => (Vec::new(), 0),
+        };
+        let mut place = vec![u32::MAX; slots];
+        let state = (0..slots)
+            .map(|_| AtomicU8::new(Verdict::Unknown as u8))
+            .collect::<Vec<_>>();
+        for (k, v) in order.iter().enumerate() {
+            place[v.index()] = k as u32;
+            state[v.index()].store(Verdict::Open as u8, Mem::Relaxed);
         }
-        let vertices: Vec<VertexId> = local
-            .mesh()
-            .vertices()
-            .filter(|v| queue.queued.get(v.index()).copied().unwrap_or(false))
-            .collect();
-        let verdicts: Vec<(Verdict, u64)> = vertices
-            .par_iter()
-            .map(|&v| match local.plan(v, filter, &FillNothing) {
-                (Err(Rejection::NoFillAcrossFiber), tests) => (Verdict::Doomed, tests),
-                (_, tests) => (Verdict::Passed, tests),
-            })
-            .collect();
-        let slots = vertices.iter().map(|v| v.index() + 1).max().unwrap_or(0);
-        let mut doomed = vec![Verdict::Unknown; slots];
-        let mut total = 0;
-        for (&v, &(verdict, tests)) in vertices.iter().zip(&verdicts) {
-            doomed[v.index()] = verdict;
-            total += tests;
+        Self {
+            start,
+            state,
+            tests: (0..slots).map(|_| AtomicU64::new(0)).collect(),
+            used: AtomicU64::new(0),
+            order,
+            place,
+            next: AtomicUsize::new(0),
         }
-        (Self(doomed), total)
+    }
+
+    /// Computes `v`'s verdict if no thread has taken it; returns whether this one did.
+    fn take(&self, v: VertexId) -> bool {
+        let Some((start, filter)) = &self.start else {
+            return false;
+        };
+        let slot = &self.state[v.index()];
+        let (open, taken) = (Verdict::Open as u8, Verdict::Taken as u8);
+        if slot
+            .compare_exchange(open, taken, Mem::Acquire, Mem::Relaxed)
+            .is_err()
+        {
+            return false;
+        }
+        let (verdict, tests) = match start.plan(v, *filter, &FillNothing) {
+            (Err(Rejection::NoFillAcrossFiber), tests) => (Verdict::Doomed, tests),
+            (_, tests) => (Verdict::Passed, tests),
+        };
+        self.tests[v.index()].store(tests, Mem::Relaxed);
+        // A fan changed meanwhile (`forget`) keeps `Unknown`.
+        let _ = slot.compare_exchange(taken, verdict as u8, Mem::Release, Mem::Relaxed);
+        true
+    }
+
+    /// Computes the next open verdict in queue order; false when none is left.
+    fn take_one(&self) -> bool {
+        loop {
+            let k = self.next.fetch_add(1, Mem::Relaxed);
+            let Some(&v) = self.order.get(k) else {
+                return false;
+            };
+            if self.take(v) {
+                return true;
+            }
+        }
+    }
+
+    /// `v`'s verdict, computed now if nobody has (the queue has reached `v`).
+    fn verdict(&self, v: VertexId) -> Verdict {
+        let Some(&k) = self.place.get(v.index()) else {
+            return Verdict::Unknown;
+        };
+        if k == u32::MAX {
+            return Verdict::Unknown;
+        }
+        // The threads ahead go on from after `v`.
+        self.next.fetch_max(k as usize + 1, Mem::Relaxed);
+        loop {
+            match self.state[v.index()].load(Mem::Acquire) {
+                x if x == Verdict::Open as u8 => {
+                    self.take(v);
+                }
+                // Another thread is computing it: take one ahead meanwhile.
+                x if x == Verdict::Taken as u8 => {
+                    if !self.take_one() {
+                        std::hint::spin_loop();
+                    }
+                }
+                x => {
+                    let verdict = [Verdict::Doomed, Verdict::Passed]
+                        .into_iter()
+                        .find(|d| *d as u8 == x)
+                        .unwrap_or(Verdict::Unknown);
+                    if verdict != Verdict::Unknown {
+                        let tests = self.tests[v.index()].swap(0, Mem::Relaxed);
+                        self.used.fetch_add(tests, Mem::Relaxed);
+                    }
+                    return verdict;
+                }
+            }
+        }
     }
 
     /// Whether `v`'s attempt is known to end with [`Rejection::NoFillAcrossFiber`].
     fn holds(&self, v: VertexId) -> bool {
-        self.0.get(v.index()) == Some(&Verdict::Doomed)
+        self.verdict(v) == Verdict::Doomed
     }
 
-    /// Whether `v`'s plan may leave the fiber test out (see the type's docs).
+    /// Whether `v`'s plan may leave the fiber test out (see the type's docs); asked after
+    /// [`Doomed::holds`].
     fn passed(&self, v: VertexId) -> bool {
-        self.0.get(v.index()) == Some(&Verdict::Passed)
+        self.state
+            .get(v.index())
+            .is_some_and(|x| x.load(Mem::Acquire) == Verdict::Passed as u8)
     }
 
-    /// `v`'s fan changed: its verdict no longer holds.
-    fn forget(&mut self, v: VertexId) {
-        if let Some(d) = self.0.get_mut(v.index()) {
-            *d = Verdict::Unknown;
+    /// `v`'s fan changed: its verdict no longer holds (nor is it needed).
+    fn forget(&self, v: VertexId) {
+        if let Some(x) = self.state.get(v.index()) {
+            x.store(Verdict::Unknown as u8, Mem::Release);
         }
+    }
+
+    /// The candidates the verdicts the run used gave the filter.
+    fn used_tests(&self) -> u64 {
+        self.used.load(Mem::Relaxed)
     }
 }
 
-/// The filler of [`Doomed::of_queue`]'s plans: the fiber test runs before the filling, so a
+/// The filler of [`Doomed`]'s plans: the fiber test runs before the filling, so a
 /// filling that never succeeds leaves its answer alone.
 struct FillNothing;
 
@@ -1760,6 +1876,84 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A verdict is the plan's own answer on the starting mesh whoever takes it and
+    /// whenever: on a bumpy sphere, the verdicts taken by other threads ahead of the queue
+    /// (all of them, in parallel) and those asked one by one on the calling thread alone
+    /// are the plan's answers; a vertex forgotten before it is asked has none; only the
+    /// verdicts asked count their candidates. Fails when a forgotten verdict is still given,
+    /// when a verdict lands on another vertex, or when a thread's verdict is lost.
+    #[test]
+    fn verdicts_are_the_plans_answers_whoever_takes_them() {
+        use crate::{FiberTest, VertexFibers};
+        use envelope_offset::{EnvelopeOptions, EpsilonField, build_envelopes};
+        let mut soup = generate::icosphere(3, 1.0);
+        for p in &mut soup.positions {
+            *p *= 1.0 + 0.05 * (7.0 * p.x).sin() * (5.0 * p.y).cos();
+        }
+        let env =
+            build_envelopes(&soup, &EnvelopeOptions::new(EpsilonField::Constant(0.004))).unwrap();
+        assert!(env.proof.holds() && env.pinned.is_empty());
+        let fibers = VertexFibers {
+            inner: &env.inner.positions,
+            outer: &env.outer.positions,
+        };
+        let test = FiberTest::new(fibers, &soup.faces);
+        let barriers = Barriers::new(vec![env.outer.clone(), env.inner.clone()], vec![]).unwrap();
+        let filter = EnvelopeFilter::new(&barriers);
+        let mesh = HalfEdgeMesh::from_soup(&soup).unwrap();
+        let queue = queue_vertices(&mesh, &Fifo);
+        // The plan's own answers, one simplifier, no verdicts.
+        let mut plain = mesh.clone();
+        let plain = LocalSimplifier::without_grid(&mut plain, false).with_fiber_test(Some(&test));
+        let answers: Vec<(Verdict, u64)> = mesh
+            .vertices()
+            .map(|v| match plain.plan(v, &filter, &FillNothing) {
+                (Err(Rejection::NoFillAcrossFiber), t) => (Verdict::Doomed, t),
+                (_, t) => (Verdict::Passed, t),
+            })
+            .collect();
+        let doomed = answers.iter().filter(|a| a.0 == Verdict::Doomed).count();
+        assert!(doomed > 50 && doomed < answers.len(), "{doomed} doomed");
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap();
+        for ahead in [false, true] {
+            let mut copy = mesh.clone();
+            let start =
+                LocalSimplifier::without_grid(&mut copy, false).with_fiber_test(Some(&test));
+            let verdicts = Doomed::new(Some((start, &filter as &dyn Filter)), &queue);
+            let forgotten = |v: VertexId| v.index() % 7 == 3;
+            if ahead {
+                // Every verdict taken by the pool's threads at once, before anything is asked.
+                pool.broadcast(|_| while verdicts.take_one() {});
+            }
+            let mut expected_tests = 0;
+            for (v, &(answer, tests)) in mesh.vertices().zip(&answers) {
+                if forgotten(v) {
+                    verdicts.forget(v);
+                    assert!(!verdicts.holds(v) && !verdicts.passed(v), "{v} forgotten");
+                    continue;
+                }
+                assert_eq!(
+                    verdicts.holds(v),
+                    answer == Verdict::Doomed,
+                    "{v}, ahead {ahead}"
+                );
+                assert_eq!(
+                    verdicts.passed(v),
+                    answer == Verdict::Passed,
+                    "{v}, ahead {ahead}"
+                );
+                expected_tests += tests;
+            }
+            assert_eq!(verdicts.used_tests(), expected_tests, "ahead {ahead}");
+        }
+        // No verdicts without a starting mesh.
+        let none = Doomed::new(None, &queue);
+        assert!(mesh.vertices().all(|v| !none.holds(v) && !none.passed(v)));
     }
 
     /// The queue pops in the heap's order (smallest priority, then first queued) whether
