@@ -489,7 +489,12 @@ fn prove_and_repair(
     });
     let first = proof::Known {
         input_free,
-        unchanged: base_unchanged.as_ref().map(|[o, i]| [&o[..], &i[..]]),
+        unchanged: base
+            .zip(base_unchanged.as_ref())
+            .map(|(b, [o, i])| proof::Unchanged {
+                faces: [&o[..], &i[..]],
+                tree: &b.tree,
+            }),
         previous: &[],
     };
     let (contacts, mut tree) = proof::prove_envelopes(
@@ -546,9 +551,13 @@ fn prove_and_repair(
         (outer, inner) = (new_outer, new_inner);
         proof.repair_rounds += 1;
         let previous = std::mem::take(&mut proof.contacts);
+        let earlier = tree;
         let since = proof::Known {
             input_free,
-            unchanged: Some([&moved[0], &moved[1]]),
+            unchanged: Some(proof::Unchanged {
+                faces: [&moved[0], &moved[1]],
+                tree: &earlier,
+            }),
             previous: &previous,
         };
         (proof.contacts, tree) = proof::prove_envelopes(

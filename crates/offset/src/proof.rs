@@ -73,14 +73,25 @@ pub(crate) struct Known<'a> {
     /// The input is proved free of self-intersections (the caller checked it, see
     /// [`crate::EnvelopeOptions::input_free_of_intersections`]): input-input pairs are skipped.
     pub input_free: bool,
-    /// `unchanged[k][f]` (`k` = 0 outer, 1 inner): envelope face `f` has the positions and
-    /// vertex indices it had in an earlier configuration whose proof found the contacts
-    /// `previous`. A pair of unchanged faces (the input's never change) is then the same
-    /// pair as in that proof, with the same answer: a contact when it is in `previous`, else
-    /// apart. Only the pairs with a changed face are tested.
-    pub unchanged: Option<[&'a [bool]; 2]>,
+    /// Which envelope faces have the positions and vertex indices they had in an earlier
+    /// configuration whose proof found the contacts `previous`. A pair of unchanged faces
+    /// (the input's never change) is then the same pair as in that proof, with the same
+    /// answer: a contact when it is in `previous`, else apart. Only the pairs with a changed
+    /// face are tested.
+    pub unchanged: Option<Unchanged<'a>>,
     /// The contacts of that earlier configuration (see `unchanged`).
     pub previous: &'a [Contact],
+}
+
+/// The envelope faces of an earlier configuration that did not change (see [`Known`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Unchanged<'a> {
+    /// `faces[k][f]` (`k` = 0 outer, 1 inner): envelope face `f` is as it was.
+    pub faces: [&'a [bool]; 2],
+    /// That configuration's tree over the outer and the inner faces, as [`prove_envelopes`]
+    /// returned it: the new one is this tree with the changed faces' boxes
+    /// ([`Bvh::refit_items`]; an unchanged face has the box it had).
+    pub tree: &'a Bvh,
 }
 
 /// Exact contacts among input, outer and inner (same connectivity `faces`), each envelope
@@ -116,19 +127,25 @@ pub(crate) fn prove_envelopes(
     debug_assert_eq!(input_tree.len(), faces.len());
     let mut positions = Vec::with_capacity(3 * input.len());
     positions.extend_from_slice(input);
-    let mut all = Vec::with_capacity(3 * faces.len());
-    all.extend_from_slice(faces);
-    for (k, (env, eps)) in (1u32..).zip(envelopes) {
+    for (env, _) in envelopes {
         positions.extend_from_slice(env);
-        let index = |v: u32| {
+    }
+    // The vertex indices of face `g` of the one soup (input `0..nf`, outer, inner).
+    let face_of = |g: u32| -> [u32; 3] {
+        let (k, f) = (g / nf, faces[(g % nf) as usize]);
+        if k == 0 {
+            return f;
+        }
+        let (env, eps) = envelopes[k as usize - 1];
+        f.map(|v| {
             if eps[v as usize] == 0.0 && env[v as usize] == input[v as usize] {
                 v
             } else {
                 v + k * n
             }
-        };
-        all.extend(faces.iter().map(|f| f.map(index)));
-    }
+        })
+    };
+    let box_of = |g: u32| Aabb::from_triangle(face_of(g).map(|v| positions[v as usize]));
     let which = |f: u32| {
         let s = match f / nf {
             0 => Surface::Input,
@@ -137,88 +154,98 @@ pub(crate) fn prove_envelopes(
         };
         (s, FaceId(f % nf))
     };
-    // Each face's box once; the envelopes' tree is the input's with both offsets of each
-    // face in its leaf, refitted (the same answers as a tree built over these boxes, see
-    // `Bvh::refit`; an envelope face lies near its input face).
-    let boxes: Vec<Aabb> = all
-        .par_iter()
-        .map(|f| Aabb::from_triangle(f.map(|v| positions[v as usize])))
-        .collect();
-    let refit = || input_tree.interleaved_refit(2, &boxes[nf as usize..]);
     let (envelope_tree, mut pairs) = match known.unchanged {
-        // The envelopes' tree is only returned: refitted beside the search.
-        None => rayon::join(refit, || {
-            // Each face's plane once (each meets about a dozen candidates), in parallel.
-            let prepared: Vec<PreparedFace> = all
+        None => {
+            let all: Vec<[u32; 3]> = (0..3 * nf).into_par_iter().map(face_of).collect();
+            // Each face's box once; the envelopes' tree is the input's with both offsets of
+            // each face in its leaf, refitted (the same answers as a tree built over these
+            // boxes, see `Bvh::refit`; an envelope face lies near its input face).
+            let boxes: Vec<Aabb> = all
                 .par_iter()
-                .map(|&f| PreparedFace::new(&positions, f))
+                .map(|f| Aabb::from_triangle(f.map(|v| positions[v as usize])))
                 .collect();
-            // Global face ids `i`, `j` of two different faces.
-            let meet = |i: u32, j: u32| {
-                prepared_faces_intersect(&prepared[i as usize], &prepared[j as usize])
-            };
-            // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the union of
-            // the face's box on each surface) overlap, then every pair of their triangles on
-            // any two surfaces (within the input only when it is not known free) whose own
-            // boxes overlap: the same pairs as one search per pair of surfaces would give
-            // (two triangles' boxes overlap only where their prisms' do), for one tree
-            // walk instead of five.
-            let prism: Vec<Aabb> = (0..nf as usize)
-                .into_par_iter()
-                .map(|f| {
-                    boxes[f]
-                        .union(&boxes[f + nf as usize])
-                        .union(&boxes[f + 2 * nf as usize])
-                })
-                .collect();
-            let prism_tree = input_tree.refit(&prism);
-            let test = |x: u32, y: u32, out: &mut Vec<(u32, u32)>| {
-                if boxes[x as usize].overlaps(&boxes[y as usize]) && meet(x, y) {
-                    out.push((x.min(y), x.max(y)));
-                }
-            };
-            let first = u32::from(known.input_free);
-            let mut pairs = prism_tree.self_pairs_emit(|f, g, out| {
-                for s in 0..3 {
-                    for t in 0..3 {
-                        if s.max(t) >= first {
-                            test(s * nf + f, t * nf + g, out);
+            // The envelopes' tree is only returned: refitted beside the search.
+            let refit = || input_tree.interleaved_refit(2, &boxes[nf as usize..]);
+            rayon::join(refit, || {
+                // Each face's plane once (each meets about a dozen candidates), in parallel.
+                let prepared: Vec<PreparedFace> = all
+                    .par_iter()
+                    .map(|&f| PreparedFace::new(&positions, f))
+                    .collect();
+                // Global face ids `i`, `j` of two different faces.
+                let meet = |i: u32, j: u32| {
+                    prepared_faces_intersect(&prepared[i as usize], &prepared[j as usize])
+                };
+                // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the union of
+                // the face's box on each surface) overlap, then every pair of their triangles on
+                // any two surfaces (within the input only when it is not known free) whose own
+                // boxes overlap: the same pairs as one search per pair of surfaces would give
+                // (two triangles' boxes overlap only where their prisms' do), for one tree
+                // walk instead of five.
+                let prism: Vec<Aabb> = (0..nf as usize)
+                    .into_par_iter()
+                    .map(|f| {
+                        boxes[f]
+                            .union(&boxes[f + nf as usize])
+                            .union(&boxes[f + 2 * nf as usize])
+                    })
+                    .collect();
+                let prism_tree = input_tree.refit(&prism);
+                let test = |x: u32, y: u32, out: &mut Vec<(u32, u32)>| {
+                    if boxes[x as usize].overlaps(&boxes[y as usize]) && meet(x, y) {
+                        out.push((x.min(y), x.max(y)));
+                    }
+                };
+                let first = u32::from(known.input_free);
+                let mut pairs = prism_tree.self_pairs_emit(|f, g, out| {
+                    for s in 0..3 {
+                        for t in 0..3 {
+                            if s.max(t) >= first {
+                                test(s * nf + f, t * nf + g, out);
+                            }
                         }
                     }
-                }
-            });
-            // The triangles of one face on two surfaces.
-            let own: Vec<(u32, u32)> = (0..nf)
-                .into_par_iter()
-                .flat_map_iter(|f| {
-                    let mut out = Vec::new();
-                    for (s, t) in [(0, 1), (0, 2), (1, 2)] {
-                        test(s * nf + f, t * nf + f, &mut out);
-                    }
-                    out
-                })
-                .collect();
-            pairs.extend(own);
-            pairs
-        }),
+                });
+                // The triangles of one face on two surfaces.
+                let own: Vec<(u32, u32)> = (0..nf)
+                    .into_par_iter()
+                    .flat_map_iter(|f| {
+                        let mut out = Vec::new();
+                        for (s, t) in [(0, 1), (0, 2), (1, 2)] {
+                            test(s * nf + f, t * nf + f, &mut out);
+                        }
+                        out
+                    })
+                    .collect();
+                pairs.extend(own);
+                pairs
+            })
+        }
         Some(u) => {
             // The same answer as on prepared faces, for the few pairs with a changed face
-            // (no plane prepared for the faces no pair asks about).
+            // (no plane prepared, no box computed for the faces no pair asks about).
             let meet = |i: u32, j: u32| {
-                let face = |k: u32| PreparedFace::new(&positions, all[k as usize]);
+                let face = |k: u32| PreparedFace::new(&positions, face_of(k));
                 prepared_faces_intersect(&face(i), &face(j))
             };
-            let envelope_tree = refit();
-            let trees = [(input_tree, 0), (&envelope_tree, nf)];
-            let mut pairs = Vec::new();
             // Only the changed faces, each against every face (a pair of two changed faces
             // once: from the lower id); the pairs of unchanged faces keep their answers.
-            let is_changed = |f: u32| f >= nf && !u[(f / nf - 1) as usize][(f % nf) as usize];
+            let is_changed = |f: u32| f >= nf && !u.faces[(f / nf - 1) as usize][(f % nf) as usize];
             let changed: Vec<u32> = (nf..3 * nf).filter(|&f| is_changed(f)).collect();
-            let boxes: Vec<Aabb> = changed
+            let boxes: Vec<Aabb> = changed.iter().map(|&f| box_of(f)).collect();
+            // The earlier envelopes' tree with the changed faces' boxes (item `g - nf`).
+            let moved: Vec<(u32, Aabb)> = changed
                 .iter()
-                .map(|&f| Aabb::from_triangle(all[f as usize].map(|v| positions[v as usize])))
+                .zip(&boxes)
+                .map(|(&g, &b)| (g - nf, b))
                 .collect();
+            let envelope_tree = u.tree.refit_items(&moved);
+            debug_assert!(
+                envelope_tree.has_item_boxes_of(2 * nf as usize, |i| box_of(i + nf)),
+                "an unchanged face with another box"
+            );
+            let trees = [(input_tree, 0), (&envelope_tree, nf)];
+            let mut pairs = Vec::new();
             let changed_tree = Bvh::new(&boxes);
             for &(tb, ob) in &trees {
                 let found = changed_tree.pairs_with_where(tb, |k, x| {

@@ -695,6 +695,64 @@ impl Bvh {
         .into_refit(boxes)
     }
 
+    /// [`Bvh::refit`] where only a few items moved: the same tree with each item of `moved`
+    /// given its new box, and the nodes above refitted. The same tree as a refit to every
+    /// item's box (the boxes of the other items are this tree's; a leaf with no moved item
+    /// keeps its box, the union of the same boxes), for the work of a copy and one pass over
+    /// the nodes instead of a gather of every box.
+    ///
+    /// # Panics
+    /// When an item of `moved` is not in the tree.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let at = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let tree = Bvh::new(&[at(0.0), at(5.0), at(9.0)]);
+    /// let moved = tree.refit_items(&[(1, at(8.5))]);
+    /// assert_eq!(moved.self_pairs(), vec![(1, 2)]);
+    /// assert_eq!(moved.leaf_boxes(), tree.refit(&[at(0.0), at(8.5), at(9.0)]).leaf_boxes());
+    /// ```
+    #[must_use]
+    pub fn refit_items(&self, moved: &[(u32, Aabb)]) -> Bvh {
+        let mut tree = self.clone();
+        if moved.is_empty() {
+            return tree;
+        }
+        let mut sorted = moved.to_vec();
+        sorted.sort_unstable_by_key(|m| m.0);
+        // Each moved item's leaf position, and its new box there.
+        let mut dirty = vec![false; tree.items.len()];
+        let mut found = 0;
+        for (k, &i) in tree.items.iter().enumerate() {
+            if let Ok(j) = sorted.binary_search_by_key(&i, |m| m.0) {
+                tree.boxes[k] = sorted[j].1;
+                dirty[k] = true;
+                found += 1;
+            }
+        }
+        assert!(
+            found == sorted.len() && sorted.windows(2).all(|w| w[0].0 < w[1].0),
+            "each moved item once, and in the tree"
+        );
+        let (nodes, ordered) = (&mut tree.nodes, &tree.boxes);
+        // Children after their parent (see `into_refit`): one backward pass.
+        for n in (0..nodes.len()).rev() {
+            let node = nodes[n];
+            if node.leaf {
+                let range = node.a as usize..(node.a + node.b) as usize;
+                if dirty[range.clone()].iter().any(|&d| d) {
+                    nodes[n].bounds = ordered[range].iter().fold(Aabb::EMPTY, |b, x| b.union(x));
+                }
+            } else {
+                nodes[n].bounds = nodes[node.a as usize]
+                    .bounds
+                    .union(&nodes[node.b as usize].bounds);
+            }
+        }
+        tree
+    }
+
     /// [`Bvh::refit`] in place: this tree's nodes and items with the new boxes.
     fn into_refit(mut self, boxes: &[Aabb]) -> Bvh {
         assert_eq!(boxes.len(), self.items.len(), "one box per item");
