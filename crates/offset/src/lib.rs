@@ -388,9 +388,9 @@ pub fn build_envelopes_with(
     };
     let tubes = match options.tube_segments {
         Some(k) if !topo.is_empty() => {
-            // One tree over the input, outer and inner faces (item = face of the three in
-            // that order), as the tube proofs number them.
-            let surfaces = Bvh::join(input_tree, &tree);
+            // The input's tree and the envelopes' (item = face of the outer, then of the
+            // inner surface), in the numbering of the tube proofs: input, outer, inner.
+            let surfaces = [(input_tree, 0), (&tree, faces.len() as u32)];
             let input = tubes::TubeInput {
                 soup,
                 faces: &faces,
@@ -398,7 +398,7 @@ pub fn build_envelopes_with(
                 inner: &inner,
                 requested: &requested,
                 diagonal,
-                surfaces: Some(&surfaces),
+                surfaces: Some(&surfaces[..]),
             };
             let policy = StepPolicy {
                 k: options.numerical.k,

@@ -89,9 +89,11 @@ pub(crate) struct TubeInput<'a> {
     pub inner: &'a [DVec3],
     pub requested: &'a [f64],
     pub diagonal: f64,
-    /// A tree over the boxes of the input, outer and inner faces (item `f`: face `f` of the
-    /// three in that order, at these positions), when the envelope proof left one.
-    pub surfaces: Option<&'a Bvh>,
+    /// Trees over the boxes of the input, outer and inner faces (face `f` of the three in
+    /// that order, at these positions), when the envelope proof left them: part
+    /// `(tree, first)` holds face `first + i` as item `i`, the parts in order, each face in
+    /// one.
+    pub surfaces: Option<&'a [(&'a Bvh, u32)]>,
 }
 
 struct Layout {
@@ -121,6 +123,22 @@ fn surface_tree(layout: &Layout, nf3: u32) -> Bvh {
     Bvh::from_triangles(&layout.positions, &layout.faces[..nf3 as usize])
 }
 
+/// The pairs `(k, f)` of an item `k` of `tree` and a surface face `f` (global id) whose
+/// boxes overlap and that `keep`: one search per part of `surfaces` (see
+/// [`TubeInput::surfaces`]), so that no tree over all the surfaces is needed.
+fn pairs_with_surfaces(
+    tree: &Bvh,
+    surfaces: &[(&Bvh, u32)],
+    keep: impl Fn(u32, u32) -> bool + Sync,
+) -> Vec<(u32, u32)> {
+    let mut pairs = Vec::new();
+    for &(part, first) in surfaces {
+        let found = tree.pairs_with_where(part, |k, f| keep(k, f + first));
+        pairs.extend(found.into_iter().map(|(k, f)| (k, f + first)));
+    }
+    pairs
+}
+
 /// Whether faces `i` and `j` (global ids) of `layout` meet and are not exempt (see the
 /// module docs): the question every tube proof asks of a candidate pair.
 fn meeting(layout: &Layout, input: &TubeInput<'_>, nf3: u32, i: u32, j: u32) -> bool {
@@ -136,7 +154,7 @@ fn meeting(layout: &Layout, input: &TubeInput<'_>, nf3: u32, i: u32, j: u32) -> 
 ///
 /// Each tube face meets a dozen candidates or more (its neighbours around and along the
 /// tube): its plane is computed once ([`PreparedFace`]; the answers of [`meeting`]).
-fn tube_pairs(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<(u32, u32)> {
+fn tube_pairs(layout: &Layout, input: &TubeInput<'_>, surfaces: &[(&Bvh, u32)]) -> Vec<(u32, u32)> {
     let nf3 = 3 * input.faces.len() as u32;
     let tube_faces = &layout.faces[nf3 as usize..];
     let (tubes, prepared) = rayon::join(
@@ -157,16 +175,15 @@ fn tube_pairs(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<(u3
         .map(|(a, b)| (a + nf3, b + nf3))
         .collect();
     pairs.extend(
-        tubes
-            .pairs_with_where(surfaces, |t, f| {
-                !exempt(input.faces, nf3, &layout.seg, f, t + nf3)
-                    && prepared_faces_intersect(
-                        &PreparedFace::new(&layout.positions, layout.faces[f as usize]),
-                        &prepared[t as usize],
-                    )
-            })
-            .into_iter()
-            .map(|(t, f)| (f, t + nf3)),
+        pairs_with_surfaces(&tubes, surfaces, |t, f| {
+            !exempt(input.faces, nf3, &layout.seg, f, t + nf3)
+                && prepared_faces_intersect(
+                    &PreparedFace::new(&layout.positions, layout.faces[f as usize]),
+                    &prepared[t as usize],
+                )
+        })
+        .into_iter()
+        .map(|(t, f)| (f, t + nf3)),
     );
     pairs.sort_unstable();
     pairs
@@ -179,7 +196,7 @@ fn tube_pairs(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<(u3
 fn tube_pairs_moved(
     layout: &Layout,
     input: &TubeInput<'_>,
-    surfaces: &Bvh,
+    surfaces: &[(&Bvh, u32)],
     moved: &[u32],
 ) -> Vec<(u32, u32)> {
     let nf3 = 3 * input.faces.len() as u32;
@@ -199,8 +216,7 @@ fn tube_pairs_moved(
         })
         .collect();
     pairs.extend(
-        small
-            .pairs_with_where(surfaces, |k, f| meets(f, moved[k as usize]))
+        pairs_with_surfaces(&small, surfaces, |k, f| meets(f, moved[k as usize]))
             .into_iter()
             .map(|(k, f)| (f, moved[k as usize])),
     );
@@ -213,7 +229,7 @@ fn tube_pairs_moved(
 /// and tube against `surfaces` (the input and envelope faces, [`surface_tree`]). The same
 /// pairs as one tree over all faces keeping those with a tube face, without walking the
 /// surface-surface pairs that the envelope proof already decided.
-fn tube_contacts(layout: &Layout, input: &TubeInput<'_>, surfaces: &Bvh) -> Vec<Contact> {
+fn tube_contacts(layout: &Layout, input: &TubeInput<'_>, surfaces: &[(&Bvh, u32)]) -> Vec<Contact> {
     contacts_of(layout, input, tube_pairs(layout, input, surfaces))
 }
 
@@ -342,20 +358,30 @@ pub(crate) fn build_tubes(
     // quarter of the target) and are halved while they still meet something; only those
     // grow (at small epsilons usually none: one proof in all).
     let built;
-    let surfaces = match input.surfaces {
-        Some(tree) => {
-            debug_assert!(tree.len() == nf3 as usize);
-            debug_assert!((0..nf3).all(|f| {
-                let b = Aabb::from_triangle(
-                    layout.faces[f as usize].map(|v| layout.positions[v as usize]),
-                );
-                tree.overlapping(&b).contains(&f)
+    let whole;
+    let surfaces: &[(&Bvh, u32)] = match input.surfaces {
+        Some(parts) => {
+            debug_assert!(
+                parts
+                    .iter()
+                    .try_fold(0, |first, &(t, f)| (f == first).then(|| f + t.len() as u32))
+                    == Some(nf3)
+            );
+            debug_assert!(parts.iter().all(|&(tree, first)| {
+                (0..tree.len() as u32).all(|i| {
+                    let f = first + i;
+                    let b = Aabb::from_triangle(
+                        layout.faces[f as usize].map(|v| layout.positions[v as usize]),
+                    );
+                    tree.overlapping(&b).contains(&i)
+                })
             }));
-            tree
+            parts
         }
         None => {
             built = surface_tree(&layout, nf3);
-            &built
+            whole = [(&built, 0)];
+            &whole
         }
     };
     let mut set_back = vec![false; movers.len()];
@@ -414,13 +440,23 @@ pub(crate) fn build_tubes(
         // which `surfaces` was built over.
         debug_assert!((0..nf3 as usize).all(|f| boxes[f]
             == Aabb::from_triangle(layout.faces[f].map(|v| layout.positions[v as usize]))));
+        // The scene takes one tree over the surfaces.
+        let joined;
+        let fixed = match surfaces {
+            [(tree, 0)] => *tree,
+            [(first, 0), rest @ ..] => {
+                joined = rest.iter().fold((*first).clone(), |t, (r, _)| t.joined(r));
+                &joined
+            }
+            _ => unreachable!("the parts start at face 0"),
+        };
         let mut scene = Scene::with_fixed(
             layout.positions.clone(),
             alias,
             layout.faces.clone(),
             boxes,
             &ex,
-            Some((surfaces, nf3)),
+            Some((fixed, nf3)),
         );
         engine::grow(&mut scene, &mut movers, policy);
         layout.positions = scene.positions;
@@ -551,7 +587,16 @@ mod tests {
                 first_vertex: vec![0; 3],
                 first_face: vec![nf3, nf3 + 4, nf3 + 8],
             };
-            let fast = tube_pairs(&layout, &input, &surface_tree(&layout, nf3));
+            let fast = tube_pairs(&layout, &input, &[(&surface_tree(&layout, nf3), 0)]);
+            // The surfaces in two parts (as the envelope stage hands them over).
+            let nf = nf3 / 3;
+            let (head, tail) = layout.faces[..nf3 as usize].split_at(nf as usize);
+            let parts = (
+                Bvh::from_triangles(&layout.positions, head),
+                Bvh::from_triangles(&layout.positions, tail),
+            );
+            let two = [(&parts.0, 0), (&parts.1, nf)];
+            assert_eq!(tube_pairs(&layout, &input, &two), fast);
             let everything = Bvh::from_triangles(&layout.positions, &layout.faces);
             let reference: Vec<(u32, u32)> = everything.self_pairs_where(|i, j| {
                 (i >= nf3 || j >= nf3)
@@ -575,9 +620,10 @@ mod tests {
                 .collect();
             let surfaces = surface_tree(&layout, nf3);
             assert_eq!(
-                tube_pairs_moved(&layout, &input, &surfaces, &moved),
+                tube_pairs_moved(&layout, &input, &[(&surfaces, 0)], &moved),
                 with_moved
             );
+            assert_eq!(tube_pairs_moved(&layout, &input, &two, &moved), with_moved);
             found_moved += with_moved.len();
         }
         assert!(
