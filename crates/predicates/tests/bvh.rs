@@ -138,6 +138,18 @@ fn assert_answers_alike(g: &mut Lcg, tree: &Bvh, reference: &Bvh, boxes: &[Aabb]
     assert_items_nest(tree, boxes);
 }
 
+/// A tree over `na` random boxes, or (with `nb > 0`) two trees over `na` and `nb` joined, and
+/// the boxes of its items in id order.
+fn built_or_joined(g: &mut Lcg, na: usize, nb: usize) -> (Bvh, Vec<Aabb>) {
+    let (a, b) = (random_boxes(g, na), random_boxes(g, nb));
+    let tree = if nb == 0 {
+        Bvh::new(&a)
+    } else {
+        Bvh::join(&Bvh::new(&a), &Bvh::new(&b))
+    };
+    (tree, a.into_iter().chain(b).collect())
+}
+
 /// `Bvh::refit` answers like a tree built over the new boxes, whether they moved a little
 /// or were replaced by unrelated ones, on built and joined trees (sizes above the parallel
 /// threshold too); `self_pairs_emit` pushes exactly what it is asked to for those pairs.
@@ -145,13 +157,7 @@ fn assert_answers_alike(g: &mut Lcg, tree: &Bvh, reference: &Bvh, boxes: &[Aabb]
 fn refit_trees_match_new_trees_and_emit_matches_pairs() {
     let mut g = Lcg(23);
     for (na, nb) in [(1, 0), (2, 3), (300, 0), (9000, 0), (40, 700), (5000, 3000)] {
-        let (a, b) = (random_boxes(&mut g, na), random_boxes(&mut g, nb));
-        let tree = if nb == 0 {
-            Bvh::new(&a)
-        } else {
-            Bvh::join(&Bvh::new(&a), &Bvh::new(&b))
-        };
-        let old: Vec<Aabb> = a.iter().chain(&b).copied().collect();
+        let (tree, old) = built_or_joined(&mut g, na, nb);
         let nudged: Vec<Aabb> = old
             .iter()
             .map(|x| {
@@ -315,13 +321,7 @@ fn random_soups_match_brute_force() {
 fn refit_items_is_a_refit_to_every_box() {
     let mut g = Lcg(41);
     for (na, nb) in [(1, 0), (5, 4), (300, 0), (9000, 0), (40, 700), (2000, 1500)] {
-        let (a, b) = (random_boxes(&mut g, na), random_boxes(&mut g, nb));
-        let tree = if nb == 0 {
-            Bvh::new(&a)
-        } else {
-            Bvh::join(&Bvh::new(&a), &Bvh::new(&b))
-        };
-        let old: Vec<Aabb> = a.iter().chain(&b).copied().collect();
+        let (tree, old) = built_or_joined(&mut g, na, nb);
         let n = old.len();
         for share in [0, 1, 3, n / 2] {
             let mut new = old.clone();
