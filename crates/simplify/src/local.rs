@@ -570,8 +570,12 @@ fn plan_each<T: Sync, R: Send>(
                     }
                     return out;
                 };
+                // Counted even when the plan panics: no thread waits for it forever (the
+                // panic then reaches the caller through the broadcast).
+                let _done = Finally(|| {
+                    done.fetch_add(1, Mem::Release);
+                });
                 out.push((i, plan(&batch[i])));
-                done.fetch_add(1, Mem::Release);
             }
         };
         let parts: Vec<Vec<(usize, R)>> = rayon::broadcast(|_| take());
@@ -584,6 +588,16 @@ fn plan_each<T: Sync, R: Send>(
         .zip(planned)
         .filter_map(|(t, p)| if inline(t) { Some(plan(t)) } else { p })
         .collect()
+}
+
+/// Runs its closure when dropped, also while a panic unwinds (a wait on a shared counter or
+/// state must not outlive the work it waits for).
+struct Finally<F: FnMut()>(F);
+
+impl<F: FnMut()> Drop for Finally<F> {
+    fn drop(&mut self) {
+        (self.0)();
+    }
 }
 
 /// The vertices whose removal the fiber test turned away on the starting mesh, as long as their
@@ -699,6 +713,12 @@ impl<'s> Doomed<'s> {
         {
             return false;
         }
+        // Should the plan panic, the slot says `Unknown` rather than `Taken`, so that no
+        // thread waits for it forever (the panic then ends the run, see `run`'s scope).
+        let unfinished = Finally(|| {
+            let unknown = Verdict::Unknown as u8;
+            let _ = slot.compare_exchange(taken, unknown, Mem::Release, Mem::Relaxed);
+        });
         let (verdict, tests) = match start.plan(v, *filter, &FillNothing) {
             (Err(Rejection::NoFillAcrossFiber), tests) => (Verdict::Doomed, tests),
             (_, tests) => (Verdict::Passed, tests),
@@ -706,6 +726,7 @@ impl<'s> Doomed<'s> {
         self.tests[v.index()].store(tests, Mem::Relaxed);
         // A fan changed meanwhile (`forget`) keeps `Unknown`.
         let _ = slot.compare_exchange(taken, verdict as u8, Mem::Release, Mem::Relaxed);
+        drop(unfinished);
         true
     }
 
@@ -1976,6 +1997,39 @@ mod tests {
         // No verdicts without a starting mesh.
         let none = Doomed::new(None, &queue);
         assert!(mesh.vertices().all(|v| !none.holds(v) && !none.passed(v)));
+    }
+
+    /// A plan that panics ends `plan_each` with that panic, while the other threads work
+    /// aside: none of them waits forever for the plan to be counted. Fails (the call does not
+    /// return within the time allowed) when a panicking plan is not counted as done.
+    #[test]
+    fn plan_each_passes_a_panic_on() {
+        let (send, receive) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(3)
+                .build()
+                .unwrap();
+            let batch: Vec<usize> = (0..20).collect();
+            let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                pool.install(|| {
+                    plan_each(
+                        &batch,
+                        |_| false,
+                        |&i| i,
+                        |&i| {
+                            assert_ne!(i, 7, "plan 7 fails");
+                            std::thread::sleep(std::time::Duration::from_millis(2));
+                            i
+                        },
+                        || false,
+                    )
+                })
+            }));
+            let _ = send.send(outcome.is_err());
+        });
+        let panicked = receive.recv_timeout(std::time::Duration::from_secs(20));
+        assert_eq!(panicked, Ok(true), "plan_each hung or hid the panic");
     }
 
     /// The queue pops in the heap's order (smallest priority, then first queued) whether
