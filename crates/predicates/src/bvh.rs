@@ -735,21 +735,7 @@ impl Bvh {
             found == sorted.len() && sorted.windows(2).all(|w| w[0].0 < w[1].0),
             "each moved item once, and in the tree"
         );
-        let (nodes, ordered) = (&mut tree.nodes, &tree.boxes);
-        // Children after their parent (see `into_refit`): one backward pass.
-        for n in (0..nodes.len()).rev() {
-            let node = nodes[n];
-            if node.leaf {
-                let range = node.a as usize..(node.a + node.b) as usize;
-                if dirty[range.clone()].iter().any(|&d| d) {
-                    nodes[n].bounds = ordered[range].iter().fold(Aabb::EMPTY, |b, x| b.union(x));
-                }
-            } else {
-                nodes[n].bounds = nodes[node.a as usize]
-                    .bounds
-                    .union(&nodes[node.b as usize].bounds);
-            }
-        }
+        tree.refit_nodes(|leaf| dirty[leaf].iter().any(|&d| d));
         tree
     }
 
@@ -757,27 +743,34 @@ impl Bvh {
     fn into_refit(mut self, boxes: &[Aabb]) -> Bvh {
         assert_eq!(boxes.len(), self.items.len(), "one box per item");
         self.boxes = self.items.iter().map(|&i| boxes[i as usize]).collect();
+        self.refit_nodes(|_| true);
+        self
+    }
+
+    /// Every node's bounds from the item boxes in leaf order: each leaf for which `changed`
+    /// says so (given its range of leaf positions) the union of its boxes, every interior node
+    /// the union of its children's. Children come after their parent in every tree this type
+    /// builds (pre-order builds, `join` putting the new root first), so one backward pass
+    /// sees every child's new box before its parent's.
+    fn refit_nodes(&mut self, changed: impl Fn(std::ops::Range<usize>) -> bool) {
         let (nodes, ordered) = (&mut self.nodes, &self.boxes);
-        // Children come after their parent in every tree this type builds (pre-order
-        // builds, `join` putting the new root first), so one backward pass sees every
-        // child's new box before its parent's.
         for n in (0..nodes.len()).rev() {
             let node = nodes[n];
-            nodes[n].bounds = if node.leaf {
-                ordered[node.a as usize..(node.a + node.b) as usize]
-                    .iter()
-                    .fold(Aabb::EMPTY, |b, x| b.union(x))
+            if node.leaf {
+                let range = node.a as usize..(node.a + node.b) as usize;
+                if changed(range.clone()) {
+                    nodes[n].bounds = ordered[range].iter().fold(Aabb::EMPTY, |b, x| b.union(x));
+                }
             } else {
                 assert!(
                     node.a as usize > n && node.b as usize > n,
                     "children after the parent"
                 );
-                nodes[node.a as usize]
+                nodes[n].bounds = nodes[node.a as usize]
                     .bounds
-                    .union(&nodes[node.b as usize].bounds)
-            };
+                    .union(&nodes[node.b as usize].bounds);
+            }
         }
-        self
     }
 
     /// All pairs `(i, j)`, `i < j`, of items with overlapping boxes; sorted.

@@ -24,7 +24,7 @@
 //! | candidate triangles | all triples of hole vertices, generated once per hole; a sub-hole considers those whose three vertices are on it |
 //! | degenerate candidates | exactly collinear corners: rejected |
 //! | attempts that cannot succeed | not in the paper: before the filling, the fiber test ([`FiberTest`], module `fiber`) ends an interior vertex's attempt when every triangle on its hole's vertices that meets a path from its inner to its outer envelope point is refused by the barriers (every valid filling meets that path; the module proves it); it decides nothing else, so the outcome is the same without it (`tests/fiber.rs`) |
-//! | fiber verdicts ahead | with a first-in-first-out queue, the fiber test's verdict on each vertex queued at the start, computed on a copy of the starting mesh, in queue order, by the threads that would otherwise wait while the calling thread selects and commits, or by the calling thread when the queue reaches it first ([`Doomed`]; a vertex whose fan changed before needs none); it stands in for the attempt while the vertex's fan is as it was (proved there; a debug build re-plans and asserts), so only the other attempts are planned in the batches |
+//! | fiber verdicts ahead | with a first-in-first-out queue, the fiber test's verdict on each vertex queued at the start, computed on a copy of the starting mesh, in vertex order, by the threads that would otherwise wait while the calling thread selects and commits, or by the calling thread when the queue reaches it first ([`Doomed`]; a vertex whose fan changed before needs none); it stands in for the attempt while the vertex's fan is as it was (proved there; a debug build re-plans and asserts), so only the other attempts are planned in the batches |
 //! | valence-3 interior vertex | its hole is one triangle; placed if valid and not already a face (a tetrahedron cannot lose a vertex) |
 //! | border vertex | its open chain is filled as a polygon closed by the new border edge, which must not already be an edge and must not touch a border tube (6.2); with no tube in the barriers, border vertices are kept; a border vertex with one face (an ear) is kept |
 //! | topology | a new edge that already exists elsewhere is refused before the filter is asked (link condition); the mesh's `add_faces` is the last guard |
@@ -665,6 +665,16 @@ enum Verdict {
     Unknown,
 }
 
+impl Verdict {
+    /// The verdict a state of [`Doomed`] holds (`Unknown` for any other byte).
+    fn of_state(x: u8) -> Self {
+        [Self::Open, Self::Taken, Self::Doomed, Self::Passed]
+            .into_iter()
+            .find(|d| *d as u8 == x)
+            .unwrap_or(Self::Unknown)
+    }
+}
+
 impl<'s> Doomed<'s> {
     /// The verdicts of the vertices `queue` holds, none computed yet (none at all without
     /// `start`).
@@ -754,21 +764,17 @@ impl<'s> Doomed<'s> {
         // The threads ahead go on from after `v`.
         self.next.fetch_max(k as usize + 1, Mem::Relaxed);
         loop {
-            match self.state[v.index()].load(Mem::Acquire) {
-                x if x == Verdict::Open as u8 => {
+            match Verdict::of_state(self.state[v.index()].load(Mem::Acquire)) {
+                Verdict::Open => {
                     self.take(v);
                 }
                 // Another thread is computing it: take one ahead meanwhile.
-                x if x == Verdict::Taken as u8 => {
+                Verdict::Taken => {
                     if !self.take_one() {
                         std::hint::spin_loop();
                     }
                 }
-                x => {
-                    let verdict = [Verdict::Doomed, Verdict::Passed]
-                        .into_iter()
-                        .find(|d| *d as u8 == x)
-                        .unwrap_or(Verdict::Unknown);
+                verdict => {
                     if verdict != Verdict::Unknown {
                         let tests = self.tests[v.index()].swap(0, Mem::Relaxed);
                         self.used.fetch_add(tests, Mem::Relaxed);
