@@ -1,7 +1,7 @@
 //! The JSON form of a [`CheckReport`]. Field names are stable: `vertices`, `faces`, `edges`,
 //! `border_loops`, `components`, `euler`, `genus`, `manifold`, `orientable`, `acceptable`,
 //! `degeneracies` (an object keyed by [`crate::DegeneracyClass::key`], each
-//! `{ "count", "severity", "examples" }`).
+//! `{ "count", "severity", "examples", "undecided" }`).
 
 use serde_json::{Map, Value, json};
 
@@ -54,6 +54,7 @@ pub(crate) fn value(r: &CheckReport) -> Value {
                 "count": finding.count,
                 "severity": match class.severity() { Severity::Error => "error", Severity::Warning => "warning" },
                 "examples": finding.examples.iter().map(element).collect::<Vec<_>>(),
+                "undecided": finding.undecided,
             }),
         );
     }

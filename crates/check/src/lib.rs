@@ -120,6 +120,10 @@ pub struct Finding {
     pub count: usize,
     /// The first [`CheckOptions::max_examples`] of them, in a deterministic order.
     pub examples: Vec<Element>,
+    /// The class could not be decided within the checker's budget (the pairwise classes on
+    /// faces stacked so densely that testing every pair would take quadratic time): `count`
+    /// is then 0 and means nothing, and an undecided error class makes the mesh unacceptable.
+    pub undecided: bool,
 }
 
 impl Finding {
@@ -168,11 +172,11 @@ impl CheckReport {
         self.degeneracies.get(&class).cloned().unwrap_or_default()
     }
 
-    /// Classes of [`Severity::Error`] with at least one element.
+    /// Classes of [`Severity::Error`] with at least one element, or undecided.
     pub fn errors(&self) -> impl Iterator<Item = DegeneracyClass> + '_ {
         self.degeneracies
             .iter()
-            .filter(|(c, f)| c.severity() == Severity::Error && f.count > 0)
+            .filter(|(c, f)| c.severity() == Severity::Error && (f.count > 0 || f.undecided))
             .map(|(c, _)| *c)
     }
 
@@ -344,36 +348,47 @@ pub fn check_with_shared(
     let no_t_junction = pairs.as_ref().is_some_and(|p| p.intersecting.is_empty())
         && zero_area.is_empty()
         && soup.faces.iter().all(|&f| geometric::usable(soup, f));
-    let t_junctions = if no_t_junction {
+    // Undecided pairwise classes already make the mesh unacceptable; the T-junction search
+    // would walk the same dense stack.
+    let t_junctions_undecided = pairs.as_ref().is_some_and(|p| p.undecided);
+    let t_junctions = if no_t_junction || t_junctions_undecided {
         Vec::new()
     } else {
         geometric::t_junctions(soup, &referenced)
     };
     d.insert(
         C::TJunctions,
-        Finding::from_iter(
-            t_junctions
-                .into_iter()
-                .map(|(v, edge)| Element::VertexOnEdge {
-                    vertex: v,
-                    position: soup.position(v),
-                    edge,
-                }),
-            n,
-        ),
+        Finding {
+            undecided: t_junctions_undecided,
+            ..Finding::from_iter(
+                t_junctions
+                    .into_iter()
+                    .map(|(v, edge)| Element::VertexOnEdge {
+                        vertex: v,
+                        position: soup.position(v),
+                        edge,
+                    }),
+                n,
+            )
+        },
     );
     if let Some(pairs) = pairs {
         let pair = |(a, b): (u32, u32)| Element::FacePair {
             faces: [FaceId(a), FaceId(b)],
         };
-        d.insert(
-            C::CoincidentTriangles,
-            Finding::from_iter(pairs.coincident.into_iter().map(pair), n),
-        );
-        d.insert(
-            C::IntersectingTriangles,
-            Finding::from_iter(pairs.intersecting.into_iter().map(pair), n),
-        );
+        let undecided = pairs.undecided;
+        for (class, list) in [
+            (C::CoincidentTriangles, pairs.coincident),
+            (C::IntersectingTriangles, pairs.intersecting),
+        ] {
+            d.insert(
+                class,
+                Finding {
+                    undecided,
+                    ..Finding::from_iter(list.into_iter().map(pair), n)
+                },
+            );
+        }
     }
 
     CheckReport {

@@ -6,6 +6,7 @@
 //! intermediate terms (including the expansion tails) inside f64's normal range. The same
 //! constants are mirrored in `envelope-predicates` (a test checks that they agree).
 
+use glam::DVec3;
 use thiserror::Error;
 
 /// Largest accepted coordinate magnitude: 2^120 (about 1.3e36).
@@ -54,6 +55,28 @@ pub fn check_coordinate(x: f64) -> Result<(), CoordError> {
     } else {
         Ok(())
     }
+}
+
+/// A constructed point moved into the exact predicates' range: each coordinate whose non-zero
+/// magnitude is below [`MIN_ALLOWED_MAGNITUDE`] becomes zero, the others are kept. For
+/// constructions only (offsets, tubes): they are plain f64 approximations anyway, and only the
+/// exact proof run on the flushed point counts. Never applied to input coordinates.
+///
+/// ```
+/// use envelope_mesh::flush_tiny;
+/// use glam::DVec3;
+/// assert_eq!(flush_tiny(DVec3::new(1e-40, -2.0, -1e-300)), DVec3::new(0.0, -2.0, 0.0));
+/// ```
+#[must_use]
+pub fn flush_tiny(p: DVec3) -> DVec3 {
+    let f = |x: f64| {
+        if x.abs() < MIN_ALLOWED_MAGNITUDE {
+            0.0
+        } else {
+            x
+        }
+    };
+    DVec3::new(f(p.x), f(p.y), f(p.z))
 }
 
 #[cfg(test)]

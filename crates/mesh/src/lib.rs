@@ -29,7 +29,9 @@ mod ids;
 mod soup;
 mod topology;
 
-pub use coords::{CoordError, MAX_ALLOWED_MAGNITUDE, MIN_ALLOWED_MAGNITUDE, check_coordinate};
+pub use coords::{
+    CoordError, MAX_ALLOWED_MAGNITUDE, MIN_ALLOWED_MAGNITUDE, check_coordinate, flush_tiny,
+};
 pub use halfedge::{
     AddFaceError, BuildError, Checkpoint, EditError, HalfEdgeMesh, OutgoingHalfedges,
 };

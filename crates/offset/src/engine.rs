@@ -179,7 +179,7 @@ impl Mover {
         self.base
             .iter()
             .zip(&self.dirs)
-            .map(|(&b, &d)| b + d * t)
+            .map(|(&b, &d)| envelope_mesh::flush_tiny(b + d * t))
             .collect()
     }
 }

@@ -203,7 +203,62 @@ impl EpsilonField {
 
     /// The epsilon of every position; errors name the first vertex with a non-finite or
     /// non-positive value, or a count mismatch.
+    ///
+    /// The range rule every envelope builder shares: a value above the bounding-box diagonal
+    /// of `positions` acts as the diagonal (envelopes that far out add nothing, and huge
+    /// offsets only slow the growth down); a value below [`crate::EPSILON_FLOOR`] times the
+    /// largest coordinate magnitude is refused (the offset would vanish in the rounding), and
+    /// so are coordinates whose envelopes would leave the predicates' range.
+    ///
+    /// ```
+    /// use envelope_offset::{EnvelopeError, EpsilonField};
+    /// use glam::DVec3;
+    /// let p = [DVec3::ZERO, DVec3::new(3.0, 4.0, 0.0)];
+    /// assert_eq!(EpsilonField::Constant(1e9).evaluate(&p).unwrap(), vec![5.0, 5.0]);
+    /// assert!(matches!(
+    ///     EpsilonField::Constant(1e-15).evaluate(&p),
+    ///     Err(EnvelopeError::EpsilonTooSmall { .. })
+    /// ));
+    /// ```
     pub fn evaluate(&self, positions: &[DVec3]) -> Result<Vec<f64>, crate::EnvelopeError> {
+        let mut values = self.evaluate_unchecked(positions)?;
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for p in positions.iter().filter(|p| p.is_finite()) {
+            (lo, hi) = (lo.min(*p), hi.max(*p));
+        }
+        if lo.x > hi.x {
+            return Ok(values);
+        }
+        let diagonal = (hi - lo).length();
+        let magnitude = lo.abs().max(hi.abs()).max_element();
+        if diagonal > 0.0 {
+            for e in &mut values {
+                *e = e.min(diagonal);
+            }
+        }
+        let floor = crate::EPSILON_FLOOR * magnitude;
+        if let Some(i) = values.iter().position(|&e| e < floor) {
+            return Err(crate::EnvelopeError::EpsilonTooSmall {
+                vertex: (!matches!(self, EpsilonField::Constant(_)))
+                    .then_some(envelope_mesh::VertexId(i as u32)),
+                epsilon: values[i],
+                floor,
+                magnitude,
+            });
+        }
+        let largest = values.iter().copied().fold(0.0, f64::max);
+        // Outer envelope and tubes reach `magnitude + epsilon`; room for one more epsilon.
+        if magnitude + 2.0 * largest > 0.5 * envelope_mesh::MAX_ALLOWED_MAGNITUDE {
+            return Err(crate::EnvelopeError::CoordinatesTooLarge {
+                magnitude,
+                epsilon: largest,
+            });
+        }
+        Ok(values)
+    }
+
+    /// [`EpsilonField::evaluate`] without the range rule: finite positive values only.
+    fn evaluate_unchecked(&self, positions: &[DVec3]) -> Result<Vec<f64>, crate::EnvelopeError> {
         let values: Vec<f64> = match self {
             EpsilonField::Constant(e) => vec![*e; positions.len()],
             EpsilonField::PerVertex(v) => {

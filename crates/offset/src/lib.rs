@@ -158,7 +158,7 @@ impl EnvelopeOptions {
 }
 
 /// Why the envelopes could not be built.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum EnvelopeError {
     /// No faces.
     #[error("the mesh has no faces")]
@@ -186,7 +186,47 @@ pub enum EnvelopeError {
         /// The first such vertex.
         vertex: VertexId,
     },
+    /// An epsilon too small to be represented as an offset beside the mesh's coordinates
+    /// (below [`EPSILON_FLOOR`] times the largest coordinate magnitude).
+    #[error(
+        "epsilon {epsilon:e}{} is below 2^-40 times the largest coordinate magnitude \
+         {magnitude:e} (at least {floor:e} is needed): offsets that small are lost in the \
+         rounding of the coordinates; use a larger epsilon or move the mesh toward the origin",
+        .vertex.map(|v| format!(" (vertex {})", v.0)).unwrap_or_default()
+    )]
+    EpsilonTooSmall {
+        /// The first such vertex (`None` for a constant epsilon).
+        vertex: Option<VertexId>,
+        /// Its epsilon.
+        epsilon: f64,
+        /// The smallest accepted epsilon.
+        floor: f64,
+        /// The largest coordinate magnitude of the mesh.
+        magnitude: f64,
+    },
+    /// Coordinates so large that envelopes around them leave the exact predicates' range.
+    #[error(
+        "coordinates up to {magnitude:e} with epsilon {epsilon:e} would put envelope points \
+         beyond 2^119, outside the exact predicates' range; scale the mesh down"
+    )]
+    CoordinatesTooLarge {
+        /// The largest coordinate magnitude of the mesh.
+        magnitude: f64,
+        /// The largest epsilon (after clamping to the diagonal).
+        epsilon: f64,
+    },
+    /// A tube ring with too few or too many vertices.
+    #[error("{0} tube segments: a tube ring needs 3 to {MAX_TUBE_SEGMENTS} vertices")]
+    TubeSegments(u32),
 }
+
+/// The smallest epsilon, as a fraction of the largest coordinate magnitude, that
+/// [`EpsilonField::evaluate`] accepts: 2^-40 leaves an offset about 4,000 units in the last
+/// place of the coordinates it is added to.
+pub const EPSILON_FLOOR: f64 = 9.094_947_017_729_282e-13;
+
+/// The most vertices a tube ring may have.
+pub const MAX_TUBE_SEGMENTS: u32 = 64;
 
 /// Inner and outer envelopes, tubes and the exact proof.
 #[derive(Clone, Debug)]
@@ -301,6 +341,11 @@ pub fn build_envelopes_with(
     input_tree: &Bvh,
 ) -> Result<Envelopes, EnvelopeError> {
     let topo = accept_input(soup, topology)?;
+    if let Some(k) = options.tube_segments
+        && !(3..=MAX_TUBE_SEGMENTS).contains(&k)
+    {
+        return Err(EnvelopeError::TubeSegments(k));
+    }
     let built;
     let input_tree = if input_tree.len() == soup.num_faces() {
         input_tree
@@ -466,7 +511,9 @@ fn prove_and_repair(
             .iter()
             .zip(normals)
             .zip(eps)
-            .map(|((&p, &n), &e)| p + (n * s) * e)
+            // Flushed into the predicates' range: a coordinate at zero moved by a rounding-noise
+            // normal component would otherwise land below 2^-120.
+            .map(|((&p, &n), &e)| envelope_mesh::flush_tiny(p + (n * s) * e))
             .collect()
     };
     let mut outer = place(&eps_plus, 1.0);

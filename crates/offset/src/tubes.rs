@@ -315,7 +315,9 @@ pub(crate) fn build_tubes(
             narrow.push(r0);
             let verts: Vec<u32> = (0..k as u32).map(|j| v0 + (i * k) as u32 + j).collect();
             for &d in &dirs {
-                layout.positions.push(pts[i] + d * target);
+                layout
+                    .positions
+                    .push(envelope_mesh::flush_tiny(pts[i] + d * target));
             }
             movers.push(Mover {
                 verts,
@@ -412,7 +414,8 @@ pub(crate) fn build_tubes(
             m.t = if set_back[i] { m.t * 0.5 } else { narrow[i] };
             set_back[i] = true;
             for (kk, &v) in m.verts.iter().enumerate() {
-                layout.positions[v as usize] = m.base[kk] + m.dirs[kk] * m.t;
+                layout.positions[v as usize] =
+                    envelope_mesh::flush_tiny(m.base[kk] + m.dirs[kk] * m.t);
             }
         }
         // Every contact had a face of an offending ring: only pairs with a moved face can

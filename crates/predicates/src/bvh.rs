@@ -806,6 +806,60 @@ impl Bvh {
     }
 
     #[inline]
+    /// The number of pairs `i < j` of items with overlapping boxes, counted up to `limit`:
+    /// `limit` when there are at least that many. The cost of a self-pair walk, found in time
+    /// bounded by `limit` and the tree's size (a walk over a stack of coincident faces has
+    /// quadratically many pairs). Sequential and deterministic.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let boxes = vec![Aabb::from_points(&[DVec3::ZERO, DVec3::ONE]); 100];
+    /// let tree = Bvh::new(&boxes);
+    /// assert_eq!(tree.self_pair_count_up_to(10_000), 4950);
+    /// assert_eq!(tree.self_pair_count_up_to(1000), 1000);
+    /// ```
+    #[must_use]
+    pub fn self_pair_count_up_to(&self, limit: usize) -> usize {
+        if self.nodes.is_empty() {
+            return 0;
+        }
+        let mut count = 0usize;
+        // (a, b): the pairs within `a` when `a == b`, else the pairs across them.
+        let mut stack = vec![(0u32, 0u32)];
+        while let Some((na, nb)) = stack.pop() {
+            let (a, b) = (&self.nodes[na as usize], &self.nodes[nb as usize]);
+            if na == nb {
+                if a.leaf {
+                    let (s, e) = (a.a as usize, (a.a + a.b) as usize);
+                    for k in s..e {
+                        count += (k + 1..e)
+                            .filter(|&l| self.boxes[k].overlaps(&self.boxes[l]))
+                            .count();
+                    }
+                } else {
+                    stack.extend([(a.a, a.a), (a.b, a.b), (a.a, a.b)]);
+                }
+            } else if a.bounds.overlaps(&b.bounds) {
+                if a.leaf && b.leaf {
+                    for k in a.a as usize..(a.a + a.b) as usize {
+                        count += (b.a as usize..(b.a + b.b) as usize)
+                            .filter(|&l| self.boxes[k].overlaps(&self.boxes[l]))
+                            .count();
+                    }
+                } else if !a.leaf && (b.leaf || a.count >= b.count) {
+                    stack.extend([(a.a, nb), (a.b, nb)]);
+                } else {
+                    stack.extend([(na, b.a), (na, b.b)]);
+                }
+            }
+            if count >= limit {
+                return limit;
+            }
+        }
+        count
+    }
+
     fn size(&self, n: u32) -> usize {
         self.nodes[n as usize].count as usize
     }

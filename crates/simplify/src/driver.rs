@@ -106,6 +106,19 @@ pub enum DriverError {
     /// The simplifier stopped.
     #[error("simplify: {0}")]
     Simplify(#[from] SimplifyError),
+    /// The envelopes (or tubes) could not be proved free of intersections, even after the
+    /// repair rounds: simplifying between them could give a wrong answer, so nothing is.
+    #[error(
+        "the envelopes could not be proved free of intersections ({contacts} contacts left \
+         after {repair_rounds} repair rounds); no output is made from unproved envelopes \
+         (try a smaller epsilon)"
+    )]
+    UnprovedEnvelopes {
+        /// Contacts (envelope and tube) the last proof found.
+        contacts: usize,
+        /// Repair rounds run.
+        repair_rounds: u32,
+    },
     /// A list of epsilons that makes no chain ([`crate::lod_chain`]).
     #[error("epsilons: {0}")]
     Epsilons(&'static str),
@@ -113,7 +126,11 @@ pub enum DriverError {
 
 fn describe_classes(c: &[(DegeneracyClass, usize)]) -> String {
     c.iter()
-        .map(|(k, n)| format!("{n} {k}"))
+        // A count of zero is an undecided class (`envelope_check::Finding::undecided`).
+        .map(|(k, n)| match n {
+            0 => format!("{k} undecided (faces stacked too densely to test every pair)"),
+            n => format!("{n} {k}"),
+        })
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -566,6 +583,13 @@ pub fn simplify_with(
         (None, None) => analyze(soup),
     };
     let env = env?;
+    // An invariant of every command: no output from envelopes whose proof failed.
+    if !env.proof.holds() {
+        return Err(DriverError::UnprovedEnvelopes {
+            contacts: env.proof.contacts.len() + env.proof.tube_contacts.len(),
+            repair_rounds: env.proof.repair_rounds,
+        });
+    }
     let env_proved = env.proof.holds();
     let fractions = env.achieved_fractions();
     let envelope = EnvelopeReport {
