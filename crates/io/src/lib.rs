@@ -49,7 +49,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use envelope_mesh::{TriangleSoup, check_coordinate};
 
-pub use error::{Axis, Location, ReadError, ReadErrorKind, WriteError, WriteErrorKind};
+pub use error::{Axis, Location, ReadError, ReadErrorKind, Word, WriteError, WriteErrorKind};
 pub use report::ReadReport;
 
 use input::Input;
@@ -125,6 +125,8 @@ impl Format {
     /// ```
     #[must_use]
     pub fn sniff(head: &[u8], len: Option<u64>) -> Option<Self> {
+        let full = head;
+        let head = input::strip_bom(head);
         if head.starts_with(b"ply\n") || head.starts_with(b"ply\r\n") {
             let enc = if contains(head, b"binary_little_endian") {
                 PlyEncoding::BinaryLittleEndian
@@ -135,7 +137,11 @@ impl Format {
             };
             return Some(Format::Ply(enc));
         }
-        if head.len() >= 84 && len.is_some_and(|l| l == stl::binary_size(head)) {
+        // A text STL whose length happens to fit the binary formula stays text.
+        if full.len() >= 84
+            && len.is_some_and(|l| l == stl::binary_size(full))
+            && !stl::looks_ascii(full)
+        {
             return Some(Format::Stl(StlEncoding::Binary));
         }
         let text = head.trim_ascii_start();
