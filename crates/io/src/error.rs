@@ -103,25 +103,84 @@ pub enum ReadErrorKind {
         /// Why it was rejected.
         error: CoordError,
     },
-    /// A vertex index that names no vertex.
-    #[error("{what} {element}: vertex index {index} out of range ({vertices} vertices)")]
+    /// A vertex index that names no vertex (0-based formats: OFF, PLY).
+    #[error(
+        "{what} {element}: vertex index {index} out of range ({vertices} vertices; allowed: {})",
+        allowed_0_based(*.vertices)
+    )]
     IndexOutOfRange {
         /// The kind of element holding the index ("face", "strip").
         what: &'static str,
         /// 0-based number of that element in the file.
         element: u64,
-        /// The index as written, converted to 0-based where the format is 1-based (OBJ).
+        /// The index as written.
         index: i64,
         /// The number of vertices the index had to be below.
         vertices: u64,
     },
-    /// A polygon with fewer than three corners.
-    #[error("face {face} has {corners} corners, at least 3 are needed")]
+    /// An OBJ face corner naming no vertex defined so far.
+    #[error(
+        "face {face}: vertex index {index} names no vertex ({vertices} defined so far; allowed: {})",
+        allowed_obj(*.vertices)
+    )]
+    ObjIndexOutOfRange {
+        /// 0-based number of the face (`f` statement) in the file.
+        face: u64,
+        /// The index as written (1-based, or negative counting back from the last vertex).
+        index: i64,
+        /// Vertices defined before the face.
+        vertices: u64,
+    },
+    /// A polygon with fewer than three distinct corners (after dropping consecutive repeats).
+    #[error("face {face} has {corners} distinct corners, at least 3 are needed")]
     TooFewCorners {
         /// 0-based face number in the file.
         face: u64,
         /// Its number of corners.
         corners: u64,
+    },
+    /// A polygon that passes through one vertex twice (not at consecutive corners).
+    #[error(
+        "face {face}: corners {first} and {second} are the same vertex; a polygon may visit a \
+         vertex only once (split it into simple polygons)"
+    )]
+    RepeatedCorner {
+        /// 0-based face number in the file.
+        face: u64,
+        /// 1-based position of the first of the two corners in the face as written.
+        first: u64,
+        /// 1-based position of the second.
+        second: u64,
+    },
+    /// A polygon that is not simple in any axis-aligned projection, so it cannot be
+    /// triangulated without overlapping triangles.
+    #[error(
+        "face {face}: its {corners} corners form a self-intersecting polygon (not simple in any \
+         axis-aligned projection); only simple polygons can be triangulated, split it"
+    )]
+    NotSimplePolygon {
+        /// 0-based face number in the file.
+        face: u64,
+        /// Its number of distinct corners.
+        corners: u64,
+    },
+    /// A statement that could change the surface or the vertex numbering, and that the reader
+    /// does not support (it refuses the file rather than read a different mesh).
+    #[error("unsupported statement '{keyword}': {why}")]
+    UnsupportedStatement {
+        /// The keyword as written.
+        keyword: Word,
+        /// Why it cannot be ignored, and what is allowed.
+        why: &'static str,
+    },
+    /// The first word of an OFF file is not an OFF keyword.
+    #[error(
+        "the first line must be the OFF keyword (OFF, COFF, NOFF, STOFF, ...), found '{found}'{}",
+        if found.is_number() { ": the OFF line is missing" } else { "" }
+    )]
+    NotOffKeyword {
+        /// The first word of the file.
+        found: Word,
     },
     /// The file holds no triangle.
     #[error("the mesh has no faces")]
@@ -129,6 +188,83 @@ pub enum ReadErrorKind {
     /// More vertices or triangles than 32-bit ids can name.
     #[error("too many {0} for 32-bit ids")]
     TooMany(&'static str),
+}
+
+fn allowed_0_based(vertices: u64) -> String {
+    match vertices {
+        0 => "none, no vertex is defined".to_owned(),
+        n => format!("0 to {}", n - 1),
+    }
+}
+
+fn allowed_obj(vertices: u64) -> String {
+    match vertices {
+        0 => "none, no vertex is defined before this face".to_owned(),
+        n => format!("1 to {n}, or -1 to -{n} counting back"),
+    }
+}
+
+/// A word from the input (a keyword), kept by value so that [`ReadErrorKind`] stays `Copy`:
+/// up to 24 bytes, longer words are cut (and shown with `...`).
+///
+/// ```
+/// use envelope_io::{read, Format, ReadErrorKind};
+/// let err = read(&b"v 0 0 0\ncurv 0 1 1\n"[..], Format::Obj).unwrap_err();
+/// let ReadErrorKind::UnsupportedStatement { keyword, .. } = err.kind else { panic!() };
+/// assert_eq!(keyword.to_string(), "curv");
+/// ```
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Word {
+    bytes: [u8; Word::CAP],
+    len: u8,
+    cut: bool,
+}
+
+impl Word {
+    const CAP: usize = 24;
+
+    pub(crate) fn new(word: &[u8]) -> Self {
+        let len = word.len().min(Self::CAP);
+        let mut bytes = [0; Self::CAP];
+        bytes[..len].copy_from_slice(&word[..len]);
+        Self {
+            bytes,
+            len: len as u8,
+            cut: word.len() > Self::CAP,
+        }
+    }
+
+    /// The bytes kept.
+    #[must_use]
+    pub fn as_bytes(&self) -> &[u8] {
+        &self.bytes[..usize::from(self.len)]
+    }
+
+    /// Whether the word reads as a (signed, decimal) number.
+    #[must_use]
+    pub fn is_number(&self) -> bool {
+        std::str::from_utf8(self.as_bytes()).is_ok_and(|s| s.parse::<f64>().is_ok())
+    }
+}
+
+impl fmt::Display for Word {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}",
+            String::from_utf8_lossy(self.as_bytes()).escape_debug()
+        )?;
+        if self.cut {
+            f.write_str("...")?;
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Debug for Word {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Word(\"{self}\")")
+    }
 }
 
 impl From<io::ErrorKind> for ReadErrorKind {

@@ -147,6 +147,14 @@ fn strip_cr(line: &[u8]) -> &[u8] {
     line.strip_suffix(b"\r").unwrap_or(line)
 }
 
+/// The UTF-8 byte order mark.
+const BOM: &[u8] = b"\xEF\xBB\xBF";
+
+/// `text` without a leading UTF-8 byte order mark.
+pub(crate) fn strip_bom(text: &[u8]) -> &[u8] {
+    text.strip_prefix(BOM).unwrap_or(text)
+}
+
 pub(crate) fn io_error(e: &io::Error, location: Location) -> ReadError {
     ReadError::new(location, e.kind().into())
 }
@@ -186,6 +194,8 @@ impl<R: Read> Lines<R> {
             None => Ok(false),
             Some(l) => {
                 self.line.clear();
+                // Every text format skips a byte order mark (editors on Windows add one).
+                let l = if self.line_no == 0 { strip_bom(l) } else { l };
                 self.line.extend_from_slice(l);
                 self.line_no += 1;
                 if let Some(c) = self.comment

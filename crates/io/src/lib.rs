@@ -7,9 +7,22 @@
 //! problem. Readers never panic and never reserve more than the remaining input can hold, so
 //! a header announcing 2^31 vertices in a 100-byte file fails fast instead of allocating.
 //!
+//! A reader never ignores anything that could change the geometry or the vertex numbering:
+//! such a statement, header word or element refuses the file ([`ReadErrorKind::UnsupportedStatement`],
+//! [`ReadErrorKind::NotOffKeyword`], [`ReadErrorKind::Unsupported`], ...); what is skipped
+//! (texture data, groups, materials, unknown PLY elements whose layout the header gives) is
+//! named in the report's notes. A UTF-8 byte order mark at the start of any text format is
+//! skipped, also by [`Format::sniff`]. Errors name the element as written: the line or byte,
+//! the index as it appears in the file (1-based or negative in OBJ), and what is allowed.
+//!
 //! Conversions (all listed in the report):
-//! * polygons with more than three corners (OBJ, OFF, PLY) are fan-triangulated from their
-//!   first corner, which is exact for convex polygons and may fold non-convex ones;
+//! * polygons with more than three corners (OBJ, OFF, PLY) are triangulated without overlaps
+//!   by [`envelope_predicates::polygon::triangulate_polygon`] (constrained Delaunay in an
+//!   axis-aligned projection where the polygon is simple, decided exactly; also for
+//!   non-planar polygons, whose triangles then form a height field over that plane), after
+//!   dropping repeated consecutive corners; a polygon that visits a vertex twice or is not
+//!   simple in any axis-aligned projection (a bow-tie) is refused. Triangles are kept as
+//!   written (the input checker reports degenerate ones);
 //! * PLY `tristrips` are expanded with alternating winding, `-1` restarting a strip, and strip
 //!   triangles with a repeated corner dropped;
 //! * STL corners are welded: bitwise-equal positions become one vertex, numbered in order of
@@ -49,7 +62,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use envelope_mesh::{TriangleSoup, check_coordinate};
 
-pub use error::{Axis, Location, ReadError, ReadErrorKind, WriteError, WriteErrorKind};
+pub use error::{Axis, Location, ReadError, ReadErrorKind, Word, WriteError, WriteErrorKind};
 pub use report::ReadReport;
 
 use input::Input;
@@ -125,6 +138,8 @@ impl Format {
     /// ```
     #[must_use]
     pub fn sniff(head: &[u8], len: Option<u64>) -> Option<Self> {
+        let full = head;
+        let head = input::strip_bom(head);
         if head.starts_with(b"ply\n") || head.starts_with(b"ply\r\n") {
             let enc = if contains(head, b"binary_little_endian") {
                 PlyEncoding::BinaryLittleEndian
@@ -135,7 +150,11 @@ impl Format {
             };
             return Some(Format::Ply(enc));
         }
-        if head.len() >= 84 && len.is_some_and(|l| l == stl::binary_size(head)) {
+        // A text STL whose length happens to fit the binary formula stays text.
+        if full.len() >= 84
+            && len.is_some_and(|l| l == stl::binary_size(full))
+            && !stl::looks_ascii(full)
+        {
             return Some(Format::Stl(StlEncoding::Binary));
         }
         let text = head.trim_ascii_start();

@@ -1,11 +1,24 @@
-//! Wavefront OBJ: `v x y z` and `f i j k ...` statements; everything else is ignored (and
-//! counted in the report).
+//! Wavefront OBJ: `v x y z` and `f i j k ...` statements make the mesh; statements that cannot
+//! change the triangle surface or the vertex numbering are skipped (and counted in the
+//! report); any other statement refuses the file.
 //!
 //! * Face corners may be `i`, `i/t`, `i//n` or `i/t/n`; only the vertex index `i` is kept.
+//!   `fo` (the obsolete spelling of `f`) is read as `f`.
 //! * Indices are 1-based; negative indices count back from the last vertex defined so far.
-//!   Indices must name a vertex defined before the face (as every common writer does).
-//! * Polygons with more than three corners are fan-triangulated from the first corner.
-//! * `#` starts a comment; a `\` at the end of a line joins the next line to it.
+//!   Indices must name a vertex defined before the face (as every common writer does); an
+//!   error quotes the index as written.
+//! * Polygons with more than three corners are triangulated without overlaps
+//!   ([`envelope_predicates::polygon`]): repeated consecutive corners are dropped, a polygon
+//!   visiting a vertex twice or self-intersecting in every axis projection is refused.
+//! * Skipped: texture and normal data (`vt`, `vn`, `vp`), grouping and naming (`o`, `g`, `s`,
+//!   `mg`), materials and maps (`mtllib`, `usemtl`, `maplib`, `usemap`), lines and points (`l`,
+//!   `p`), and display attributes (`lod`, `bevel`, `c_interp`, `d_interp`, `shadow_obj`,
+//!   `trace_obj`, `ctech`, `stech`). None defines a vertex or a face.
+//! * Refused: free-form geometry (`cstype`, `deg`, `bmat`, `step`, `curv`, `curv2`, `surf`,
+//!   `parm`, `trim`, `hole`, `scrv`, `sp`, `end`, `con`), and any unknown keyword (it might
+//!   define geometry the reader would silently lose, or shift the vertex numbering).
+//! * A UTF-8 byte order mark at the start is skipped. `#` starts a comment; a `\` at the end of
+//!   a line joins the next line to it.
 //! * Extra vertex values (`w`, or the common `r g b` colour extension) are ignored.
 
 use std::collections::BTreeMap;
@@ -13,10 +26,42 @@ use std::io::{self, Read, Write};
 
 use envelope_mesh::TriangleSoup;
 
-use crate::build::{check_vertex_count, checked_position, finish, push_polygon};
-use crate::error::{ReadError, ReadErrorKind};
+use crate::build::{Faces, check_vertex_count, checked_position, finish};
+use crate::error::{ReadError, ReadErrorKind, Word};
 use crate::input::{Input, Lines, parse_f64, parse_i64};
 use crate::{Format, ReadReport};
+
+/// Statements that define neither a vertex nor a face nor anything the surface depends on.
+const SKIPPED: [&[u8]; 19] = [
+    b"vt",
+    b"vn",
+    b"vp",
+    b"o",
+    b"g",
+    b"s",
+    b"mg",
+    b"mtllib",
+    b"usemtl",
+    b"maplib",
+    b"usemap",
+    b"l",
+    b"p",
+    b"lod",
+    b"bevel",
+    b"c_interp",
+    b"d_interp",
+    b"shadow_obj",
+    b"trace_obj",
+];
+
+/// Free-form render attributes: meaningful only for the free-form geometry refused below.
+const SKIPPED_FREE_FORM_ATTRIBUTES: [&[u8]; 2] = [b"ctech", b"stech"];
+
+/// Free-form geometry statements: curves and surfaces the reader cannot turn into triangles.
+const FREE_FORM: [&[u8]; 14] = [
+    b"cstype", b"deg", b"bmat", b"step", b"curv", b"curv2", b"surf", b"parm", b"trim", b"hole",
+    b"scrv", b"sp", b"end", b"con",
+];
 
 /// Reads the next logical line (joining `\` continuations); false at the end.
 fn next_statement<R: Read>(lines: &mut Lines<R>) -> Result<bool, ReadError> {
@@ -44,7 +89,7 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
     let mut lines = Lines::new(input, Some(b'#'));
     let mut report = ReadReport::new(Format::Obj);
     let mut positions = Vec::new();
-    let mut faces = Vec::new();
+    let mut faces = Faces::new();
     let mut poly: Vec<u32> = Vec::new();
     let mut face_no = 0u64;
     let mut ignored: BTreeMap<String, u64> = BTreeMap::new();
@@ -73,7 +118,7 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
                 check_vertex_count(n + 1).map_err(err)?;
                 positions.push(checked_position(p, n).map_err(err)?);
             }
-            b"f" => {
+            b"f" | b"fo" => {
                 poly.clear();
                 let n = positions.len() as i64;
                 for t in toks {
@@ -85,22 +130,39 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
                         _ => -1,
                     };
                     if index < 0 || index >= n {
-                        return Err(err(ReadErrorKind::IndexOutOfRange {
-                            what: "face",
-                            element: face_no,
-                            index,
+                        return Err(err(ReadErrorKind::ObjIndexOutOfRange {
+                            face: face_no,
+                            index: raw,
                             vertices: n as u64,
                         }));
                     }
                     poly.push(index as u32);
                 }
-                push_polygon(&mut faces, &poly, face_no, &mut report).map_err(err)?;
+                faces
+                    .push_polygon(&poly, face_no, loc, &mut report)
+                    .map_err(err)?;
                 face_no += 1;
             }
-            other => {
+            k if SKIPPED.contains(&k) || SKIPPED_FREE_FORM_ATTRIBUTES.contains(&k) => {
                 *ignored
-                    .entry(String::from_utf8_lossy(other).into_owned())
+                    .entry(String::from_utf8_lossy(k).into_owned())
                     .or_default() += 1;
+            }
+            k if FREE_FORM.contains(&k) => {
+                return Err(err(ReadErrorKind::UnsupportedStatement {
+                    keyword: Word::new(k),
+                    why: "free-form curves and surfaces are not supported; \
+                          only v and f statements make the mesh",
+                }));
+            }
+            k => {
+                return Err(err(ReadErrorKind::UnsupportedStatement {
+                    keyword: Word::new(k),
+                    why: "unknown OBJ statement (it might define geometry or vertices); \
+                          allowed: v, f, and the attribute and grouping statements \
+                          vt vn vp o g s mg mtllib usemtl maplib usemap l p lod bevel \
+                          c_interp d_interp shadow_obj trace_obj ctech stech",
+                }));
             }
         }
     }
@@ -110,8 +172,9 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
         ));
     }
     for (k, n) in ignored {
-        report.note(format!("ignored {n} '{k}' statements"));
+        report.note(format!("skipped {n} '{k}' statements"));
     }
+    let faces = faces.resolve(&positions)?;
     let loc = lines.location();
     finish(positions, faces, report).map_err(|k| ReadError::new(loc, k))
 }
@@ -215,28 +278,25 @@ mod tests {
         assert_eq!(kind("v 0 0 x\n"), ReadErrorKind::MalformedNumber);
         assert_eq!(
             kind("v 0 0 0\nf 1 2 3\n"),
-            ReadErrorKind::IndexOutOfRange {
-                what: "face",
-                element: 0,
-                index: 1,
+            ReadErrorKind::ObjIndexOutOfRange {
+                face: 0,
+                index: 2,
                 vertices: 1
             }
         );
         assert_eq!(
             kind("v 0 0 0\nv 0 0 0\nv 0 0 0\nf 1 2 3\nf 0 1 2\n"),
-            ReadErrorKind::IndexOutOfRange {
-                what: "face",
-                element: 1,
-                index: -1,
+            ReadErrorKind::ObjIndexOutOfRange {
+                face: 1,
+                index: 0,
                 vertices: 3
             }
         );
         assert_eq!(
             kind("v 0 0 0\nv 0 0 0\nv 0 0 0\nf -4 1 2\n"),
-            ReadErrorKind::IndexOutOfRange {
-                what: "face",
-                element: 0,
-                index: -1,
+            ReadErrorKind::ObjIndexOutOfRange {
+                face: 0,
+                index: -4,
                 vertices: 3
             }
         );
@@ -250,12 +310,13 @@ mod tests {
         assert_eq!(kind("v 0 0 0\nf x/1 1 1\n"), ReadErrorKind::MalformedNumber);
         assert_eq!(kind("v 0 0 0\nv 1 1 1\n"), ReadErrorKind::NoFaces);
         assert_eq!(kind(""), ReadErrorKind::NoFaces);
-        assert_eq!(
+        // Garbage is an unknown statement, not an empty mesh.
+        assert!(matches!(
             read(&[0xff, 0x00, 0x13, 0x80][..], Format::Obj)
                 .unwrap_err()
                 .kind,
-            ReadErrorKind::NoFaces
-        );
+            ReadErrorKind::UnsupportedStatement { .. }
+        ));
     }
 
     #[test]

@@ -2,35 +2,66 @@
 //! line, then one face per line as `n i_1 ... i_n [colour]`. `#` starts a comment.
 //!
 //! * The `COFF`, `NOFF`, `CNOFF`, `STOFF` ... variants are read by keeping the first three
-//!   values of each vertex line and ignoring the colour, normal and texture columns;
-//!   `4OFF` (homogeneous) and `nOFF` (other dimensions) and binary OFF are rejected.
+//!   values of each vertex line and ignoring the colour, normal and texture columns; `nOFF`
+//!   is read when its dimension is 3. `4OFF` (homogeneous), `nOFF` of other dimensions,
+//!   binary OFF and any other word on the OFF line are refused, and so is a file whose first
+//!   word is not an OFF keyword (the error says what it found, e.g. the counts of a file
+//!   without its `OFF` line). A UTF-8 byte order mark at the start is skipped.
 //! * After a face's `n` indices up to four colour values may follow (ignored).
-//! * Polygons with more than three corners are fan-triangulated from the first corner.
+//! * Polygons with more than three corners are triangulated without overlaps, as in OBJ.
 //! * Indices are 0-based; data after the announced faces is an error.
 
 use std::io::{self, Read, Write};
 
 use envelope_mesh::TriangleSoup;
 
-use crate::build::{check_vertex_count, checked_position, finish, push_polygon, vertex_index};
-use crate::error::{ReadError, ReadErrorKind};
+use crate::build::{Faces, check_vertex_count, checked_position, finish, vertex_index};
+use crate::error::{ReadError, ReadErrorKind, Word};
 use crate::input::{Input, Lines, parse_f64, parse_i64, parse_u64};
 use crate::{Format, ReadReport};
 
-/// Checks an OFF-family keyword: `[ST][C][N]OFF`.
-fn check_keyword(kw: &[u8]) -> Result<(), ReadErrorKind> {
+/// What an OFF-family keyword `[ST][C][N][4][n]OFF` announces.
+enum Keyword {
+    /// Vertices of three coordinates (the prefixes only add columns after them).
+    Xyz,
+    /// `nOFF`: the dimension comes before the counts.
+    Dimension,
+}
+
+/// Checks an OFF-family keyword.
+fn check_keyword(kw: &[u8]) -> Result<Keyword, ReadErrorKind> {
     let mut s = kw;
     for prefix in [&b"ST"[..], b"C", b"N"] {
         s = s.strip_prefix(prefix).unwrap_or(s);
     }
     match s {
-        b"OFF" => Ok(()),
-        [b'4', ..] => Err(ReadErrorKind::Unsupported("4OFF (homogeneous coordinates)")),
-        [b'n', ..] => Err(ReadErrorKind::Unsupported("nOFF (dimension other than 3)")),
-        _ => Err(ReadErrorKind::BadHeader(
-            "the first line must be OFF (or COFF, NOFF, STOFF)",
+        b"OFF" => Ok(Keyword::Xyz),
+        b"nOFF" => Ok(Keyword::Dimension),
+        b"4OFF" | b"4nOFF" => Err(ReadErrorKind::Unsupported(
+            "4OFF: homogeneous coordinates (x y z w); only 3-D OFF is read",
         )),
+        _ => Err(ReadErrorKind::NotOffKeyword {
+            found: Word::new(kw),
+        }),
     }
+}
+
+/// Numbers from the rest of the current line, or from the next non-blank line when it has none.
+fn header_numbers<R: Read>(
+    lines: &mut Lines<R>,
+    rest: Vec<u64>,
+    expected: &'static str,
+) -> Result<Vec<u64>, ReadError> {
+    if !rest.is_empty() {
+        return Ok(rest);
+    }
+    if !lines.next_nonblank()? {
+        return Err(lines.error(ReadErrorKind::Truncated { expected }));
+    }
+    lines
+        .tokens()
+        .map(|t| parse_u64(t).ok_or_else(|| lines.error(ReadErrorKind::MalformedNumber)))
+        .collect()
 }
 
 pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport), ReadError> {
@@ -41,32 +72,41 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
             expected: "OFF header",
         }));
     }
-    let mut toks: Vec<u64> = Vec::new();
+    let keyword;
+    let mut rest: Vec<u64> = Vec::new();
     {
         let mut t = lines.tokens();
         let kw = t.next().unwrap_or_default();
-        check_keyword(kw).map_err(|k| lines.error(k))?;
-        let rest: Vec<&[u8]> = t.collect();
-        if rest
+        keyword = check_keyword(kw).map_err(|k| lines.error(k))?;
+        let words: Vec<&[u8]> = t.collect();
+        if words
             .first()
             .is_some_and(|t| t.eq_ignore_ascii_case(b"BINARY"))
         {
             return Err(lines.error(ReadErrorKind::Unsupported("binary OFF")));
         }
-        for t in rest {
-            toks.push(parse_u64(t).ok_or_else(|| lines.error(ReadErrorKind::MalformedNumber))?);
+        for w in words {
+            let n = parse_u64(w).ok_or_else(|| {
+                lines.error(ReadErrorKind::UnsupportedStatement {
+                    keyword: Word::new(w),
+                    why: "unknown word on the OFF line; allowed after the keyword: BINARY \
+                          (refused) or the counts",
+                })
+            })?;
+            rest.push(n);
         }
     }
-    if toks.is_empty() {
-        if !lines.next_nonblank()? {
-            return Err(lines.error(ReadErrorKind::Truncated {
-                expected: "counts line",
-            }));
+    if let Keyword::Dimension = keyword {
+        let mut dim = header_numbers(&mut lines, rest, "nOFF dimension")?;
+        if dim.first() != Some(&3) {
+            return Err(lines.error(ReadErrorKind::Unsupported(
+                "nOFF with a dimension other than 3; only 3-D vertices are read",
+            )));
         }
-        for t in lines.tokens() {
-            toks.push(parse_u64(t).ok_or_else(|| lines.error(ReadErrorKind::MalformedNumber))?);
-        }
+        dim.remove(0);
+        rest = dim;
     }
+    let toks = header_numbers(&mut lines, rest, "counts line")?;
     let (nv, nf) = match toks[..] {
         [v, f] | [v, f, _] => (v, f),
         _ => {
@@ -80,7 +120,8 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
         return Err(lines.error(ReadErrorKind::NoFaces));
     }
     let mut positions = Vec::with_capacity(lines.input.reservation(nv, 6));
-    let mut faces = Vec::with_capacity(lines.input.reservation(nf, 8));
+    let mut faces = Faces::new();
+    faces.reserve(lines.input.reservation(nf, 8));
     let mut extra_vertex_columns = 0u64;
     for v in 0..nv {
         if !lines.next_nonblank()? {
@@ -144,7 +185,8 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
         if extra > 0 {
             coloured += 1;
         }
-        push_polygon(&mut faces, &poly, f, &mut report).map_err(err)?;
+        let at = lines.location();
+        faces.push_polygon(&poly, f, at, &mut report).map_err(err)?;
     }
     if lines.next_nonblank()? {
         return Err(lines.error(ReadErrorKind::TrailingData));
@@ -157,6 +199,7 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
     if coloured > 0 {
         report.note(format!("{coloured} faces had colour values (ignored)"));
     }
+    let faces = faces.resolve(&positions)?;
     let loc = lines.location();
     finish(positions, faces, report).map_err(|k| ReadError::new(loc, k))
 }
@@ -236,7 +279,12 @@ mod tests {
             kind("OFF BINARY\n"),
             ReadErrorKind::Unsupported(_)
         ));
-        assert!(matches!(kind("PLY\n"), ReadErrorKind::BadHeader(_)));
+        assert_eq!(
+            kind("PLY\n"),
+            ReadErrorKind::NotOffKeyword {
+                found: Word::new(b"PLY")
+            }
+        );
     }
 
     #[test]
@@ -360,7 +408,7 @@ mod tests {
             read(&[0x4f, 0x46, 0x46, 0xff, 0xfe][..], Format::Off)
                 .unwrap_err()
                 .kind,
-            ReadErrorKind::BadHeader(_)
+            ReadErrorKind::NotOffKeyword { .. }
         ));
     }
 

@@ -4,10 +4,15 @@
 //! * Elements and properties may come in any order and with any scalar type (`char uchar
 //!   short ushort int uint float double` and the `int8 ... float64` aliases); lists may use
 //!   any integer count type and any item type. Unknown elements and properties are skipped
-//!   (and named in the report); `comment` and `obj_info` lines are ignored.
+//!   (and named in the report): the header defines their layout, and only the `vertex`,
+//!   `face` and `tristrips` elements can define the mesh. An element declaring a property
+//!   twice, or a face element with both `vertex_indices` and `vertex_index`, is refused (the
+//!   reader would have to guess which one holds the data). `comment` and `obj_info` lines are
+//!   ignored; any other header keyword is refused. A UTF-8 byte order mark before `ply` is
+//!   skipped.
 //! * Vertices come from the `vertex` element's `x`, `y`, `z` properties; faces from the
-//!   `face` element's `vertex_indices` (or `vertex_index`) list, fan-triangulated from the
-//!   first corner; strips from the `tristrips` element's `vertex_indices` list, where `-1`
+//!   `face` element's `vertex_indices` (or `vertex_index`) list, polygons triangulated
+//!   without overlaps as in OBJ; strips from the `tristrips` element's `vertex_indices` list, where `-1`
 //!   restarts a strip, windings alternate, and triangles with a repeated corner are dropped.
 //! * Every value is read as declared: a `float` coordinate written in ascii is rounded to
 //!   `f32`, exactly as its binary encoding would be.
@@ -19,9 +24,7 @@ use std::io::{self, Read, Write};
 
 use envelope_mesh::TriangleSoup;
 
-use crate::build::{
-    check_vertex_count, checked_position, finish, push_polygon, push_strip, vertex_index,
-};
+use crate::build::{Faces, check_vertex_count, checked_position, finish, vertex_index};
 use crate::error::{Location, ReadError, ReadErrorKind};
 use crate::input::{Input, Lines, Tokens, io_error, parse_f32, parse_f64, parse_i64, parse_u64};
 use crate::{Format, PlyEncoding, ReadReport};
@@ -200,7 +203,19 @@ fn roles<R: Read>(lines: &Lines<R>, h: &Header) -> Result<Vec<Role>, ReadError> 
     let mut seen_vertex = false;
     let mut out = Vec::new();
     for e in &h.elements {
+        // Two properties of one name: which one a reader uses is a guess, the data could differ.
+        for (i, p) in e.props.iter().enumerate() {
+            if e.props[..i].iter().any(|q| q.name == p.name) {
+                return Err(bad(lines, "an element declares the same property twice"));
+            }
+        }
         let index_list = |e: &Element, names: &[&[u8]]| -> Result<Option<usize>, ReadError> {
+            if names.iter().filter(|n| e.find(&[n]).is_some()).count() > 1 {
+                return Err(bad(
+                    lines,
+                    "the face element has both vertex_indices and vertex_index lists",
+                ));
+            }
             match e.find(names) {
                 None => Ok(None),
                 Some(i) => match e.props[i].kind {
@@ -251,6 +266,8 @@ trait Source {
     /// Marks the start of an element item (the place errors point at).
     fn begin_item(&mut self);
     fn error(&self, kind: ReadErrorKind) -> ReadError;
+    /// Where the current item is (the place errors point at).
+    fn location(&self) -> Location;
     fn float(&mut self, t: Scalar, what: &'static str) -> Result<f64, ReadError>;
     fn int(&mut self, t: Scalar, what: &'static str) -> Result<i64, ReadError>;
     fn skip(&mut self, t: Scalar, n: u64, what: &'static str) -> Result<(), ReadError>;
@@ -314,7 +331,11 @@ impl<R: Read, const BE: bool> Source for Binary<'_, R, BE> {
     }
 
     fn error(&self, kind: ReadErrorKind) -> ReadError {
-        ReadError::new(Location::Byte(self.item_start), kind)
+        ReadError::new(self.location(), kind)
+    }
+
+    fn location(&self) -> Location {
+        Location::Byte(self.item_start)
     }
 
     #[inline]
@@ -376,6 +397,10 @@ impl<R: Read> Source for Ascii<R> {
         self.tokens.error(kind)
     }
 
+    fn location(&self) -> Location {
+        self.tokens.lines.location()
+    }
+
     fn float(&mut self, t: Scalar, what: &'static str) -> Result<f64, ReadError> {
         match t {
             Scalar::F32 => self.tokens.number(what, parse_f32).map(f64::from),
@@ -429,7 +454,7 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
     check_vertex_count(nv).map_err(|k| ReadError::new(body_location, k))?;
     let mut out = Output {
         positions: Vec::new(),
-        faces: Vec::new(),
+        faces: Faces::new(),
         poly: Vec::new(),
         nv,
         report: &mut report,
@@ -473,7 +498,8 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
             input.byte_location()
         }
     };
-    let (positions, faces) = (out.positions, out.faces);
+    let faces = out.faces.resolve(&out.positions)?;
+    let positions = out.positions;
     for (e, role) in header.elements.iter().zip(&roles) {
         let name = String::from_utf8_lossy(&e.name);
         let used: &[usize] = match role {
@@ -500,7 +526,7 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
 
 struct Output<'a> {
     positions: Vec<glam::DVec3>,
-    faces: Vec<[envelope_mesh::VertexId; 3]>,
+    faces: Faces,
     poly: Vec<u32>,
     nv: u64,
     report: &'a mut ReadReport,
@@ -578,7 +604,7 @@ fn read_faces<S: Source>(
                     for _ in 0..n {
                         let index = src.int(item, what)?;
                         if strips && index == -1 {
-                            push_strip(&mut out.faces, &out.poly, out.report);
+                            out.faces.push_strip(&out.poly, out.report);
                             out.poly.clear();
                             continue;
                         }
@@ -586,9 +612,11 @@ fn read_faces<S: Source>(
                         out.poly.push(v);
                     }
                     if strips {
-                        push_strip(&mut out.faces, &out.poly, out.report);
+                        out.faces.push_strip(&out.poly, out.report);
                     } else {
-                        push_polygon(&mut out.faces, &out.poly, f, out.report)
+                        let at = src.location();
+                        out.faces
+                            .push_polygon(&out.poly, f, at, out.report)
                             .map_err(|k| src.error(k))?;
                     }
                 }

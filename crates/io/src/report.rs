@@ -23,10 +23,14 @@ pub struct ReadReport {
     pub vertices: u64,
     /// Triangles in the soup.
     pub triangles: u64,
-    /// Faces with more than three corners, fan-triangulated from their first corner.
+    /// Faces with more than three corners, triangulated without overlaps (see
+    /// `envelope_predicates::polygon`).
     pub polygons_triangulated: u64,
     /// Triangles those polygons produced.
     pub triangles_from_polygons: u64,
+    /// Repeated consecutive corners (`f 1 2 2 3 4`, or a last corner equal to the first)
+    /// dropped from those polygons before triangulating.
+    pub polygon_corners_dropped: u64,
     /// Triangle strips expanded (PLY `tristrips`; each run between `-1` restarts counts).
     pub strips_expanded: u64,
     /// Strip triangles with a repeated corner (the usual strip-joining trick), dropped.
@@ -45,6 +49,7 @@ impl ReadReport {
             triangles: 0,
             polygons_triangulated: 0,
             triangles_from_polygons: 0,
+            polygon_corners_dropped: 0,
             strips_expanded: 0,
             strip_triangles_dropped: 0,
             stl_corners_welded: 0,
@@ -67,8 +72,15 @@ impl fmt::Display for ReadReport {
         if self.polygons_triangulated > 0 {
             write!(
                 f,
-                "\n{} polygons fan-triangulated into {} triangles",
+                "\n{} polygons triangulated into {} triangles",
                 self.polygons_triangulated, self.triangles_from_polygons
+            )?;
+        }
+        if self.polygon_corners_dropped > 0 {
+            write!(
+                f,
+                "\n{} repeated consecutive polygon corners dropped",
+                self.polygon_corners_dropped
             )?;
         }
         if self.strips_expanded > 0 {

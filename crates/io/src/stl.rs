@@ -9,7 +9,8 @@
 //! * Welding: corners with equal positions become one vertex (bitwise-equal `f32` triples,
 //!   with `-0` read as `+0`), numbered in order of first appearance. Facet normals are ignored.
 //! * A coordinate error names vertex `3 * facet + corner` (file order, before welding).
-//! * Ascii files may hold several `solid ... endsolid` blocks.
+//! * Ascii files may hold several `solid ... endsolid` blocks, and start with a UTF-8 byte
+//!   order mark (skipped). Any other keyword refuses the file.
 
 use std::collections::HashMap;
 use std::io::{Read, Write};
@@ -19,7 +20,7 @@ use glam::DVec3;
 
 use crate::build::{checked_position, finish};
 use crate::error::{Location, ReadError, ReadErrorKind, WriteError, WriteErrorKind};
-use crate::input::{Input, Lines, Tokens, io_error, parse_f32};
+use crate::input::{Input, Lines, Tokens, io_error, parse_f32, strip_bom};
 use crate::{Format, ReadReport, StlEncoding};
 
 /// The size a binary STL with this header must have (`head` holds at least 84 bytes).
@@ -28,7 +29,8 @@ pub(crate) fn binary_size(head: &[u8]) -> u64 {
     84 + 50 * u64::from(n)
 }
 
-fn looks_ascii(head: &[u8]) -> bool {
+pub(crate) fn looks_ascii(head: &[u8]) -> bool {
+    let head = strip_bom(head);
     let printable = head
         .iter()
         .all(|&b| b.is_ascii_graphic() || b.is_ascii_whitespace());
@@ -98,7 +100,7 @@ pub(crate) fn read<R: Read>(mut input: Input<R>) -> Result<(TriangleSoup, ReadRe
     let head = input
         .peek(512)
         .map_err(|e| io_error(&e, Location::Byte(0)))?;
-    let text = head.trim_ascii_start();
+    let text = strip_bom(head).trim_ascii_start();
     let solid = text.len() >= 5 && text[..5].eq_ignore_ascii_case(b"solid");
     if solid && looks_ascii(head) {
         read_ascii(input)

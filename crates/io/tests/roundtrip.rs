@@ -174,8 +174,9 @@ fn path_errors_name_the_file() {
     std::fs::write(&off, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n").unwrap();
     let e = read_path(&off).unwrap_err();
     assert!(
-        e.to_string()
-            .ends_with("bad.off: line 6: face 0: vertex index 3 out of range (3 vertices)"),
+        e.to_string().ends_with(
+            "bad.off: line 6: face 0: vertex index 3 out of range (3 vertices; allowed: 0 to 2)"
+        ),
         "{e}"
     );
 }

@@ -11,6 +11,8 @@
 //!   segment/triangle and triangle/triangle intersection (also for adjacent mesh faces),
 //!   point location in a triangle and in a closed surface, exact distance-vs-tolerance
 //!   comparisons, collinearity and T-junction tests.
+//! * [`polygon`]: triangulating a polygon face without overlaps (constrained Delaunay in an
+//!   axis-aligned projection, simplicity decided exactly).
 //! * [`bvh`]: a conservative bounding-volume hierarchy, and [`self_intersections`].
 //!
 //! Conventions: `orient3d(a, b, c, d)` is the sign of `((b-a)×(c-a))·(d-a)` (CGAL's; positive
@@ -25,6 +27,7 @@ pub mod arith;
 pub mod bvh;
 pub mod generic;
 mod kernel;
+pub mod polygon;
 mod range;
 mod sign;
 
