@@ -13,7 +13,9 @@ mod check;
 mod envelopes;
 mod genus;
 mod lod;
+mod outputs;
 mod pipeline;
+mod ranges;
 mod simplify;
 mod verify;
 
@@ -46,8 +48,8 @@ enum Command {
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
-        /// How many offending elements to list per class.
-        #[arg(long, default_value_t = 5)]
+        /// How many offending elements to list per class: 0..=10000.
+        #[arg(long, default_value_t = 5, value_parser = ranges::examples, allow_hyphen_values = true)]
         examples: usize,
     },
     /// Inner and outer simplification envelopes and border tubes (Cohen et al. 3, 4, 6.2-6.3).
@@ -74,7 +76,8 @@ enum Command {
     /// Run the main job on a built-in model (a cup: curved wall, sharp bottom crease, open
     /// rim): its chain of levels of detail at 1/64% ... 1%, certified, into ./envelope-demo/.
     Demo {
-        /// Output directory.
+        /// Output directory: created if missing (its parent must exist); files in it are
+        /// replaced only when the command completes.
         #[arg(long, default_value = "envelope-demo")]
         out_dir: PathBuf,
     },
@@ -112,6 +115,8 @@ fn main() -> ExitCode {
 /// The built-in model: a cup with curvature, a sharp crease and a border
 /// (`envelope_mesh::generate::demo_model`).
 fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
+    let epsilons = ranges::lengths(lod::DEFAULT_EPSILONS)?.0;
+    lod::plan_chain(&mut outputs::Plan::new(&[]), out_dir, epsilons.len())?;
     let model = generate::demo_model();
     println!(
         "built-in model: a cup, {} faces, {} vertices (curved fluted wall, sharp bottom crease, open rim)",
@@ -123,7 +128,7 @@ fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
         lod::Chain {
             input_label: "built-in cup (generate::demo_model)".into(),
             out_dir,
-            epsilons: lod::DEFAULT_EPSILONS,
+            epsilons: &epsilons,
             options: envelope_simplify::LodOptions::new(Vec::new()),
             quiet: false,
         },
