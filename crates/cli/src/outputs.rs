@@ -168,6 +168,13 @@ impl Plan {
 
     /// Checks a mesh file output and returns the format its extension names.
     pub(crate) fn mesh(&mut self, what: &str, path: &Path) -> Result<Format, String> {
+        if path.is_dir() {
+            // Said first: "unknown format" would hide that a directory was given.
+            return Err(format!(
+                "{what} {}: is a directory; give a file name",
+                path.display()
+            ));
+        }
         let format = Format::from_path(path).ok_or_else(|| {
             let ext = path
                 .extension()

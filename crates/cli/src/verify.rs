@@ -29,7 +29,7 @@ pub(crate) struct Args {
     relative: bool,
     /// Answer `undecided` where the bounds are closer than this, >= 0 [default: 1e-6 *
     /// epsilon].
-    #[arg(long, value_parser = ranges::resolution)]
+    #[arg(long, value_parser = ranges::resolution, allow_hyphen_values = true)]
     resolution: Option<f64>,
     /// Skip the self-intersection test of APPROX.
     #[arg(long)]
