@@ -125,6 +125,21 @@ pub(crate) fn run_chain(original: &TriangleSoup, mut chain: Chain<'_>) -> Result
         .iter()
         .map(|l| l.resolve("--epsilons", &chain.input_label, original))
         .collect::<Result<_, _>>()?;
+    if chain.options.rule == LodRule::Cumulative {
+        let e = &chain.options.epsilons;
+        if let Some(i) = (1..e.len()).find(|&i| e[i] <= e[i - 1]) {
+            return Err(format!(
+                "--epsilons: cumulative bounds must be strictly increasing, but item {} {:?} ({}) is not larger than item {} {:?} ({}) on {}; give them in increasing order, or use --rule sum for steps",
+                i + 1,
+                chain.epsilons[i].text,
+                ranges::show(e[i]),
+                i,
+                chain.epsilons[i - 1].text,
+                ranges::show(e[i - 1]),
+                chain.input_label
+            ));
+        }
+    }
     let dir = chain.out_dir;
     let mut staging = Staging::new();
     staging.dir(dir)?;

@@ -120,19 +120,34 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
         soup.num_faces(),
         show_genus(t0.genus)
     );
+    // A failed step names its input, its number and its text as the user wrote it.
+    let fail = |k: usize, e: String| {
+        let (kind, length) = &args.steps.steps[k];
+        let letter = match kind {
+            Kind::Preserve => 'e',
+            Kind::Reduce(false) => 'a',
+            Kind::Reduce(true) => 'u',
+        };
+        format!(
+            "{}: --steps step {} {letter}{}: {e}",
+            args.input.display(),
+            k + 1,
+            length.text
+        )
+    };
     for (k, step) in steps.iter().enumerate() {
         let start = Instant::now();
         let (label, value, extra) = match *step {
             (Kind::Preserve, eps) => {
                 let options = SimplifyOptions::new(EpsilonField::Constant(eps));
-                let (out, _) = simplify(&soup, &options, &mut ())
-                    .map_err(|e| format!("--steps step {} (e = {}): {e}", k + 1, show(eps)))?;
+                let (out, _) =
+                    simplify(&soup, &options, &mut ()).map_err(|e| fail(k, e.to_string()))?;
                 soup = out;
                 ("genus-preserving", eps, json!({}))
             }
             (Kind::Reduce(union), alpha) => {
-                let (out, report) = reduce(&soup, alpha, args.beta, union)
-                    .map_err(|e| format!("--steps step {} (a = {}): {e}", k + 1, show(alpha)))?;
+                let (out, report) =
+                    reduce(&soup, alpha, args.beta, union).map_err(|e| fail(k, e))?;
                 soup = out;
                 ("genus-reducing", alpha, report.to_json())
             }

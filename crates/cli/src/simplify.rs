@@ -156,7 +156,11 @@ pub(crate) struct Args {
 fn parse_point(s: &str) -> Result<DVec3, String> {
     let v: Vec<f64> = s
         .split(',')
-        .map(|t| t.trim().parse::<f64>().map_err(|e| format!("{t:?}: {e}")))
+        .map(|t| {
+            t.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("{t:?} is not a number; expected three finite numbers X,Y,Z"))
+        })
         .collect::<Result<_, _>>()?;
     match v[..] {
         [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(x, y, z)),

@@ -614,6 +614,15 @@ fn messages_name_the_argument_and_print_numbers_readably() {
             stderr(&o)
         );
     }
+    // Errors after the work started name the argument and the input.
+    let o = run(&["lod", &sphere, &s.p("l"), "--epsilons", "1%,1/2%"]);
+    assert_refused(
+        &o,
+        &["--epsilons", "increasing", "\"1/2%\"", "sphere.off"],
+        "lod order",
+    );
+    let o = run(&["pipeline", &s.p("bowtie.off"), &s.p("p2"), "--steps", "e1%"]);
+    assert_refused(&o, &["bowtie.off", "--steps step 1 e1%"], "pipeline step");
     s.assert_no_temporaries("messages");
 }
 
