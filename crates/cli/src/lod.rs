@@ -8,7 +8,8 @@
 //! Exit codes: 0 every level certified (or certification skipped), 1 a level violates its
 //! bound, 2 bad input or arguments, 3 a certificate is undecided. Every file is checked
 //! before any work and all are put in place together at the end (`crate::outputs`): on exit 2
-//! OUTDIR is left as it was; a missing OUTDIR is created (not its parents).
+//! OUTDIR is left as it was; on exit 1 and 3 every file is written (summary.json says which
+//! level failed); a missing OUTDIR is created (not its parents).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

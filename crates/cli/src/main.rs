@@ -7,6 +7,10 @@
 //!
 //! One module per subcommand; each exposes `Args` (clap) and `run(&Args) -> Result<ExitCode,
 //! String>` (an `Err` is printed as `envelope: error: ...` with exit 2).
+//!
+//! Shared by every subcommand: `outputs` (each output checked before any work, all written
+//! to temporaries and put in place only when the command completes, so exit 2 replaces
+//! nothing) and `ranges` (the valid range of each numeric argument, checked by clap).
 #![forbid(unsafe_code)]
 
 mod check;
@@ -60,11 +64,13 @@ enum Command {
     /// Simplify IN within epsilon of it (Cohen et al. 5-6) and write OUT atomically.
     ///
     /// Exit 0 written and certified, 1 the output fails its certificate (OUT untouched, the
-    /// output goes to OUT.failed.EXT), 2 bad input or arguments, 3 certificate undecided.
+    /// output goes to OUT.failed.EXT), 2 bad input or arguments (OUT and the report
+    /// untouched), 3 certificate undecided.
     Simplify(simplify::Args),
     /// Levels of detail with nested vertex sets and switching distances (Cohen et al. 7.2).
     ///
-    /// Writes OUTDIR/level-0.off (the input), level-1.off, ... and summary.json.
+    /// Writes OUTDIR/level-0.off (the input), level-1.off, ... and summary.json, all at the
+    /// end; OUTDIR is created if missing (its parent must exist).
     Lod(lod::Args),
     /// Fill the holes and tunnels an L-infinity cube of side 2*alpha cannot pass (El-Sana and
     /// Varshney 1997) and write OUT atomically.

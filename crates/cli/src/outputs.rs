@@ -102,8 +102,9 @@ fn probe_writable(what: &str, dir: &Path) -> Result<(), String> {
 pub(crate) struct Plan {
     inputs: Vec<(String, PathBuf)>,
     outputs: Vec<(String, PathBuf)>,
-    /// Missing output directories already checked (their files skip the directory checks).
-    new_dirs: Vec<PathBuf>,
+    /// Directories already checked (existing and writable, or missing with a writable
+    /// parent): their files skip the directory checks and the probe.
+    checked_dirs: Vec<PathBuf>,
 }
 
 impl Plan {
@@ -115,7 +116,7 @@ impl Plan {
                 .map(|(l, p)| ((*l).to_string(), p.to_path_buf()))
                 .collect(),
             outputs: Vec::new(),
-            new_dirs: Vec::new(),
+            checked_dirs: Vec::new(),
         }
     }
 
@@ -126,7 +127,7 @@ impl Plan {
             return Err(format!("{what} {shown}: not a file name"));
         }
         let dir = parent_of(path);
-        if !self.new_dirs.iter().any(|d| d == dir) {
+        if !self.checked_dirs.iter().any(|d| d == dir) {
             match fs::metadata(dir) {
                 Ok(m) if m.is_dir() => {}
                 Ok(_) => {
@@ -142,10 +143,11 @@ impl Plan {
                     ));
                 }
             }
-            if fs::metadata(path).is_ok_and(|m| m.is_dir()) {
-                return Err(format!("{what} {shown}: is a directory; give a file name"));
-            }
             probe_writable(&format!("{what} {shown}"), dir)?;
+            self.checked_dirs.push(dir.to_path_buf());
+        }
+        if fs::metadata(path).is_ok_and(|m| m.is_dir()) {
+            return Err(format!("{what} {shown}: is a directory; give a file name"));
         }
         for (label, input) in &self.inputs {
             if same_file(path, input) {
@@ -193,7 +195,10 @@ impl Plan {
     pub(crate) fn dir(&mut self, what: &str, dir: &Path, names: &[String]) -> Result<(), String> {
         let shown = dir.display();
         match fs::metadata(dir) {
-            Ok(m) if m.is_dir() => probe_writable(&format!("{what} {shown}"), dir)?,
+            Ok(m) if m.is_dir() => {
+                probe_writable(&format!("{what} {shown}"), dir)?;
+                self.checked_dirs.push(dir.to_path_buf());
+            }
             Ok(_) => return Err(format!("{what} {shown}: exists and is not a directory")),
             Err(_) => {
                 if dir.file_name().is_none() {
@@ -207,7 +212,7 @@ impl Plan {
                     ));
                 }
                 probe_writable(&format!("{what} {shown}"), parent)?;
-                self.new_dirs.push(dir.to_path_buf());
+                self.checked_dirs.push(dir.to_path_buf());
             }
         }
         for name in names {
