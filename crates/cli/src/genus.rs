@@ -25,7 +25,7 @@ pub struct Args {
     /// or a percentage of the bounding-box diagonal ("2%").
     #[arg(long, value_parser = ranges::length, allow_hyphen_values = true)]
     pub alpha: Length,
-    /// Sharp-edge threshold in degrees (angle between face normals), 0..=180.
+    /// Sharp-edge threshold in degrees (angle between face normals): (0, 180).
     #[arg(long, default_value_t = 70.0, value_parser = ranges::beta, allow_hyphen_values = true)]
     pub beta: f64,
     /// Also take rims from the union of alpha-prisms (fills narrow tunnels and holes through

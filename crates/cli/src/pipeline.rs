@@ -30,8 +30,8 @@ pub struct Args {
     /// replaced only when every step has run.
     pub out_dir: PathBuf,
     /// Comma-separated steps: `eX` genus-preserving at epsilon X, `aX` genus-reducing at
-    /// alpha X, `uX` genus-reducing at alpha X with the union-of-prisms rims (`--union`); X
-    /// > 0, absolute or a percentage of the input diagonal.
+    /// alpha X, `uX` genus-reducing at alpha X with the union-of-prisms rims (`--union`);
+    /// each X > 0, absolute or a percentage of the input diagonal.
     #[arg(long, default_value = "e0.5%,a2%,e1%,a5%,e2%", value_parser = parse_steps)]
     pub steps: Steps,
     /// Sharp-edge threshold of the genus-reducing steps, degrees: (0, 180).

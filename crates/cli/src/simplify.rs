@@ -120,8 +120,7 @@ pub(crate) struct Args {
     #[arg(long, conflicts_with_all = ["epsilon", "viewpoint"])]
     epsilon_file: Option<PathBuf>,
     /// Adaptive epsilon (6.3) growing with the distance to this point `X,Y,Z` (three finite
-    /// numbers): linear from
-    /// --epsilon at the nearest vertex to --epsilon-far at the farthest.
+    /// numbers): linear from --epsilon at the nearest vertex to --epsilon-far at the farthest.
     #[arg(long, value_parser = parse_point, requires_all = ["epsilon", "epsilon_far"], allow_hyphen_values = true)]
     viewpoint: Option<DVec3>,
     /// With --viewpoint: the epsilon at the farthest vertex, > 0 (same syntax as --epsilon).
