@@ -3,15 +3,18 @@
 //! Writes `outer.EXT`, `inner.EXT` and `tube-N.EXT` into the output directory, prints the
 //! achieved per-vertex epsilon (min, median, max as a fraction of the requested), the time
 //! and the exact non-intersection proof. Exit 0 when proved, 1 when not, 2 for bad input.
+//! The output directory is checked before any work and its files are put in place together
+//! at the end (`crate::outputs`); a missing one is created (not its parents).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use envelope_io::{Format, PlyEncoding, read_path, write_path};
-use envelope_offset::{
-    EnvelopeOptions, EpsilonField, Method, build_envelopes, parse_epsilon, read_epsilon_file,
-};
+use envelope_io::{Format, PlyEncoding, read_path};
+use envelope_offset::{EnvelopeOptions, EpsilonField, Method, build_envelopes, read_epsilon_file};
+
+use crate::outputs::{Plan, Staging};
+use crate::ranges::{self, Length};
 
 /// Which epsilon method.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -36,9 +39,10 @@ enum FormatArg {
 pub(crate) struct Args {
     /// Input mesh (OBJ, OFF, PLY, STL); must be manifold and consistently oriented.
     input: PathBuf,
-    /// Requested epsilon: `0.5%` or `1/64%` of the bounding-box diagonal, or an absolute length.
-    #[arg(long, required_unless_present = "epsilon_file")]
-    epsilon: Option<String>,
+    /// Requested epsilon, > 0: `0.5%` or `1/64%` of the bounding-box diagonal, or an absolute
+    /// length.
+    #[arg(long, required_unless_present = "epsilon_file", value_parser = ranges::length, allow_hyphen_values = true)]
+    epsilon: Option<Length>,
     /// Per-vertex epsilon file: one value per line in vertex order (same syntax as
     /// --epsilon), `#` comments.
     #[arg(long, conflicts_with = "epsilon")]
@@ -46,14 +50,15 @@ pub(crate) struct Args {
     /// Epsilon method.
     #[arg(long, value_enum, default_value_t = MethodArg::Numerical)]
     method: MethodArg,
-    /// Output directory.
+    /// Output directory: created if missing (its parent must exist); files in it are
+    /// replaced only when the command completes.
     #[arg(long, default_value = "envelopes-out")]
     out_dir: PathBuf,
     /// Output mesh format.
     #[arg(long, value_enum, default_value_t = FormatArg::Off)]
     format: FormatArg,
-    /// Vertices per border-tube ring (0: no tubes).
-    #[arg(long, default_value_t = 8)]
+    /// Vertices per border-tube ring: 0 (no tubes) or 3..=64.
+    #[arg(long, default_value_t = 8, value_parser = ranges::tube_segments, allow_hyphen_values = true)]
     tube_segments: u32,
     /// Print one JSON object instead of text.
     #[arg(long)]
@@ -68,16 +73,32 @@ fn quantile(sorted: &[f64], q: f64) -> f64 {
 }
 
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
+    let (format, ext) = match args.format {
+        FormatArg::Off => (Format::Off, "off"),
+        FormatArg::Ply => (Format::Ply(PlyEncoding::BinaryLittleEndian), "ply"),
+    };
+    let mut inputs = vec![("INPUT", args.input.as_path())];
+    if let Some(path) = &args.epsilon_file {
+        inputs.push(("--epsilon-file", path));
+    }
+    let mut plan = Plan::new(&inputs);
+    let names = [format!("outer.{ext}"), format!("inner.{ext}")];
+    plan.dir("--out-dir", &args.out_dir, &names)?;
+    let tube_ext = format!(".{ext}");
+    plan.inputs_not_in("--out-dir", &args.out_dir, |n| {
+        n.starts_with("tube-") && n.ends_with(&tube_ext)
+    })?;
     let (soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
     let diagonal = soup.diagonal();
     let field = match (&args.epsilon, &args.epsilon_file) {
-        (Some(e), _) => {
-            let spec = parse_epsilon(e).map_err(|err| format!("--epsilon {e:?}: {err}"))?;
-            EpsilonField::Constant(spec.resolve(diagonal))
-        }
+        (Some(e), _) => EpsilonField::Constant(e.resolve(
+            "--epsilon",
+            &args.input.display().to_string(),
+            &soup,
+        )?),
         (None, Some(f)) => {
             let specs = read_epsilon_file(f, soup.num_vertices())
-                .map_err(|err| format!("{}: {err}", f.display()))?;
+                .map_err(|err| format!("--epsilon-file {}: {err}", f.display()))?;
             EpsilonField::from_specs(&specs, diagonal)
         }
         (None, None) => return Err("--epsilon or --epsilon-file is required".into()),
@@ -94,16 +115,12 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         build_envelopes(&soup, &options).map_err(|e| format!("{}: {e}", args.input.display()))?;
     let seconds = start.elapsed().as_secs_f64();
 
-    let (format, ext) = match args.format {
-        FormatArg::Off => (Format::Off, "off"),
-        FormatArg::Ply => (Format::Ply(PlyEncoding::BinaryLittleEndian), "ply"),
-    };
-    std::fs::create_dir_all(&args.out_dir)
-        .map_err(|e| format!("{}: {e}", args.out_dir.display()))?;
+    let mut staging = Staging::new();
+    staging.dir(&args.out_dir)?;
     let mut written = Vec::new();
     let mut write = |name: String, mesh: &envelope_mesh::TriangleSoup| -> Result<(), String> {
         let p = args.out_dir.join(name);
-        write_path(&p, mesh, format).map_err(|e| e.to_string())?;
+        staging.mesh(&p, mesh, format)?;
         written.push(p.display().to_string());
         Ok(())
     };
@@ -112,6 +129,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     for (i, t) in env.tubes.iter().enumerate() {
         write(format!("tube-{i}.{ext}"), &t.mesh)?;
     }
+    staging.commit()?;
 
     let fractions = env.achieved_fractions();
     let (min, median, max) = (

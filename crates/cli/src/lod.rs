@@ -6,18 +6,23 @@
 //! `d = eps * W / (2 * P * tan(fov / 2))` are documented in `envelope_simplify::lod`.
 //!
 //! Exit codes: 0 every level certified (or certification skipped), 1 a level violates its
-//! bound, 2 bad input or arguments, 3 a certificate is undecided.
+//! bound, 2 bad input or arguments, 3 a certificate is undecided. Every file is checked
+//! before any work and all are put in place together at the end (`crate::outputs`): on exit 2
+//! OUTDIR is left as it was; on exit 1 and 3 every file is written (summary.json says which
+//! level failed); a missing OUTDIR is created (not its parents).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use envelope_io::{Format, read_path, write_path};
+use envelope_io::{Format, read_path};
 use envelope_mesh::TriangleSoup;
 use envelope_simplify::{Level, LodOptions, LodRule, Screen, lod_chain};
 use envelope_verify::Verdict;
 use serde_json::json;
 
-use crate::simplify::{Bar, FillArg, MethodArg, resolve_epsilon};
+use crate::outputs::{Plan, Staging};
+use crate::ranges::{self, Length, Lengths};
+use crate::simplify::{Bar, FillArg, MethodArg};
 
 /// The paper's bunny epsilons (Table 1, Figure 11): 1/64 % ... 1 % of the diagonal.
 pub(crate) const DEFAULT_EPSILONS: &str = "1/64%,1/32%,1/16%,1/8%,1/4%,1/2%,1%";
@@ -36,22 +41,23 @@ pub(crate) enum RuleArg {
 pub(crate) struct Args {
     /// Input mesh (OBJ, OFF, PLY, STL); must pass `envelope check`.
     input: PathBuf,
-    /// Output directory (created).
+    /// Output directory: created if missing (its parent must exist); files in it are
+    /// replaced only when the command completes.
     out_dir: PathBuf,
-    /// Comma-separated epsilons (`1/64%`, `0.5%`, or absolute lengths), increasing.
-    #[arg(long, default_value = DEFAULT_EPSILONS)]
-    epsilons: String,
+    /// Comma-separated epsilons, each > 0 (`1/64%`, `0.5%`, or absolute lengths), increasing.
+    #[arg(long, default_value = DEFAULT_EPSILONS, value_parser = ranges::lengths, allow_hyphen_values = true)]
+    epsilons: Lengths,
     /// How the epsilons become bounds to the original.
     #[arg(long, value_enum, default_value_t = RuleArg::Cumulative)]
     rule: RuleArg,
-    /// Tolerated screen error in pixels, for switching distances.
-    #[arg(long, default_value_t = 1.0)]
+    /// Tolerated screen error in pixels, for switching distances: (0, 1e6].
+    #[arg(long, default_value_t = 1.0, value_parser = ranges::pixels, allow_hyphen_values = true)]
     pixels: f64,
-    /// Screen width in pixels, for switching distances.
-    #[arg(long, default_value_t = 1920.0)]
+    /// Screen width in pixels, for switching distances: (0, 1e6].
+    #[arg(long, default_value_t = 1920.0, value_parser = ranges::pixels, allow_hyphen_values = true)]
     resolution: f64,
-    /// Horizontal field of view in degrees, for switching distances.
-    #[arg(long, default_value_t = 60.0)]
+    /// Horizontal field of view in degrees, for switching distances: (0, 180).
+    #[arg(long, default_value_t = 60.0, value_parser = ranges::fov, allow_hyphen_values = true)]
     fov: f64,
     /// Envelope method.
     #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
@@ -71,24 +77,22 @@ pub(crate) struct Args {
 pub(crate) struct Chain<'a> {
     pub(crate) input_label: String,
     pub(crate) out_dir: &'a Path,
-    pub(crate) epsilons: &'a str,
+    pub(crate) epsilons: &'a [Length],
     pub(crate) options: LodOptions,
     pub(crate) quiet: bool,
 }
 
+/// Checks OUTDIR and the files a chain of `levels` levels writes there.
+pub(crate) fn plan_chain(plan: &mut Plan, out_dir: &Path, levels: usize) -> Result<(), String> {
+    let mut names: Vec<String> = (0..=levels).map(|i| format!("level-{i}.off")).collect();
+    names.push("summary.json".into());
+    plan.dir("OUTDIR", out_dir, &names)
+}
+
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
+    let mut plan = Plan::new(&[("IN", &args.input)]);
+    plan_chain(&mut plan, &args.out_dir, args.epsilons.0.len())?;
     let (soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
-    for (flag, x) in [("--pixels", args.pixels), ("--resolution", args.resolution)] {
-        if !(x.is_finite() && x > 0.0) {
-            return Err(format!("{flag} must be positive (got {x})"));
-        }
-    }
-    if !(args.fov > 0.0 && args.fov < 180.0) {
-        return Err(format!(
-            "--fov must be in (0, 180) degrees (got {})",
-            args.fov
-        ));
-    }
     let mut options = LodOptions::new(Vec::new());
     options.rule = match args.rule {
         RuleArg::Cumulative => LodRule::Cumulative,
@@ -107,7 +111,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         Chain {
             input_label: args.input.display().to_string(),
             out_dir: &args.out_dir,
-            epsilons: &args.epsilons,
+            epsilons: &args.epsilons.0,
             options,
             quiet: args.quiet,
         },
@@ -119,21 +123,37 @@ pub(crate) fn run_chain(original: &TriangleSoup, mut chain: Chain<'_>) -> Result
     let diagonal = original.diagonal();
     chain.options.epsilons = chain
         .epsilons
-        .split(',')
-        .map(|s| resolve_epsilon("--epsilons", s.trim(), diagonal))
+        .iter()
+        .map(|l| l.resolve("--epsilons", &chain.input_label, original))
         .collect::<Result<_, _>>()?;
+    if chain.options.rule == LodRule::Cumulative {
+        let e = &chain.options.epsilons;
+        if let Some(i) = (1..e.len()).find(|&i| e[i] <= e[i - 1]) {
+            return Err(format!(
+                "--epsilons: cumulative bounds must be strictly increasing, but item {} {:?} ({}) is not larger than item {} {:?} ({}) on {}; give them in increasing order, or use --rule sum for steps",
+                i + 1,
+                chain.epsilons[i].text,
+                ranges::show(e[i]),
+                i,
+                chain.epsilons[i - 1].text,
+                ranges::show(e[i - 1]),
+                chain.input_label
+            ));
+        }
+    }
     let dir = chain.out_dir;
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let mut staging = Staging::new();
+    staging.dir(dir)?;
     let level_path = |i: usize| dir.join(format!("level-{i}.off"));
-    write_path(level_path(0), original, Format::Off).map_err(|e| e.to_string())?;
+    staging.mesh(&level_path(0), original, Format::Off)?;
 
     let start = std::time::Instant::now();
     let mut bar = Bar::new(chain.quiet, "");
     let n = chain.options.epsilons.len();
     let mut write_error = None;
     let mut on_level = |l: &Level| {
-        if let Err(e) = write_path(level_path(l.index), &l.mesh, Format::Off) {
-            write_error.get_or_insert(e.to_string());
+        if let Err(e) = staging.mesh(&level_path(l.index), &l.mesh, Format::Off) {
+            write_error.get_or_insert(e);
         }
     };
     // The bar's prefix names the level being built.
@@ -193,8 +213,8 @@ pub(crate) fn run_chain(original: &TriangleSoup, mut chain: Chain<'_>) -> Result
     });
     let summary_path = dir.join("summary.json");
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
-    std::fs::write(&summary_path, text + "\n")
-        .map_err(|e| format!("{}: {e}", summary_path.display()))?;
+    staging.text(&summary_path, &(text + "\n"))?;
+    staging.commit()?;
 
     if !chain.quiet {
         print_table(original, &levels, diagonal);

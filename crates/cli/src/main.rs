@@ -7,13 +7,19 @@
 //!
 //! One module per subcommand; each exposes `Args` (clap) and `run(&Args) -> Result<ExitCode,
 //! String>` (an `Err` is printed as `envelope: error: ...` with exit 2).
+//!
+//! Shared by every subcommand: `outputs` (each output checked before any work, all written
+//! to temporaries and put in place only when the command completes, so exit 2 replaces
+//! nothing) and `ranges` (the valid range of each numeric argument, checked by clap).
 #![forbid(unsafe_code)]
 
 mod check;
 mod envelopes;
 mod genus;
 mod lod;
+mod outputs;
 mod pipeline;
+mod ranges;
 mod simplify;
 mod verify;
 
@@ -46,8 +52,8 @@ enum Command {
         /// Print one JSON object instead of text.
         #[arg(long)]
         json: bool,
-        /// How many offending elements to list per class.
-        #[arg(long, default_value_t = 5)]
+        /// How many offending elements to list per class: 0..=10000.
+        #[arg(long, default_value_t = 5, value_parser = ranges::examples, allow_hyphen_values = true)]
         examples: usize,
     },
     /// Inner and outer simplification envelopes and border tubes (Cohen et al. 3, 4, 6.2-6.3).
@@ -58,11 +64,13 @@ enum Command {
     /// Simplify IN within epsilon of it (Cohen et al. 5-6) and write OUT atomically.
     ///
     /// Exit 0 written and certified, 1 the output fails its certificate (OUT untouched, the
-    /// output goes to OUT.failed.EXT), 2 bad input or arguments, 3 certificate undecided.
+    /// output goes to OUT.failed.EXT), 2 bad input or arguments (OUT and the report
+    /// untouched), 3 certificate undecided.
     Simplify(simplify::Args),
     /// Levels of detail with nested vertex sets and switching distances (Cohen et al. 7.2).
     ///
-    /// Writes OUTDIR/level-0.off (the input), level-1.off, ... and summary.json.
+    /// Writes OUTDIR/level-0.off (the input), level-1.off, ... and summary.json, all at the
+    /// end; OUTDIR is created if missing (its parent must exist).
     Lod(lod::Args),
     /// Fill the holes and tunnels an L-infinity cube of side 2*alpha cannot pass (El-Sana and
     /// Varshney 1997) and write OUT atomically.
@@ -74,7 +82,8 @@ enum Command {
     /// Run the main job on a built-in model (a cup: curved wall, sharp bottom crease, open
     /// rim): its chain of levels of detail at 1/64% ... 1%, certified, into ./envelope-demo/.
     Demo {
-        /// Output directory.
+        /// Output directory: created if missing (its parent must exist); files in it are
+        /// replaced only when the command completes.
         #[arg(long, default_value = "envelope-demo")]
         out_dir: PathBuf,
     },
@@ -112,6 +121,8 @@ fn main() -> ExitCode {
 /// The built-in model: a cup with curvature, a sharp crease and a border
 /// (`envelope_mesh::generate::demo_model`).
 fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
+    let epsilons = ranges::lengths(lod::DEFAULT_EPSILONS)?.0;
+    lod::plan_chain(&mut outputs::Plan::new(&[]), out_dir, epsilons.len())?;
     let model = generate::demo_model();
     println!(
         "built-in model: a cup, {} faces, {} vertices (curved fluted wall, sharp bottom crease, open rim)",
@@ -123,7 +134,7 @@ fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
         lod::Chain {
             input_label: "built-in cup (generate::demo_model)".into(),
             out_dir,
-            epsilons: lod::DEFAULT_EPSILONS,
+            epsilons: &epsilons,
             options: envelope_simplify::LodOptions::new(Vec::new()),
             quiet: false,
         },

@@ -3,82 +3,112 @@
 //! that alpha; `u`, the same with the union-of-alpha-prisms rims, `envelope genus --union`)
 //! steps, as in Fig. 11 and Table 1 of El-Sana and Varshney (1997). Percentages
 //! are of the *input's* bounding-box diagonal (the paper's convention). Writes
-//! OUTDIR/stage-0.off (the input), stage-1.off, ... and summary.json.
+//! OUTDIR/stage-0.off (the input), stage-1.off, ... and summary.json, all put in place
+//! together when every step has run (`crate::outputs`); a missing OUTDIR is created (not its
+//! parents).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use envelope_io::{Format, read_path, write_path};
-use envelope_mesh::analyze;
+use envelope_io::{Format, read_path};
+use envelope_mesh::{TriangleSoup, analyze};
 use envelope_offset::EpsilonField;
 use envelope_simplify::{SimplifyOptions, simplify};
 use serde_json::json;
 
-use crate::genus::{reduce, resolve_length, write_text_atomic};
+use crate::genus::reduce;
+use crate::outputs::{Plan, Staging};
+use crate::ranges::{self, Length, show, show_genus};
 
 /// Arguments of `envelope pipeline`.
 #[derive(clap::Args)]
 pub struct Args {
     /// Input mesh (OBJ, OFF, PLY, STL).
     pub input: PathBuf,
-    /// Output directory (created if missing).
+    /// Output directory: created if missing (its parent must exist); files in it are
+    /// replaced only when every step has run.
     pub out_dir: PathBuf,
     /// Comma-separated steps: `eX` genus-preserving at epsilon X, `aX` genus-reducing at
-    /// alpha X, `uX` genus-reducing at alpha X with the union-of-prisms rims (`--union`); X
-    /// absolute or a percentage of the input diagonal.
-    #[arg(long, default_value = "e0.5%,a2%,e1%,a5%,e2%")]
-    pub steps: String,
-    /// Sharp-edge threshold of the genus-reducing steps, degrees.
-    #[arg(long, default_value_t = 70.0)]
+    /// alpha X, `uX` genus-reducing at alpha X with the union-of-prisms rims (`--union`);
+    /// each X > 0, absolute or a percentage of the input diagonal.
+    #[arg(long, default_value = "e0.5%,a2%,e1%,a5%,e2%", value_parser = parse_steps)]
+    pub steps: Steps,
+    /// Sharp-edge threshold of the genus-reducing steps, degrees: (0, 180).
+    #[arg(long, default_value_t = 70.0, value_parser = ranges::beta, allow_hyphen_values = true)]
     pub beta: f64,
 }
 
-/// One parsed step.
+/// What a step does.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Step {
-    Preserve(f64),
-    /// Alpha, and whether the union-of-prisms rims are used.
-    Reduce(f64, bool),
+enum Kind {
+    /// Genus-preserving simplification (`e`).
+    Preserve,
+    /// Genus reduction (`a`), with the union-of-prisms rims (`u`) when true.
+    Reduce(bool),
 }
 
-fn parse_steps(s: &str, diagonal: f64) -> Result<Vec<Step>, String> {
+/// The parsed `--steps` (their text is kept for the summary).
+#[derive(Clone, Debug)]
+pub struct Steps {
+    text: String,
+    steps: Vec<(Kind, Length)>,
+}
+
+fn parse_steps(s: &str) -> Result<Steps, String> {
     let mut steps = Vec::new();
-    for raw in s.split(',') {
+    for (i, raw) in s.split(',').enumerate() {
         let t = raw.trim();
-        if let Some(v) = t.strip_prefix('e') {
-            steps.push(Step::Preserve(resolve_length("--steps e", v, diagonal)?));
-        } else if let Some(v) = t.strip_prefix('a') {
-            steps.push(Step::Reduce(
-                resolve_length("--steps a", v, diagonal)?,
-                false,
-            ));
-        } else if let Some(v) = t.strip_prefix('u') {
-            steps.push(Step::Reduce(
-                resolve_length("--steps u", v, diagonal)?,
-                true,
-            ));
-        } else {
-            return Err(format!(
-                "--steps: {t:?} must start with 'e' (genus-preserving), 'a' or 'u' (genus-reducing)"
-            ));
-        }
+        let mut chars = t.chars();
+        let kind = match chars.next() {
+            Some('e') => Kind::Preserve,
+            Some('a') => Kind::Reduce(false),
+            Some('u') => Kind::Reduce(true),
+            _ => {
+                return Err(format!(
+                    "step {} {t:?} must start with 'e' (genus-preserving), 'a' or 'u' (genus-reducing)",
+                    i + 1
+                ));
+            }
+        };
+        let value =
+            ranges::length(chars.as_str()).map_err(|e| format!("step {} {t:?}: {e}", i + 1))?;
+        steps.push((kind, value));
     }
-    if steps.is_empty() {
-        return Err("--steps: no step".into());
-    }
-    Ok(steps)
+    Ok(Steps {
+        text: s.to_string(),
+        steps,
+    })
+}
+
+/// The steps' lengths on the input.
+fn resolve_steps(
+    steps: &Steps,
+    input: &str,
+    soup: &TriangleSoup,
+) -> Result<Vec<(Kind, f64)>, String> {
+    steps
+        .steps
+        .iter()
+        .map(|(kind, l)| Ok((*kind, l.resolve("--steps", input, soup)?)))
+        .collect()
 }
 
 /// Runs `envelope pipeline`.
 pub fn run(args: &Args) -> Result<ExitCode, String> {
+    let mut plan = Plan::new(&[("IN", &args.input)]);
+    let mut names: Vec<String> = (0..=args.steps.steps.len())
+        .map(|k| format!("stage-{k}.off"))
+        .collect();
+    names.push("summary.json".into());
+    plan.dir("OUTDIR", &args.out_dir, &names)?;
     let (mut soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
     let diagonal = soup.diagonal();
-    let steps = parse_steps(&args.steps, diagonal)?;
-    std::fs::create_dir_all(&args.out_dir)
-        .map_err(|e| format!("{}: {e}", args.out_dir.display()))?;
+    let steps = resolve_steps(&args.steps, &args.input.display().to_string(), &soup)?;
+    let mut staging = Staging::new();
+    staging.dir(&args.out_dir)?;
     let stage_path = |k: usize| args.out_dir.join(format!("stage-{k}.off"));
-    write_path(stage_path(0), &soup, Format::Off).map_err(|e| e.to_string())?;
+    staging.mesh(&stage_path(0), &soup, Format::Off)?;
     let t0 = analyze(&soup);
     let mut stages = vec![json!({
         "stage": 0, "step": "input", "faces": soup.num_faces(), "genus": t0.genus,
@@ -86,36 +116,51 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
         "file": "stage-0.off",
     })];
     println!(
-        "stage 0: input, {} faces, genus {:?}",
+        "stage 0: input, {} faces, genus {}",
         soup.num_faces(),
-        t0.genus
+        show_genus(t0.genus)
     );
+    // A failed step names its input, its number and its text as the user wrote it.
+    let fail = |k: usize, e: String| {
+        let (kind, length) = &args.steps.steps[k];
+        let letter = match kind {
+            Kind::Preserve => 'e',
+            Kind::Reduce(false) => 'a',
+            Kind::Reduce(true) => 'u',
+        };
+        format!(
+            "{}: --steps step {} {letter}{}: {e}",
+            args.input.display(),
+            k + 1,
+            length.text
+        )
+    };
     for (k, step) in steps.iter().enumerate() {
         let start = Instant::now();
         let (label, value, extra) = match *step {
-            Step::Preserve(eps) => {
+            (Kind::Preserve, eps) => {
                 let options = SimplifyOptions::new(EpsilonField::Constant(eps));
-                let (out, _) = simplify(&soup, &options, &mut ())
-                    .map_err(|e| format!("stage {} (e = {eps}): {e}", k + 1))?;
+                let (out, _) =
+                    simplify(&soup, &options, &mut ()).map_err(|e| fail(k, e.to_string()))?;
                 soup = out;
                 ("genus-preserving", eps, json!({}))
             }
-            Step::Reduce(alpha, union) => {
-                let (out, report) = reduce(&soup, alpha, args.beta, union)
-                    .map_err(|e| format!("stage {} (a = {alpha}): {e}", k + 1))?;
+            (Kind::Reduce(union), alpha) => {
+                let (out, report) =
+                    reduce(&soup, alpha, args.beta, union).map_err(|e| fail(k, e))?;
                 soup = out;
                 ("genus-reducing", alpha, report.to_json())
             }
         };
         let seconds = start.elapsed().as_secs_f64();
-        let path = stage_path(k + 1);
-        write_path(&path, &soup, Format::Off).map_err(|e| e.to_string())?;
+        staging.mesh(&stage_path(k + 1), &soup, Format::Off)?;
         let t = analyze(&soup);
         println!(
-            "stage {}: {label} at {value}, {} faces, genus {:?}, {seconds:.3} s",
+            "stage {}: {label} at {}, {} faces, genus {}, {seconds:.3} s",
             k + 1,
+            show(value),
             soup.num_faces(),
-            t.genus
+            show_genus(t.genus)
         );
         stages.push(json!({
             "stage": k + 1, "step": label, "value": value, "faces": soup.num_faces(),
@@ -126,11 +171,12 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
     let summary = json!({
         "input": args.input.display().to_string(),
         "diagonal": diagonal,
-        "steps": args.steps,
+        "steps": args.steps.text,
         "stages": stages,
     });
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
-    write_text_atomic(&args.out_dir.join("summary.json"), &text)?;
+    staging.text(&args.out_dir.join("summary.json"), &(text + "\n"))?;
+    staging.commit()?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -140,17 +186,22 @@ mod tests {
 
     #[test]
     fn steps_parse_and_reject() {
-        assert_eq!(
-            parse_steps("e1%, a0.5", 10.0).unwrap(),
-            vec![Step::Preserve(0.1), Step::Reduce(0.5, false)]
+        let tri = TriangleSoup::from_raw(
+            &[[0.0, 0.0, 0.0], [6.0, 0.0, 0.0], [0.0, 8.0, 0.0]],
+            &[[0, 1, 2]],
         );
+        let s = parse_steps("e1%, a0.5").unwrap();
         assert_eq!(
-            parse_steps("u2%", 10.0).unwrap(),
-            vec![Step::Reduce(0.2, true)]
+            resolve_steps(&s, "t", &tri).unwrap(),
+            vec![(Kind::Preserve, 0.1), (Kind::Reduce(false), 0.5)]
         );
-        assert!(parse_steps("u", 1.0).is_err());
-        assert!(parse_steps("x1", 1.0).is_err());
-        assert!(parse_steps("e-1", 1.0).is_err());
-        assert!(parse_steps("a", 1.0).is_err());
+        let s = parse_steps("u2%").unwrap();
+        assert_eq!(
+            resolve_steps(&s, "t", &tri).unwrap(),
+            vec![(Kind::Reduce(true), 0.2)]
+        );
+        for bad in ["u", "x1", "e-1", "a", "", "e1%,"] {
+            assert!(parse_steps(bad).is_err(), "{bad}");
+        }
     }
 }

@@ -5,21 +5,25 @@
 //! Exit codes: 0 written and certified (or certification skipped), 1 the certificate found a
 //! violation (OUT is left as it was; the output goes to `OUT.failed.EXT` for inspection), 2 bad
 //! input or arguments (OUT is left as it was), 3 the certificate is undecided (OUT written).
-//! OUT is written atomically (temporary file, then rename).
+//! Every output is checked before any work and written through `crate::outputs` (temporary
+//! files renamed at the end), so a failing step leaves OUT and the report as they were.
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use envelope_io::{Format, read_path, write_path};
+use envelope_io::read_path;
 use envelope_mesh::TriangleSoup;
-use envelope_offset::{EpsilonField, Method, parse_epsilon, read_epsilon_file};
+use envelope_offset::{EpsilonField, Method, read_epsilon_file};
 use envelope_simplify::{
     HoleFilling, Placement, Progress, SimplifyOptions, SimplifyReport, Stage, simplify_with,
 };
 use envelope_verify::Verdict;
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressStyle};
+
+use crate::outputs::{Plan, Staging};
+use crate::ranges::{self, Length};
 
 /// Which epsilon method.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -104,23 +108,24 @@ pub(crate) enum PlacementArg {
 pub(crate) struct Args {
     /// Input mesh (OBJ, OFF, PLY, STL); must pass `envelope check`.
     input: PathBuf,
-    /// Output mesh; the format follows the extension.
+    /// Output mesh; the format follows the extension (.obj, .off, .ply, .stl). Its directory
+    /// must exist; it must not be IN.
     output: PathBuf,
-    /// Epsilon: `0.5%` or `1/64%` of the bounding-box diagonal, or an absolute length. With
-    /// --viewpoint: the epsilon at the vertex nearest the viewpoint.
-    #[arg(long, required_unless_present = "epsilon_file")]
-    epsilon: Option<String>,
+    /// Epsilon, > 0: `0.5%` or `1/64%` of the bounding-box diagonal, or an absolute length.
+    /// With --viewpoint: the epsilon at the vertex nearest the viewpoint.
+    #[arg(long, required_unless_present = "epsilon_file", value_parser = ranges::length, allow_hyphen_values = true)]
+    epsilon: Option<Length>,
     /// Per-vertex epsilon file (6.3): one value per line in vertex order, same syntax as
     /// --epsilon, `#` comments.
     #[arg(long, conflicts_with_all = ["epsilon", "viewpoint"])]
     epsilon_file: Option<PathBuf>,
-    /// Adaptive epsilon (6.3) growing with the distance to this point `X,Y,Z`: linear from
-    /// --epsilon at the nearest vertex to --epsilon-far at the farthest.
+    /// Adaptive epsilon (6.3) growing with the distance to this point `X,Y,Z` (three finite
+    /// numbers): linear from --epsilon at the nearest vertex to --epsilon-far at the farthest.
     #[arg(long, value_parser = parse_point, requires_all = ["epsilon", "epsilon_far"], allow_hyphen_values = true)]
     viewpoint: Option<DVec3>,
-    /// With --viewpoint: the epsilon at the farthest vertex.
-    #[arg(long, requires = "viewpoint")]
-    epsilon_far: Option<String>,
+    /// With --viewpoint: the epsilon at the farthest vertex, > 0 (same syntax as --epsilon).
+    #[arg(long, requires = "viewpoint", value_parser = ranges::length, allow_hyphen_values = true)]
+    epsilon_far: Option<Length>,
     /// Envelope method.
     #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
     envelope: MethodArg,
@@ -136,7 +141,7 @@ pub(crate) struct Args {
     /// vertices, so the output's vertices are no longer a subset of the input's).
     #[arg(long, value_enum, default_value_t = PlacementArg::Auto)]
     placement: PlacementArg,
-    /// Write the report as JSON to this file.
+    /// Write the report as JSON to this file (its directory must exist).
     #[arg(long)]
     report: Option<PathBuf>,
     /// Skip the certificate of the output.
@@ -150,7 +155,11 @@ pub(crate) struct Args {
 fn parse_point(s: &str) -> Result<DVec3, String> {
     let v: Vec<f64> = s
         .split(',')
-        .map(|t| t.trim().parse::<f64>().map_err(|e| format!("{t:?}: {e}")))
+        .map(|t| {
+            t.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("{t:?} is not a number; expected three finite numbers X,Y,Z"))
+        })
         .collect::<Result<_, _>>()?;
     match v[..] {
         [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(x, y, z)),
@@ -158,37 +167,25 @@ fn parse_point(s: &str) -> Result<DVec3, String> {
     }
 }
 
-/// Resolves a length given as `--epsilon` syntax against `diagonal`.
-pub(crate) fn resolve_epsilon(flag: &str, s: &str, diagonal: f64) -> Result<f64, String> {
-    let e = parse_epsilon(s)
-        .map_err(|err| format!("{flag} {s:?}: {err}"))?
-        .resolve(diagonal);
-    if e.is_finite() && e > 0.0 {
-        Ok(e)
-    } else {
-        Err(format!("{flag} {s:?}: must be positive"))
-    }
-}
-
 fn field(args: &Args, soup: &TriangleSoup) -> Result<EpsilonField, String> {
     let diagonal = soup.diagonal();
     if let Some(f) = &args.epsilon_file {
         let specs = read_epsilon_file(f, soup.num_vertices())
-            .map_err(|err| format!("{}: {err}", f.display()))?;
+            .map_err(|err| format!("--epsilon-file {}: {err}", f.display()))?;
         return Ok(EpsilonField::from_specs(&specs, diagonal));
     }
+    let input = args.input.display().to_string();
     let Some(e) = &args.epsilon else {
         return Err("--epsilon or --epsilon-file is required".into());
     };
-    let near = resolve_epsilon("--epsilon", e, diagonal)?;
+    let near = e.resolve("--epsilon", &input, soup)?;
     let Some(viewpoint) = args.viewpoint else {
         return Ok(EpsilonField::Constant(near));
     };
-    let far = resolve_epsilon(
-        "--epsilon-far",
-        args.epsilon_far.as_deref().unwrap_or_default(),
-        diagonal,
-    )?;
+    let Some(far) = &args.epsilon_far else {
+        return Err("--viewpoint needs --epsilon-far".into());
+    };
+    let far = far.resolve("--epsilon-far", &input, soup)?;
     let d: Vec<f64> = soup
         .positions
         .iter()
@@ -343,13 +340,18 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
                 .into(),
         );
     }
+    let mut inputs = vec![("IN", args.input.as_path())];
+    if let Some(path) = &args.epsilon_file {
+        inputs.push(("--epsilon-file", path));
+    }
+    let mut plan = Plan::new(&inputs);
+    let format = plan.mesh("OUT", &args.output)?;
+    let failed = failed_path(&args.output);
+    plan.file("OUT.failed", &failed)?;
+    if let Some(path) = &args.report {
+        plan.file("--report", path)?;
+    }
     let (soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
-    let format = Format::from_path(&args.output).ok_or_else(|| {
-        format!(
-            "{}: unknown output format (use .obj, .off, .ply or .stl)",
-            args.output.display()
-        )
-    })?;
     let options = SimplifyOptions {
         method: args.envelope.method(),
         hole_filling: args.hole_filling.hole_filling(),
@@ -369,18 +371,20 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     let (out, report) = result.map_err(|e| format!("{}: {e}", args.input.display()))?;
     let verdict = report.verify.as_ref().map(|v| v.verdict);
     let target = if verdict == Some(Verdict::Violated) {
-        failed_path(&args.output)
+        failed
     } else {
         args.output.clone()
     };
-    write_path(&target, &out, format).map_err(|e| e.to_string())?;
+    let mut staging = Staging::new();
+    staging.mesh(&target, &out, format)?;
     if let Some(path) = &args.report {
         let mut v = report.to_json();
         v["input"] = args.input.display().to_string().into();
         v["output"] = target.display().to_string().into();
         let text = serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?;
-        std::fs::write(path, text + "\n").map_err(|e| format!("{}: {e}", path.display()))?;
+        staging.text(path, &(text + "\n"))?;
     }
+    staging.commit()?;
     if !args.quiet {
         print_summary(args, &report);
     }

@@ -10,6 +10,8 @@ use std::process::ExitCode;
 use envelope_io::read_path;
 use envelope_verify::{Certificate, OneSided, Options, TopologySummary, Verdict, certify};
 
+use crate::ranges::{self, Length};
+
 /// Arguments of `envelope verify`.
 #[derive(clap::Args)]
 pub(crate) struct Args {
@@ -17,15 +19,17 @@ pub(crate) struct Args {
     orig: PathBuf,
     /// The simplified mesh to certify against ORIG.
     approx: PathBuf,
-    /// Tolerance: every point of each mesh must be within it of the other. An absolute length,
-    /// or a percentage of ORIG's bounding-box diagonal (`0.5%`, `1/64%`), as for `simplify`.
-    #[arg(long)]
-    epsilon: String,
+    /// Tolerance, > 0: every point of each mesh must be within it of the other. An absolute
+    /// length, or a percentage of ORIG's bounding-box diagonal (`0.5%`, `1/64%`), as for
+    /// `simplify`.
+    #[arg(long, value_parser = ranges::length, allow_hyphen_values = true)]
+    epsilon: Length,
     /// Read a plain --epsilon (and --resolution) as fractions of ORIG's bounding-box diagonal.
     #[arg(long)]
     relative: bool,
-    /// Answer `undecided` where the bounds are closer than this [default: 1e-6 * epsilon].
-    #[arg(long)]
+    /// Answer `undecided` where the bounds are closer than this, >= 0 [default: 1e-6 *
+    /// epsilon].
+    #[arg(long, value_parser = ranges::resolution, allow_hyphen_values = true)]
     resolution: Option<f64>,
     /// Skip the self-intersection test of APPROX.
     #[arg(long)]
@@ -48,25 +52,17 @@ pub(crate) struct Args {
 }
 
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
-    let spec = envelope_offset::parse_epsilon(&args.epsilon)
-        .map_err(|e| format!("--epsilon {:?}: {e}", args.epsilon))?;
     let (orig, _) = read_path(&args.orig).map_err(|e| e.to_string())?;
     let (approx, _) = read_path(&args.approx).map_err(|e| e.to_string())?;
     let scale = if args.relative { orig.diagonal() } else { 1.0 };
-    let epsilon = match spec {
-        envelope_offset::EpsilonSpec::Absolute(e) => e * scale,
-        percent => percent.resolve(orig.diagonal()),
-    };
-    if !(epsilon > 0.0 && epsilon.is_finite()) {
-        return Err(format!(
-            "--epsilon must be positive and finite (got {epsilon})"
-        ));
-    }
+    let epsilon = args.epsilon.resolve_as(
+        "--epsilon",
+        &args.orig.display().to_string(),
+        &orig,
+        args.relative,
+    )?;
     let mut options = Options::new(epsilon);
     if let Some(r) = args.resolution {
-        if !(r >= 0.0 && r.is_finite()) {
-            return Err(format!("--resolution must be >= 0 and finite (got {r})"));
-        }
         options.resolution = r * scale;
     }
     options.self_intersections = !args.no_self_intersections;

@@ -1,0 +1,231 @@
+//! Valid ranges of the numeric arguments, checked by clap value parsers before any work (an
+//! out-of-range value exits 2 with clap's message, which names the flag), and the
+//! resolution of lengths (`--epsilon`, `--alpha`, ...) against the input's diagonal.
+//!
+//! Each range is stated in the flag's `--help` text; the constants here are the one place it
+//! is defined.
+
+use envelope_mesh::TriangleSoup;
+use envelope_offset::{EpsilonParseError, EpsilonSpec, parse_epsilon};
+
+/// `check --examples`: listing more than this per class is a wall of text, not a report.
+pub(crate) const MAX_EXAMPLES: usize = 10_000;
+/// `envelopes --tube-segments`: fewer than 3 vertices do not make a ring around a border
+/// edge, and more than 64 only cost memory (each ring vertex is a tube vertex per border
+/// vertex).
+pub(crate) const TUBE_SEGMENTS: std::ops::RangeInclusive<u32> = 3..=64;
+/// `lod --pixels` and `--resolution`: a screen wider than this is not a screen.
+pub(crate) const MAX_PIXELS: f64 = 1e6;
+
+/// A number of the given type, or a message naming the allowed syntax.
+fn number<T: std::str::FromStr>(s: &str, kind: &str) -> Result<T, String> {
+    s.trim().parse::<T>().map_err(|_| format!("not {kind}"))
+}
+
+/// `check --examples`: 0..=10000.
+pub(crate) fn examples(s: &str) -> Result<usize, String> {
+    match number::<usize>(s, "a whole number") {
+        Ok(n) if n <= MAX_EXAMPLES => Ok(n),
+        _ => Err(format!("must be a whole number in 0..={MAX_EXAMPLES}")),
+    }
+}
+
+/// `envelopes --tube-segments`: 0 (no tubes) or 3..=64.
+pub(crate) fn tube_segments(s: &str) -> Result<u32, String> {
+    match number::<u32>(s, "a whole number") {
+        Ok(n) if n == 0 || TUBE_SEGMENTS.contains(&n) => Ok(n),
+        _ => Err(format!(
+            "must be 0 (no tubes) or a whole number in {}..={}",
+            TUBE_SEGMENTS.start(),
+            TUBE_SEGMENTS.end()
+        )),
+    }
+}
+
+/// A finite float in the interval `lo..hi` (closed or open at each end as given), or a
+/// message stating it.
+fn float_in(s: &str, lo: (f64, bool), hi: (f64, bool), unit: &str) -> Result<f64, String> {
+    let x = number::<f64>(s, "a number").ok().filter(|x| x.is_finite());
+    let inside = x.is_some_and(|x| {
+        (if lo.1 { x >= lo.0 } else { x > lo.0 }) && (if hi.1 { x <= hi.0 } else { x < hi.0 })
+    });
+    match x {
+        Some(x) if inside => Ok(x),
+        _ => Err(format!(
+            "must be a number in {}{}, {}{}{unit}",
+            if lo.1 { '[' } else { '(' },
+            show(lo.0),
+            show(hi.0),
+            if hi.1 { ']' } else { ')' },
+        )),
+    }
+}
+
+/// `genus --beta`, `pipeline --beta`: an angle between face normals, (0, 180) degrees.
+pub(crate) fn beta(s: &str) -> Result<f64, String> {
+    float_in(s, (0.0, false), (180.0, false), " degrees")
+}
+
+/// `lod --fov`: (0, 180) degrees.
+pub(crate) fn fov(s: &str) -> Result<f64, String> {
+    float_in(s, (0.0, false), (180.0, false), " degrees")
+}
+
+/// `lod --pixels` and `--resolution`: (0, 1e6] pixels.
+pub(crate) fn pixels(s: &str) -> Result<f64, String> {
+    float_in(s, (0.0, false), (MAX_PIXELS, true), " pixels")
+}
+
+/// `verify --resolution`: [0, inf) (a length, or a fraction with `--relative`).
+pub(crate) fn resolution(s: &str) -> Result<f64, String> {
+    match number::<f64>(s, "a number") {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        _ => Err("must be a finite number >= 0".into()),
+    }
+}
+
+/// A length as the user wrote it (`0.01`, `2%`, `1/64%`), already known to be positive.
+#[derive(Clone, Debug)]
+pub(crate) struct Length {
+    pub(crate) text: String,
+    pub(crate) spec: EpsilonSpec,
+}
+
+const LENGTH_SYNTAX: &str = "expected a positive length: absolute (0.01) or a percentage of the bounding-box diagonal (2%, 1/64%)";
+
+/// `--epsilon`, `--epsilon-far`, `--alpha`: the syntax of `envelope_offset::parse_epsilon`,
+/// finite and positive.
+pub(crate) fn length(s: &str) -> Result<Length, String> {
+    let spec = parse_epsilon(s).map_err(|e| {
+        let why = match e {
+            EpsilonParseError::Empty => "empty",
+            EpsilonParseError::NotANumber => "not a number",
+            EpsilonParseError::NotFinite => "not finite",
+            EpsilonParseError::NotPositive => "zero or negative",
+        };
+        format!("{why}; {LENGTH_SYNTAX}")
+    })?;
+    Ok(Length {
+        text: s.trim().to_string(),
+        spec,
+    })
+}
+
+/// A comma-separated list of lengths (a newtype: clap reads a `Vec` field as repeated flags).
+#[derive(Clone, Debug)]
+pub(crate) struct Lengths(pub(crate) Vec<Length>);
+
+/// `lod --epsilons`: a comma-separated list of lengths.
+pub(crate) fn lengths(s: &str) -> Result<Lengths, String> {
+    s.split(',')
+        .enumerate()
+        .map(|(i, t)| length(t).map_err(|e| format!("item {} {:?}: {e}", i + 1, t.trim())))
+        .collect::<Result<_, _>>()
+        .map(Lengths)
+}
+
+impl Length {
+    /// The absolute length on `soup` (read from `input`); `flag` names the argument.
+    pub(crate) fn resolve(
+        &self,
+        flag: &str,
+        input: &str,
+        soup: &TriangleSoup,
+    ) -> Result<f64, String> {
+        self.resolve_as(flag, input, soup, false)
+    }
+
+    /// As [`Length::resolve`], but a plain number is a fraction of the diagonal when
+    /// `fraction` (`verify --relative`).
+    pub(crate) fn resolve_as(
+        &self,
+        flag: &str,
+        input: &str,
+        soup: &TriangleSoup,
+        fraction: bool,
+    ) -> Result<f64, String> {
+        let diagonal = soup.diagonal();
+        let (v, relative) = match self.spec {
+            EpsilonSpec::Absolute(x) if fraction => (x * diagonal, true),
+            EpsilonSpec::Absolute(x) => (x, false),
+            spec @ EpsilonSpec::PercentOfDiagonal(_) => (spec.resolve(diagonal), true),
+        };
+        let text = &self.text;
+        if relative && diagonal == 0.0 {
+            return Err(format!(
+                "{flag} {text}: the bounding-box diagonal of {input} is zero (all {} vertices at one point); relative lengths (percentages of the diagonal) need a mesh that is not a single point",
+                soup.num_vertices()
+            ));
+        }
+        if !v.is_finite() {
+            return Err(format!(
+                "{flag} {text}: is not a finite length on {input} (diagonal {}); {LENGTH_SYNTAX}",
+                show(diagonal)
+            ));
+        }
+        if v <= 0.0 {
+            return Err(format!(
+                "{flag} {text}: is zero on {input} (diagonal {}); {LENGTH_SYNTAX}",
+                show(diagonal)
+            ));
+        }
+        Ok(v)
+    }
+}
+
+/// A number in its shortest round-trip form, with an exponent when very large or small
+/// (so that 1e300 does not print 301 digits).
+pub(crate) fn show(x: f64) -> String {
+    let a = x.abs();
+    if a == 0.0 || !a.is_finite() || (1e-4..1e6).contains(&a) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A genus, or "undefined" (a non-orientable or non-manifold mesh).
+pub(crate) fn show_genus(g: Option<u32>) -> String {
+    g.map_or_else(|| "undefined".to_string(), |g| g.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_accept_their_ends_and_refuse_beyond() {
+        assert_eq!(examples("10000"), Ok(10_000));
+        assert!(examples("10001").is_err() && examples("-1").is_err());
+        for ok in ["0", "3", "64"] {
+            assert!(tube_segments(ok).is_ok(), "{ok}");
+        }
+        for bad in ["1", "2", "65", "4294967295", "x"] {
+            assert!(tube_segments(bad).is_err(), "{bad}");
+        }
+        assert!(beta("0").is_err() && beta("179.5").is_ok() && beta("180").is_err());
+        assert!(fov("0").is_err() && fov("179.9").is_ok() && fov("nan").is_err());
+        assert!(pixels("0").is_err() && pixels("1e6").is_ok() && pixels("inf").is_err());
+        assert!(resolution("0").is_ok() && resolution("-1e-9").is_err());
+        for bad in ["0", "-1", "0%", "inf", "1/0", "", "abc"] {
+            let e = length(bad).unwrap_err();
+            assert!(!e.contains("epsilon"), "{bad}: {e}");
+        }
+        assert!(lengths("1%, 2").is_ok() && lengths("1%,,2").is_err());
+    }
+
+    #[test]
+    fn lengths_resolve_against_the_diagonal() {
+        let point = TriangleSoup::from_raw(&[[1.0, 1.0, 1.0]; 3], &[[0, 1, 2]]);
+        let e = length("1%").unwrap().resolve("--alpha", "p.off", &point);
+        assert!(e.unwrap_err().contains("all 3 vertices at one point"));
+        let tri = TriangleSoup::from_raw(
+            &[[0.0, 0.0, 0.0], [3.0, 0.0, 0.0], [0.0, 4.0, 0.0]],
+            &[[0, 1, 2]],
+        );
+        assert_eq!(length("10%").unwrap().resolve("-", "t", &tri), Ok(0.5));
+        assert!(length("1e-323%").unwrap().resolve("-", "t", &tri).is_err());
+        assert_eq!(show(1e300), "1e300");
+        assert_eq!(show(0.25), "0.25");
+    }
+}
