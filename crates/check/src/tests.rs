@@ -405,3 +405,41 @@ fn shared_topology_and_tree_give_the_same_report() {
         ) > 0
     );
 }
+
+#[test]
+fn a_dense_stack_of_faces_is_undecided_not_quadratic() {
+    use envelope_mesh::{TriangleSoup, VertexId};
+    use glam::DVec3;
+    // 4,000 copies of one triangle over distinct vertices: 8 million overlapping box pairs,
+    // above the budget of 48 per face plus 2^22.
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    for i in 0..4000u32 {
+        positions.extend([DVec3::ZERO, DVec3::X, DVec3::Y]);
+        faces.push([VertexId(3 * i), VertexId(3 * i + 1), VertexId(3 * i + 2)]);
+    }
+    let report = check(
+        &TriangleSoup::new(positions, faces),
+        &CheckOptions::default(),
+    );
+    let f = report.finding(DegeneracyClass::IntersectingTriangles);
+    assert!(f.undecided);
+    assert_eq!(f.count, 0);
+    assert!(!report.acceptable());
+    assert!(
+        report
+            .errors()
+            .any(|c| c == DegeneracyClass::IntersectingTriangles)
+    );
+    assert_eq!(
+        report.to_json()["degeneracies"]["intersecting_triangles"]["undecided"],
+        true
+    );
+    // Below the budget the pairs are counted as before.
+    let small = generate::icosphere(2, 1.0);
+    assert!(
+        !check(&small, &CheckOptions::default())
+            .finding(DegeneracyClass::IntersectingTriangles)
+            .undecided
+    );
+}

@@ -107,6 +107,15 @@ fn render_text(input: &Path, read: &ReadReport, r: &CheckReport) -> String {
             Severity::Error => "error",
             Severity::Warning => "warning",
         };
+        if f.undecided {
+            let _ = writeln!(
+                s,
+                "  {:<26} {:>8}  {severity:<7}  undecided: faces stacked too densely to test every pair",
+                class.key(),
+                "?"
+            );
+            continue;
+        }
         let _ = write!(s, "  {:<26} {:>8}  {severity:<7}", class.key(), f.count);
         if f.count > 0 {
             let ex: Vec<String> = f.examples.iter().map(describe).collect();

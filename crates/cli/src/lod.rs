@@ -16,7 +16,7 @@ use std::process::ExitCode;
 
 use envelope_io::{Format, read_path};
 use envelope_mesh::TriangleSoup;
-use envelope_simplify::{Level, LodOptions, LodRule, Screen, lod_chain};
+use envelope_simplify::{DriverError, Level, LodOptions, LodRule, Screen, lod_chain};
 use envelope_verify::Verdict;
 use serde_json::json;
 
@@ -182,7 +182,15 @@ pub(crate) fn run_chain(original: &TriangleSoup, mut chain: Chain<'_>) -> Result
     };
     let result = lod_chain(original, &chain.options, &mut prefixed, &mut on_level);
     bar.finish();
-    let levels = result.map_err(|e| format!("{}: {e}", chain.input_label))?;
+    let levels = match result {
+        Ok(levels) => levels,
+        // Not bad input: a property (the envelopes' proof) does not hold, exit 1.
+        Err(e @ DriverError::UnprovedEnvelopes { .. }) => {
+            eprintln!("envelope: error: {}: {e}", chain.input_label);
+            return Ok(ExitCode::from(1));
+        }
+        Err(e) => return Err(format!("{}: {e}", chain.input_label)),
+    };
     if let Some(e) = write_error {
         return Err(e);
     }

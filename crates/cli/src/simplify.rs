@@ -16,7 +16,8 @@ use envelope_io::read_path;
 use envelope_mesh::TriangleSoup;
 use envelope_offset::{EpsilonField, Method, read_epsilon_file};
 use envelope_simplify::{
-    HoleFilling, Placement, Progress, SimplifyOptions, SimplifyReport, Stage, simplify_with,
+    DriverError, HoleFilling, Placement, Progress, SimplifyOptions, SimplifyReport, Stage,
+    simplify_with,
 };
 use envelope_verify::Verdict;
 use glam::DVec3;
@@ -368,7 +369,15 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     let step = args.method.method().step();
     let result = simplify_with(&soup, &options, step.as_ref(), &mut bar);
     bar.finish();
-    let (out, report) = result.map_err(|e| format!("{}: {e}", args.input.display()))?;
+    let (out, report) = match result {
+        Ok(done) => done,
+        // Not bad input: a property (the envelopes' proof) does not hold, exit 1.
+        Err(e @ DriverError::UnprovedEnvelopes { .. }) => {
+            eprintln!("envelope: error: {}: {e}", args.input.display());
+            return Ok(ExitCode::from(1));
+        }
+        Err(e) => return Err(format!("{}: {e}", args.input.display())),
+    };
     let verdict = report.verify.as_ref().map(|v| v.verdict);
     let target = if verdict == Some(Verdict::Violated) {
         failed

@@ -109,9 +109,9 @@ pub enum DriverError {
     /// The envelopes (or tubes) could not be proved free of intersections, even after the
     /// repair rounds: simplifying between them could give a wrong answer, so nothing is.
     #[error(
-        "the envelopes could not be proved free of intersections ({contacts} contacts left \
-         after {repair_rounds} repair rounds); no output is made from unproved envelopes \
-         (try a smaller epsilon)"
+        "the envelopes could not be proved free of intersections ({contacts} contacts \
+         remain after repair; parts of the input may be closer together than offsets can \
+         resolve): no output is made from unproved envelopes"
     )]
     UnprovedEnvelopes {
         /// Contacts (envelope and tube) the last proof found.
