@@ -110,3 +110,72 @@ fn harness_reports_broken_expectations() {
         table(&failures, cases.len())
     );
 }
+
+/// The fuzz target `command_path`'s first finding, rebuilt byte for byte: a selector
+/// (binary PLY, global method), two epsilon bytes (relative, 65/256 of the diagonal) and a
+/// binary little-endian PLY of an octahedron subdivided twice onto the unit sphere (128
+/// faces; coordinates rounded to 6 decimals, then to f32, as the seed generator did).
+fn fuzz_octasphere_input() -> Vec<u8> {
+    let (v, f) = files::octasphere();
+    let mut bytes = vec![0x0b, 0x00, 0x40];
+    bytes.extend_from_slice(
+        format!(
+            "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\n\
+             property float y\nproperty float z\nelement face {}\n\
+             property list uchar int vertex_indices\nend_header\n",
+            v.len(),
+            f.len()
+        )
+        .as_bytes(),
+    );
+    for p in &v {
+        for &c in p {
+            bytes.extend_from_slice(&(c as f32).to_le_bytes());
+        }
+    }
+    for t in &f {
+        bytes.push(3);
+        for &i in t {
+            bytes.extend_from_slice(&(i as i32).to_le_bytes());
+        }
+    }
+    bytes
+}
+
+/// Regression test for the fuzz finding above, on the fuzz target's own path: the input
+/// is acceptable, and `simplify_with` (global method, subset placement, certificate on)
+/// returns an output, so its certificate must not be violated. Fails on 6f78b1a: the output
+/// (4 faces) violates orig_to_approx (input->output <= 1.1964 > epsilon 0.8796).
+#[test]
+fn fuzz_command_path_global_large_epsilon_certificate() {
+    use envelope_simplify::{Placement, SimplifyOptions, simplify_with};
+    let data = fuzz_octasphere_input();
+    let (soup, _) = envelope_io::read(
+        &data[3..],
+        envelope_io::Format::Ply(envelope_io::PlyEncoding::BinaryLittleEndian),
+    )
+    .expect("the rebuilt PLY reads");
+    assert_eq!((soup.num_vertices(), soup.num_faces()), (66, 128));
+    let check = envelope_check::check(&soup, &envelope_check::CheckOptions::default());
+    assert!(check.acceptable(), "the sphere is acceptable input");
+    let eps = 65.0 / 256.0 * soup.diagonal();
+    let options = SimplifyOptions {
+        verify: true,
+        placement: Placement::Subset,
+        ..SimplifyOptions::new(envelope_offset::EpsilonField::Constant(eps))
+    };
+    let step = envelope_global::Method::Global.step();
+    if let Ok((out, report)) = simplify_with(&soup, &options, step.as_ref(), &mut ()) {
+        let v = report.verify.expect("a certificate was asked for");
+        assert_ne!(
+            v.verdict,
+            envelope_verify::Verdict::Violated,
+            "simplify returned {} faces at epsilon {eps:e} whose certificate is violated ({}): \
+             output->input <= {:e}, input->output <= {:e}",
+            out.num_faces(),
+            v.violations.join(", "),
+            v.approx_to_orig_upper,
+            v.orig_to_approx_upper
+        );
+    }
+}

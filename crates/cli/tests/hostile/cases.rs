@@ -21,6 +21,7 @@ pub fn all() -> Vec<(&'static str, Vec<Case>)> {
         ("epsilon", epsilons()),
         ("path", paths()),
         ("flag", flags()),
+        ("large-epsilon", large_epsilons()),
     ]
 }
 
@@ -1537,4 +1538,35 @@ impl Case {
         self.args.extend(args.split_whitespace().map(str::to_owned));
         self
     }
+}
+
+/// Large epsilons (a fifth of the diagonal and more) through every method: the output must
+/// still be certified (the fuzz target `command_path` found violated certificates there).
+fn large_epsilons() -> Vec<Case> {
+    let mut v = Vec::new();
+    let (op, of) = octasphere();
+    let meshes = [
+        ("octasphere", obj(&rows_of(&op), &one_based(&of))),
+        ("ico80", encode(&ico(1), Format::Obj)),
+        ("cube", encode(&cube(), Format::Obj)),
+        ("torus", encode(&torus(), Format::Obj)),
+    ];
+    for (mesh, bytes) in meshes {
+        for eps in ["20%", "25%", "40%"] {
+            for method in ["local", "global", "hybrid"] {
+                v.push(
+                    Case::new(
+                        format!("large-epsilon/{mesh}/{eps}/{method}"),
+                        &format!(
+                            "simplify m.obj out.obj --quiet --epsilon {eps} --method {method}"
+                        ),
+                    )
+                    .file("m.obj", bytes.clone())
+                    .codes(&[0, 3])
+                    .recert("m.obj", "out.obj", eps),
+                );
+            }
+        }
+    }
+    v
 }

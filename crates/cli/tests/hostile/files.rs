@@ -357,3 +357,45 @@ pub fn big_polygon(n: u32) -> (Vec<[f64; 3]>, Vec<Vec<i64>>) {
         .collect();
     (pts, vec![(0..i64::from(n)).collect()])
 }
+
+/// An octahedron subdivided twice onto the unit sphere (66 vertices, 128 faces; midpoints
+/// normalised, rounded to 6 decimals). Returns (points, 0-based triangles).
+pub fn octasphere() -> (Vec<[f64; 3]>, Vec<Vec<i64>>) {
+    let mut v: Vec<[f64; 3]> = vec![
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
+    let mut f: Vec<[usize; 3]> = vec![
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    for _ in 0..2 {
+        let mut cache = std::collections::HashMap::new();
+        let mut mid = |v: &mut Vec<[f64; 3]>, a: usize, b: usize| {
+            *cache.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                let p = [0, 1, 2].map(|i| (v[a][i] + v[b][i]) / 2.0);
+                let n = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+                v.push(p.map(|x| format!("{:.6}", x / n).parse::<f64>().unwrap()));
+                v.len() - 1
+            })
+        };
+        let mut next = Vec::new();
+        for [a, b, c] in f {
+            let (ab, bc, ca) = (mid(&mut v, a, b), mid(&mut v, b, c), mid(&mut v, c, a));
+            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        f = next;
+    }
+    let faces = f.iter().map(|t| t.map(|i| i as i64).to_vec()).collect();
+    (v, faces)
+}
