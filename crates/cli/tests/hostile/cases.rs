@@ -398,8 +398,20 @@ fn bombs() -> Vec<Case> {
 fn bom_crlf() -> Vec<Case> {
     let mut v = Vec::new();
     for (label, format, ext) in TEXT_ENCODINGS {
-        for (mesh, soup) in [("tet", tet()), ("ico", ico(1))] {
-            let plain = encode(&soup, format);
+        // The writer's files start with a comment (OBJ) or keyword; the hand-written ones
+        // start with data (`v ...` on the first line of the OBJ).
+        let t = tet();
+        let hand = match format {
+            Format::Obj => obj(&rows(&t), &one_based(&polys(&t))),
+            Format::Off => off(&rows(&t), &polys(&t)),
+            Format::Ply(_) => ply_ascii(&rows(&t), &polys(&t)),
+            Format::Stl(_) => stl_ascii(&stl_rows(&t)),
+        };
+        for (mesh, plain) in [
+            ("tet", encode(&t, format)),
+            ("ico", encode(&ico(1), format)),
+            ("hand-tet", hand),
+        ] {
             let a = format!("plain.{ext}");
             let b = format!("odd.{ext}");
             let variants = [
@@ -428,6 +440,19 @@ fn bom_crlf() -> Vec<Case> {
             .recert(&format!("in.{ext}"), "out.off", "1%"),
         );
     }
+    // The worst case of a dropped first `v`: the indices still fit, so a different mesh
+    // would be read without a word (an unused fifth vertex becomes the fourth).
+    let t = tet();
+    let mut r = rows(&t);
+    r.push(["9.0".into(), "9.0".into(), "9.0".into()]);
+    let plain = obj(&r, &one_based(&polys(&t)));
+    v.push(
+        Case::new("bom/obj/indices-still-fit", "check odd.obj")
+            .file("plain.obj", plain.clone())
+            .file("odd.obj", [BOM, &plain].concat())
+            .codes(&[0])
+            .same_check("plain.obj", "odd.obj"),
+    );
     // A binary PLY whose header lines end in CRLF (Windows tools write these).
     let le = encode(&tet(), Format::Ply(PlyEncoding::BinaryLittleEndian));
     let end = le.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
