@@ -1,6 +1,8 @@
 //! The command path of `envelope simplify` on arbitrary bytes: a selector byte picks the
-//! format (OBJ, OFF, PLY ascii, PLY binary, STL ascii, STL binary), the simplification method
-//! and the placement; two bytes give the epsilon (a fraction of the bounding-box diagonal or
+//! format (OBJ, OFF, PLY ascii, PLY binary, STL ascii, STL binary), the simplification method,
+//! the placement and whether the rest is a file or a recipe for one (`recipe`: a generated
+//! mesh, scaled and with moved vertices, so that short runs from an empty corpus reach the
+//! simplifier); two bytes give the epsilon (a fraction of the bounding-box diagonal or
 //! an absolute length); the rest is the file. Whatever the reader accepts and the input check
 //! finds acceptable (at most 200 faces, to keep runs short) goes through `simplify_with`
 //! with the certificate on, as the CLI calls it. The simplifier must not panic, and when it
@@ -9,10 +11,13 @@
 #![no_main]
 
 use envelope_check::{CheckOptions, check};
-use envelope_io::{Format, PlyEncoding, StlEncoding, read};
+use envelope_fuzz::input::Input;
+use envelope_io::{Format, PlyEncoding, StlEncoding, read, write};
+use envelope_mesh::generate;
 use envelope_offset::EpsilonField;
 use envelope_simplify::{Placement, SimplifyOptions, simplify_with};
 use envelope_verify::Verdict;
+use glam::DVec3;
 
 /// Formats by the selector's low bits (the reader takes the encoding from the content; the
 /// variant only names the family).
@@ -36,11 +41,45 @@ fn epsilon(a: u8, b: u8, diagonal: f64) -> f64 {
     }
 }
 
+/// With selector bit 6 the rest is not a file but a recipe for one (so that a run from an
+/// empty corpus reaches the simplifier): a generated mesh picked by the first byte, scaled
+/// by a power of ten from the second, with vertices moved by the following bytes (vertex,
+/// then a small scalar per axis), written in the selected format.
+fn recipe(bytes: &[u8], format: Format) -> Vec<u8> {
+    let mut input = Input(bytes);
+    let mut soup = match input.u8() % 5 {
+        0 => generate::tetrahedron(),
+        1 => generate::box_mesh(DVec3::ONE, 1),
+        2 => generate::icosphere(1, 1.0),
+        3 => generate::torus(2.0, 0.5, 8, 6),
+        _ => generate::open_cylinder(1.0, 1.0, 8, 2),
+    };
+    let scale = 10f64.powi(i32::from(input.u8() % 25) - 12);
+    while !input.0.is_empty() {
+        let v = usize::from(input.u8()) % soup.num_vertices();
+        let d = DVec3::new(input.scalar(), input.scalar(), input.scalar());
+        soup.positions[v] += d * 0.125;
+    }
+    for p in &mut soup.positions {
+        *p *= scale;
+    }
+    let mut out = Vec::new();
+    let _ = write(&mut out, &soup, format);
+    out
+}
+
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
     let [selector, a, b, file @ ..] = data else {
         return;
     };
     let format = FORMATS[usize::from(selector & 7) % FORMATS.len()];
+    let made;
+    let file = if selector & 0x40 != 0 {
+        made = recipe(file, format);
+        &made[..]
+    } else {
+        file
+    };
     let Ok((soup, _)) = read(file, format) else {
         return;
     };

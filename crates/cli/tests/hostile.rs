@@ -142,13 +142,43 @@ fn fuzz_octasphere_input() -> Vec<u8> {
     bytes
 }
 
-/// Regression test for the fuzz finding above, on the fuzz target's own path: the input
-/// is acceptable, and `simplify_with` (global method, subset placement, certificate on)
-/// returns an output, so its certificate must not be violated. Fails on 6f78b1a: the output
-/// (4 faces) violates orig_to_approx (input->output <= 1.1964 > epsilon 0.8796).
+/// Runs `soup` through the fuzz target's path (check, then `simplify_with` at `eps` with
+/// `method`, subset placement, certificate on) and fails if an output comes back with a
+/// violated certificate.
+fn assert_not_violated(
+    soup: &envelope_mesh::TriangleSoup,
+    eps: f64,
+    method: envelope_global::Method,
+) {
+    use envelope_simplify::{Placement, SimplifyOptions, simplify_with};
+    let check = envelope_check::check(soup, &envelope_check::CheckOptions::default());
+    assert!(check.acceptable(), "the input is acceptable");
+    let options = SimplifyOptions {
+        verify: true,
+        placement: Placement::Subset,
+        ..SimplifyOptions::new(envelope_offset::EpsilonField::Constant(eps))
+    };
+    let step = method.step();
+    if let Ok((out, report)) = simplify_with(soup, &options, step.as_ref(), &mut ()) {
+        let v = report.verify.expect("a certificate was asked for");
+        assert_ne!(
+            v.verdict,
+            envelope_verify::Verdict::Violated,
+            "{} simplify returned {} faces at epsilon {eps:e} whose certificate is violated \
+             ({}): output->input <= {:e}, input->output <= {:e}",
+            method.as_str(),
+            out.num_faces(),
+            v.violations.join(", "),
+            v.approx_to_orig_upper,
+            v.orig_to_approx_upper
+        );
+    }
+}
+
+/// Regression test for the fuzz finding above (seeded run): the global method at 65/256 of
+/// the diagonal. Fails on 6f78b1a: 4 faces, input->output <= 1.1964 > epsilon 0.8796.
 #[test]
 fn fuzz_command_path_global_large_epsilon_certificate() {
-    use envelope_simplify::{Placement, SimplifyOptions, simplify_with};
     let data = fuzz_octasphere_input();
     let (soup, _) = envelope_io::read(
         &data[3..],
@@ -156,26 +186,33 @@ fn fuzz_command_path_global_large_epsilon_certificate() {
     )
     .expect("the rebuilt PLY reads");
     assert_eq!((soup.num_vertices(), soup.num_faces()), (66, 128));
-    let check = envelope_check::check(&soup, &envelope_check::CheckOptions::default());
-    assert!(check.acceptable(), "the sphere is acceptable input");
-    let eps = 65.0 / 256.0 * soup.diagonal();
-    let options = SimplifyOptions {
-        verify: true,
-        placement: Placement::Subset,
-        ..SimplifyOptions::new(envelope_offset::EpsilonField::Constant(eps))
-    };
-    let step = envelope_global::Method::Global.step();
-    if let Ok((out, report)) = simplify_with(&soup, &options, step.as_ref(), &mut ()) {
-        let v = report.verify.expect("a certificate was asked for");
-        assert_ne!(
-            v.verdict,
-            envelope_verify::Verdict::Violated,
-            "simplify returned {} faces at epsilon {eps:e} whose certificate is violated ({}): \
-             output->input <= {:e}, input->output <= {:e}",
-            out.num_faces(),
-            v.violations.join(", "),
-            v.approx_to_orig_upper,
-            v.orig_to_approx_upper
-        );
+    assert_not_violated(
+        &soup,
+        65.0 / 256.0 * soup.diagonal(),
+        envelope_global::Method::Global,
+    );
+}
+
+/// The fuzz target's finding from an empty corpus, `b"C\x10J\x07"`: selector 0x43 (a recipe,
+/// binary PLY, local method, subset), epsilon 75/256 of the diagonal, recipe 7: the
+/// icosphere(1) (80 faces) scaled by 1e-12 (the missing scale byte reads as 0). Fails on
+/// 6f78b1a the same way: the output's certificate is violated (orig_to_approx).
+#[test]
+fn fuzz_command_path_local_large_epsilon_certificate() {
+    let data: &[u8] = b"C\x10J\x07";
+    assert_eq!(
+        data[0] & 0x47,
+        0x43,
+        "recipe, binary little-endian PLY, local"
+    );
+    let mut sphere = envelope_mesh::generate::icosphere(1, 1.0);
+    for p in &mut sphere.positions {
+        *p *= 1e-12;
     }
+    let format = envelope_io::Format::Ply(envelope_io::PlyEncoding::BinaryLittleEndian);
+    let mut bytes = Vec::new();
+    envelope_io::write(&mut bytes, &sphere, format).unwrap();
+    let (soup, _) = envelope_io::read(&bytes[..], format).unwrap();
+    let eps = f64::from(1 + data[2]) / 256.0 * soup.diagonal();
+    assert_not_violated(&soup, eps, envelope_global::Method::Local);
 }

@@ -124,6 +124,10 @@ fn run(cwd: &Path, logs: &Path, args: &[String]) -> Run {
         .arg(env!("CARGO_BIN_EXE_envelope"))
         .args(args)
         .current_dir(cwd)
+        // Few threads and malloc arenas: each arena reserves 64 MiB of address space, which
+        // on a many-core machine would hit the address-space cap without any real use.
+        .env("RAYON_NUM_THREADS", "2")
+        .env("MALLOC_ARENA_MAX", "2")
         .stdin(Stdio::null())
         .stdout(std::fs::File::create(&out_path).expect("stdout log"))
         .stderr(std::fs::File::create(&err_path).expect("stderr log"))
