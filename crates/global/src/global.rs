@@ -39,6 +39,7 @@ use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_simplify::{
     Barriers, EnvelopeFilter, FaceGrid, FillContext, Filter, Greedy, Hole, Progress,
 };
+use glam::DVec3;
 use rayon::prelude::*;
 use serde_json::{Value, json};
 use thiserror::Error;
@@ -391,6 +392,12 @@ impl Global<'_> {
             .copied()
             .filter(|&v| !self.mesh.is_border_vertex(v))
             .collect();
+        // The region's triangles, for the test against the filling below.
+        let old: Vec<[DVec3; 3]> = r
+            .faces
+            .iter()
+            .map(|&f| self.mesh.face_vertices(f).map(|x| self.mesh.position(x)))
+            .collect();
         let cp = self.mesh.begin();
         if self.mesh.remove_faces(&r.faces).is_err() {
             self.mesh.rollback(cp);
@@ -410,6 +417,15 @@ impl Global<'_> {
         };
         let cov =
             ok && (r.inside.len() == 1 || covers_removed(self.mesh, fibers, &interior, &placed));
+        // No barrier component carried across by the filling (an open region claims
+        // nothing there).
+        let cov = cov && {
+            let new: Vec<[DVec3; 3]> = placed
+                .iter()
+                .map(|t| t.map(|x| self.mesh.position(x)))
+                .collect();
+            r.open || !filter.refuses_replacement(&old, &new)
+        };
         let added = if cov {
             self.mesh.add_faces(&placed).ok()
         } else {

@@ -5,7 +5,8 @@
 use envelope_mesh::{CoordError, FaceId, TriangleSoup, check_coordinate};
 use envelope_predicates::bvh::{Aabb, Bvh, NodeKind};
 use envelope_predicates::{
-    SegmentTriangle, indexed_triangles_intersect, segment_triangle, triangles_intersect,
+    SegmentTriangle, indexed_triangles_intersect, polyline_crossings, segment_triangle,
+    triangles_intersect,
 };
 use glam::DVec3;
 use rayon::prelude::*;
@@ -151,6 +152,11 @@ pub struct Barriers {
     /// face count.
     envelope_faces: Vec<(u32, u32)>,
     has_tubes: bool,
+    /// Per connected component of every surface: its box and one of its vertices
+    /// ([`Barriers::sweeps_across`]).
+    components: Vec<(Aabb, DVec3)>,
+    /// A tree over the boxes of `components`.
+    component_tree: Option<Bvh>,
     /// This value's id for [`Barriers::scoped`] (0 for [`Barriers::none`], which has nothing
     /// to gather).
     id: u64,
@@ -307,6 +313,14 @@ impl Barriers {
             .map(|&t| SlabFilter::new(t, magnitude).points)
             .collect();
         let pinned = vec![0; triangles.len()];
+        let components: Vec<(Aabb, DVec3)> = surfaces
+            .iter()
+            .flat_map(|(soup, _)| surface_components(soup))
+            .collect();
+        let component_tree = (!components.is_empty()).then(|| {
+            let boxes: Vec<Aabb> = components.iter().map(|c| c.0).collect();
+            Bvh::new(&boxes)
+        });
         Ok(Self {
             triangles,
             slabs,
@@ -317,8 +331,72 @@ impl Barriers {
             position,
             envelope_faces,
             has_tubes,
+            components,
+            component_tree,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
         })
+    }
+
+    /// Whether replacing the triangles `old` of the approximation by `new` (the same
+    /// boundary: a vertex's fan by the filling of its hole, stars before and after a move)
+    /// would carry a whole barrier component across, so the approximation would no longer
+    /// lie between the envelopes as the input does although no triangle meets a barrier.
+    /// This happens at large epsilons, where an inner envelope shrinks to a small closed
+    /// surface that one hole's filling can pass over (a sphere at a quarter of its diagonal
+    /// became a tetrahedron beside its inner envelope, 1.2 epsilon from the input).
+    ///
+    /// The test: `C = old - new` is a closed surface (a 2-cycle) inside the box `B` of its
+    /// corners; both parts are apart from every barrier (the mesh's faces and each accepted
+    /// triangle are), so the winding number of `C` is constant on each barrier component,
+    /// and zero on one with a vertex outside `B`. For each component inside `B` it is
+    /// counted exactly at one of its vertices along a segment leaving `B`
+    /// ([`polyline_crossings`]); it must be zero. A count that no segment decides is taken
+    /// as a sweep, and `old`/`new` whose boundaries differ (an open hole at a border) claim
+    /// nothing: the test can only refuse.
+    ///
+    /// ```
+    /// use envelope_mesh::generate;
+    /// use envelope_simplify::Barriers;
+    /// use glam::DVec3;
+    /// let inner = generate::icosphere(1, 0.1);
+    /// let b = Barriers::new(vec![inner], vec![]).unwrap();
+    /// let (a, c, d) = (DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, -1.0, 0.0), DVec3::new(0.0, 1.0, 0.0));
+    /// let (up, down) = (DVec3::new(0.0, 0.0, 1.0), DVec3::new(0.0, 0.0, -1.0));
+    /// let above = [[a, c, up], [c, d, up], [d, a, up]];
+    /// let below = [[a, c, down], [c, d, down], [d, a, down]];
+    /// // The tent over the small sphere replaced by the tent under it: swept across.
+    /// assert!(b.sweeps_across(&above, &below));
+    /// assert!(!b.sweeps_across(&above, &above));
+    /// ```
+    #[must_use]
+    pub fn sweeps_across(&self, old: &[[DVec3; 3]], new: &[[DVec3; 3]]) -> bool {
+        let Some(tree) = &self.component_tree else {
+            return false;
+        };
+        let corners: Vec<DVec3> = old.iter().chain(new).flatten().copied().collect();
+        if corners.is_empty() {
+            return false;
+        }
+        let region = Aabb::from_points(&corners);
+        let mut inside = Vec::new();
+        tree.for_each_overlapping(&region, |c| {
+            let (b, _) = self.components[c as usize];
+            if region.contains(b.min) && region.contains(b.max) {
+                inside.push(c);
+            }
+        });
+        if inside.is_empty() || !same_boundary(old, new) {
+            return false;
+        }
+        // `old - new`: the new triangles reversed.
+        let cycle: Vec<[DVec3; 3]> = old
+            .iter()
+            .copied()
+            .chain(new.iter().map(|&[a, b, c]| [a, c, b]))
+            .collect();
+        inside
+            .into_iter()
+            .any(|c| winding_not_zero(self.components[c as usize].1, &region, &cycle))
     }
 
     /// Declares pin points: input vertices where the envelopes were pinched to the input
@@ -1102,4 +1180,70 @@ mod tests {
             }
         }
     }
+}
+
+/// The box and one vertex of every connected component of `soup`'s faces.
+fn surface_components(soup: &TriangleSoup) -> Vec<(Aabb, DVec3)> {
+    let (comp, n) = envelope_mesh::vertex_components(soup.num_vertices(), &soup.faces);
+    let mut out: Vec<Option<(Aabb, DVec3)>> = vec![None; n];
+    for (p, c) in soup.positions.iter().zip(&comp) {
+        if let Some(c) = c {
+            let slot = &mut out[*c as usize];
+            *slot = Some(match *slot {
+                None => (Aabb::from_points(&[*p]), *p),
+                Some((b, first)) => (b.union(&Aabb::from_points(&[*p])), first),
+            });
+        }
+    }
+    out.into_iter().flatten().collect()
+}
+
+/// Whether the directed edges of `old` and `new` cancel (`old - new` is closed).
+fn same_boundary(old: &[[DVec3; 3]], new: &[[DVec3; 3]]) -> bool {
+    let key = |p: DVec3| p.to_array().map(f64::to_bits);
+    let mut edges: Vec<([[u64; 3]; 2], i32)> = Vec::new();
+    let mut add = |t: &[DVec3; 3], s: i32| {
+        for i in 0..3 {
+            let (a, b) = (key(t[i]), key(t[(i + 1) % 3]));
+            // An edge and its reverse cancel: stored one way with a sign.
+            let (e, s) = if a < b { ([a, b], s) } else { ([b, a], -s) };
+            match edges.iter_mut().find(|(f, _)| *f == e) {
+                Some((_, n)) => *n += s,
+                None => edges.push((e, s)),
+            }
+        }
+    };
+    old.iter().for_each(|t| add(t, 1));
+    new.iter().for_each(|t| add(t, -1));
+    edges.iter().all(|&(_, n)| n == 0)
+}
+
+/// Whether the winding number of the closed `cycle` at `p` (inside `region`, which holds
+/// the cycle) is not zero, counted along segments from `p` out of `region`; true when no
+/// segment decides it (each passes through an edge or a vertex).
+fn winding_not_zero(p: DVec3, region: &Aabb, cycle: &[[DVec3; 3]]) -> bool {
+    let reach = 2.0 * (region.max - region.min).length()
+        + region.max.abs().max(region.min.abs()).max_element()
+        + 1e-30;
+    const DIRECTIONS: [[f64; 3]; 10] = [
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, -1.0],
+        [0.6, 0.37, 0.71],
+        [-0.53, 0.79, -0.31],
+        [0.29, -0.61, 0.73],
+        [-0.67, -0.23, -0.7],
+    ];
+    for d in DIRECTIONS {
+        let q = p + DVec3::from_array(d) * reach;
+        match polyline_crossings(&[p, q], cycle) {
+            Some(0) => return false,
+            Some(_) => return true,
+            None => {}
+        }
+    }
+    true
 }

@@ -283,6 +283,15 @@ pub trait Filter: Sync {
         let _ = faces;
         self.within(region, run);
     }
+
+    /// Whether replacing the approximation's triangles `old` by the accepted triangles `new`
+    /// (the same boundary) is refused as a whole although each triangle passes: the envelope
+    /// filter refuses one that carries a barrier component across
+    /// ([`Barriers::sweeps_across`]). By default nothing is refused.
+    fn refuses_replacement(&self, old: &[[DVec3; 3]], new: &[[DVec3; 3]]) -> bool {
+        let _ = (old, new);
+        false
+    }
 }
 
 /// Accepts everything; the default base of [`EnvelopeFilter`].
@@ -356,6 +365,10 @@ impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
         self.barriers.scoped_near(region, faces, || {
             self.base.within_near(region, faces, run);
         });
+    }
+
+    fn refuses_replacement(&self, old: &[[DVec3; 3]], new: &[[DVec3; 3]]) -> bool {
+        self.base.refuses_replacement(old, new) || self.barriers.sweeps_across(old, new)
     }
 }
 

@@ -1784,6 +1784,29 @@ impl<'m> LocalSimplifier<'m> {
                 return Err(Rejection::NoValidFill);
             }
         }
+        // The filling and the moved stars must not carry a barrier component across (an
+        // open hole claims nothing there: its boundary is not the fan's).
+        if !border {
+            let at = |t: [VertexId; 3], moved: bool| {
+                t.map(|x| {
+                    if moved {
+                        position_in(m, &moves, x)
+                    } else {
+                        m.position(x)
+                    }
+                })
+            };
+            let old: Vec<[DVec3; 3]> = fan
+                .iter()
+                .map(|&f| at(m.face_vertices(f), false))
+                .chain(stay.iter().map(|&t| at(t, false)))
+                .collect();
+            let new: Vec<[DVec3; 3]> = placed.iter().chain(&stay).map(|&t| at(t, true)).collect();
+            *tests += 1;
+            if filter.refuses_replacement(&old, &new) {
+                return Err(Rejection::NoValidFill);
+            }
+        }
         Ok(Plan {
             hole,
             fan,
