@@ -103,6 +103,12 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         }
         (None, None) => return Err("--epsilon or --epsilon-file is required".into()),
     };
+    let flag = match (&args.epsilon, &args.epsilon_file) {
+        (Some(e), _) => format!("--epsilon {}", e.text),
+        (None, Some(f)) => format!("--epsilon-file {}", f.display()),
+        (None, None) => String::new(),
+    };
+    ranges::epsilon_in_range(&flag, &args.input.display().to_string(), &field, &soup)?;
     let mut options = EnvelopeOptions::new(field);
     options.method = match args.method {
         MethodArg::Analytical => Method::Analytical,

@@ -124,8 +124,14 @@ pub(crate) fn run_chain(original: &TriangleSoup, mut chain: Chain<'_>) -> Result
     chain.options.epsilons = chain
         .epsilons
         .iter()
-        .map(|l| l.resolve("--epsilons", &chain.input_label, original))
-        .collect::<Result<_, _>>()?;
+        .map(|l| {
+            let e = l.resolve("--epsilons", &chain.input_label, original)?;
+            let flag = format!("--epsilons item {}", l.text);
+            let field = envelope_offset::EpsilonField::Constant(e);
+            ranges::epsilon_in_range(&flag, &chain.input_label, &field, original)?;
+            Ok(e)
+        })
+        .collect::<Result<_, String>>()?;
     if chain.options.rule == LodRule::Cumulative {
         let e = &chain.options.epsilons;
         if let Some(i) = (1..e.len()).find(|&i| e[i] <= e[i - 1]) {

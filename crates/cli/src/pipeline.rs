@@ -90,7 +90,15 @@ fn resolve_steps(
     steps
         .steps
         .iter()
-        .map(|(kind, l)| Ok((*kind, l.resolve("--steps", input, soup)?)))
+        .map(|(kind, l)| {
+            let e = l.resolve("--steps", input, soup)?;
+            if *kind == Kind::Preserve {
+                let flag = format!("--steps item e{}", l.text);
+                let field = envelope_offset::EpsilonField::Constant(e);
+                ranges::epsilon_in_range(&flag, input, &field, soup)?;
+            }
+            Ok((*kind, e))
+        })
         .collect()
 }
 

@@ -6,7 +6,7 @@
 //! is defined.
 
 use envelope_mesh::TriangleSoup;
-use envelope_offset::{EpsilonParseError, EpsilonSpec, parse_epsilon};
+use envelope_offset::{EpsilonField, EpsilonParseError, EpsilonSpec, parse_epsilon};
 
 /// `check --examples`: listing more than this per class is a wall of text, not a report.
 pub(crate) const MAX_EXAMPLES: usize = 10_000;
@@ -152,8 +152,9 @@ impl Length {
         };
         let text = &self.text;
         if relative && diagonal == 0.0 {
+            // The input is at fault, not the length: it has no extent to be a percentage of.
             return Err(format!(
-                "{flag} {text}: the bounding-box diagonal of {input} is zero (all {} vertices at one point); relative lengths (percentages of the diagonal) need a mesh that is not a single point",
+                "{input}: all {} vertices are at one point (the bounding-box diagonal is zero): not acceptable input, `envelope check` lists its degeneracies",
                 soup.num_vertices()
             ));
         }
@@ -171,6 +172,22 @@ impl Length {
         }
         Ok(v)
     }
+}
+
+/// The library's range rule for epsilons against the mesh's coordinates
+/// ([`EpsilonField::evaluate`]: non-finite values refused, above the diagonal taken as the
+/// diagonal, offsets lost in rounding refused), checked before work with the error naming
+/// `flag` as the user wrote it.
+pub(crate) fn epsilon_in_range(
+    flag: &str,
+    input: &str,
+    field: &EpsilonField,
+    soup: &TriangleSoup,
+) -> Result<(), String> {
+    field
+        .evaluate(&soup.positions)
+        .map(|_| ())
+        .map_err(|e| format!("{flag}: {e} (on {input})"))
 }
 
 /// A number in its shortest round-trip form, with an exponent when very large or small
@@ -218,7 +235,7 @@ mod tests {
     fn lengths_resolve_against_the_diagonal() {
         let point = TriangleSoup::from_raw(&[[1.0, 1.0, 1.0]; 3], &[[0, 1, 2]]);
         let e = length("1%").unwrap().resolve("--alpha", "p.off", &point);
-        assert!(e.unwrap_err().contains("all 3 vertices at one point"));
+        assert!(e.unwrap_err().contains("all 3 vertices are at one point"));
         let tri = TriangleSoup::from_raw(
             &[[0.0, 0.0, 0.0], [3.0, 0.0, 0.0], [0.0, 4.0, 0.0]],
             &[[0, 1, 2]],

@@ -168,7 +168,22 @@ fn parse_point(s: &str) -> Result<DVec3, String> {
     }
 }
 
+/// The epsilon field the arguments ask for, checked against the mesh before work.
 fn field(args: &Args, soup: &TriangleSoup) -> Result<EpsilonField, String> {
+    let field = field_unchecked(args, soup)?;
+    let flag = match (&args.epsilon_file, args.viewpoint) {
+        (Some(f), _) => format!("--epsilon-file {}", f.display()),
+        (None, Some(_)) => "--epsilon, --epsilon-far and --viewpoint".into(),
+        (None, None) => format!(
+            "--epsilon {}",
+            args.epsilon.as_ref().map_or("", |e| e.text.as_str())
+        ),
+    };
+    ranges::epsilon_in_range(&flag, &args.input.display().to_string(), &field, soup)?;
+    Ok(field)
+}
+
+fn field_unchecked(args: &Args, soup: &TriangleSoup) -> Result<EpsilonField, String> {
     let diagonal = soup.diagonal();
     if let Some(f) = &args.epsilon_file {
         let specs = read_epsilon_file(f, soup.num_vertices())

@@ -605,7 +605,7 @@ fn messages_name_the_argument_and_print_numbers_readably() {
         let context = format!("{args:?}");
         assert_refused(
             &o,
-            &["diagonal", "zero", "all 3 vertices at one point"],
+            &["diagonal", "zero", "all 3 vertices are at one point"],
             &context,
         );
         assert!(

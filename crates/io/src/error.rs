@@ -131,6 +131,18 @@ pub enum ReadErrorKind {
         /// Vertices defined before the face.
         vertices: u64,
     },
+    /// An OBJ face corner that is not `i`, `i/t`, `i//n` or `i/t/n` with integers fitting 64
+    /// bits.
+    #[error(
+        "face {face}: corner '{corner}' is not a vertex reference (allowed: i, i/t, i//n or \
+         i/t/n, each an integer, 1-based or negative)"
+    )]
+    ObjBadCorner {
+        /// 0-based number of the face (`f` statement) in the file.
+        face: u64,
+        /// The corner as written.
+        corner: Word,
+    },
     /// A polygon with fewer than three distinct corners (after dropping consecutive repeats).
     #[error("face {face} has {corners} distinct corners, at least 3 are needed")]
     TooFewCorners {
@@ -221,7 +233,7 @@ pub struct Word {
 }
 
 impl Word {
-    const CAP: usize = 24;
+    const CAP: usize = 48;
 
     pub(crate) fn new(word: &[u8]) -> Self {
         let len = word.len().min(Self::CAP);

@@ -122,8 +122,20 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
                 poly.clear();
                 let n = positions.len() as i64;
                 for t in toks {
-                    let idx = t.split(|&b| b == b'/').next().unwrap_or_default();
-                    let raw = parse_i64(idx).ok_or_else(|| err(ReadErrorKind::MalformedNumber))?;
+                    let bad = || {
+                        err(ReadErrorKind::ObjBadCorner {
+                            face: face_no,
+                            corner: Word::new(t),
+                        })
+                    };
+                    // `i`, `i/t`, `i//n`, `i/t/n`: the texture and normal references are not
+                    // used, but a corner that is none of these is refused, not guessed.
+                    let mut parts = t.split(|&b| b == b'/');
+                    let idx = parts.next().unwrap_or_default();
+                    let rest: Vec<&[u8]> = parts.collect();
+                    let reference = |x: &[u8]| x.is_empty() || parse_i64(x).is_some();
+                    let well_formed = rest.len() <= 2 && rest.iter().all(|x| reference(x));
+                    let raw = parse_i64(idx).filter(|_| well_formed).ok_or_else(bad)?;
                     let index = match raw {
                         r if r > 0 => r - 1,
                         r if r < 0 => n.saturating_add(r),
@@ -307,7 +319,18 @@ mod tests {
                 corners: 2
             }
         );
-        assert_eq!(kind("v 0 0 0\nf x/1 1 1\n"), ReadErrorKind::MalformedNumber);
+        assert!(matches!(
+            kind("v 0 0 0\nf x/1 1 1\n"),
+            ReadErrorKind::ObjBadCorner { face: 0, corner } if corner.to_string() == "x/1"
+        ));
+        assert!(matches!(
+            kind("v 0 0 0\nf 1/a/2 1 1\n"),
+            ReadErrorKind::ObjBadCorner { face: 0, .. }
+        ));
+        assert!(matches!(
+            kind("v 0 0 0\nf 1/1/1/1 1 1\n"),
+            ReadErrorKind::ObjBadCorner { face: 0, .. }
+        ));
         assert_eq!(kind("v 0 0 0\nv 1 1 1\n"), ReadErrorKind::NoFaces);
         assert_eq!(kind(""), ReadErrorKind::NoFaces);
         // Garbage is an unknown statement, not an empty mesh.

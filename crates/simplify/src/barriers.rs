@@ -896,6 +896,72 @@ fn magnitude(t: [DVec3; 3]) -> f64 {
     t.iter().map(|p| p.abs().max_element()).fold(0.0, f64::max)
 }
 
+/// The box and one vertex of every connected component of `soup`'s faces.
+fn surface_components(soup: &TriangleSoup) -> Vec<(Aabb, DVec3)> {
+    let (comp, n) = envelope_mesh::vertex_components(soup.num_vertices(), &soup.faces);
+    let mut out: Vec<Option<(Aabb, DVec3)>> = vec![None; n];
+    for (p, c) in soup.positions.iter().zip(&comp) {
+        if let Some(c) = c {
+            let slot = &mut out[*c as usize];
+            *slot = Some(match *slot {
+                None => (Aabb::from_points(&[*p]), *p),
+                Some((b, first)) => (b.union(&Aabb::from_points(&[*p])), first),
+            });
+        }
+    }
+    out.into_iter().flatten().collect()
+}
+
+/// Whether the directed edges of `old` and `new` cancel (`old - new` is closed).
+fn same_boundary(old: &[[DVec3; 3]], new: &[[DVec3; 3]]) -> bool {
+    let key = |p: DVec3| p.to_array().map(f64::to_bits);
+    let mut edges: Vec<([[u64; 3]; 2], i32)> = Vec::new();
+    let mut add = |t: &[DVec3; 3], s: i32| {
+        for i in 0..3 {
+            let (a, b) = (key(t[i]), key(t[(i + 1) % 3]));
+            // An edge and its reverse cancel: stored one way with a sign.
+            let (e, s) = if a < b { ([a, b], s) } else { ([b, a], -s) };
+            match edges.iter_mut().find(|(f, _)| *f == e) {
+                Some((_, n)) => *n += s,
+                None => edges.push((e, s)),
+            }
+        }
+    };
+    old.iter().for_each(|t| add(t, 1));
+    new.iter().for_each(|t| add(t, -1));
+    edges.iter().all(|&(_, n)| n == 0)
+}
+
+/// Whether the winding number of the closed `cycle` at `p` (inside `region`, which holds
+/// the cycle) is not zero, counted along segments from `p` out of `region`; true when no
+/// segment decides it (each passes through an edge or a vertex).
+fn winding_not_zero(p: DVec3, region: &Aabb, cycle: &[[DVec3; 3]]) -> bool {
+    let reach = 2.0 * (region.max - region.min).length()
+        + region.max.abs().max(region.min.abs()).max_element()
+        + 1e-30;
+    const DIRECTIONS: [[f64; 3]; 10] = [
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, -1.0],
+        [0.6, 0.37, 0.71],
+        [-0.53, 0.79, -0.31],
+        [0.29, -0.61, 0.73],
+        [-0.67, -0.23, -0.7],
+    ];
+    for d in DIRECTIONS {
+        let q = p + DVec3::from_array(d) * reach;
+        match polyline_crossings(&[p, q], cycle) {
+            Some(0) => return false,
+            Some(_) => return true,
+            None => {}
+        }
+    }
+    true
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1182,68 +1248,3 @@ mod tests {
     }
 }
 
-/// The box and one vertex of every connected component of `soup`'s faces.
-fn surface_components(soup: &TriangleSoup) -> Vec<(Aabb, DVec3)> {
-    let (comp, n) = envelope_mesh::vertex_components(soup.num_vertices(), &soup.faces);
-    let mut out: Vec<Option<(Aabb, DVec3)>> = vec![None; n];
-    for (p, c) in soup.positions.iter().zip(&comp) {
-        if let Some(c) = c {
-            let slot = &mut out[*c as usize];
-            *slot = Some(match *slot {
-                None => (Aabb::from_points(&[*p]), *p),
-                Some((b, first)) => (b.union(&Aabb::from_points(&[*p])), first),
-            });
-        }
-    }
-    out.into_iter().flatten().collect()
-}
-
-/// Whether the directed edges of `old` and `new` cancel (`old - new` is closed).
-fn same_boundary(old: &[[DVec3; 3]], new: &[[DVec3; 3]]) -> bool {
-    let key = |p: DVec3| p.to_array().map(f64::to_bits);
-    let mut edges: Vec<([[u64; 3]; 2], i32)> = Vec::new();
-    let mut add = |t: &[DVec3; 3], s: i32| {
-        for i in 0..3 {
-            let (a, b) = (key(t[i]), key(t[(i + 1) % 3]));
-            // An edge and its reverse cancel: stored one way with a sign.
-            let (e, s) = if a < b { ([a, b], s) } else { ([b, a], -s) };
-            match edges.iter_mut().find(|(f, _)| *f == e) {
-                Some((_, n)) => *n += s,
-                None => edges.push((e, s)),
-            }
-        }
-    };
-    old.iter().for_each(|t| add(t, 1));
-    new.iter().for_each(|t| add(t, -1));
-    edges.iter().all(|&(_, n)| n == 0)
-}
-
-/// Whether the winding number of the closed `cycle` at `p` (inside `region`, which holds
-/// the cycle) is not zero, counted along segments from `p` out of `region`; true when no
-/// segment decides it (each passes through an edge or a vertex).
-fn winding_not_zero(p: DVec3, region: &Aabb, cycle: &[[DVec3; 3]]) -> bool {
-    let reach = 2.0 * (region.max - region.min).length()
-        + region.max.abs().max(region.min.abs()).max_element()
-        + 1e-30;
-    const DIRECTIONS: [[f64; 3]; 10] = [
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-        [-1.0, 0.0, 0.0],
-        [0.0, -1.0, 0.0],
-        [0.0, 0.0, -1.0],
-        [0.6, 0.37, 0.71],
-        [-0.53, 0.79, -0.31],
-        [0.29, -0.61, 0.73],
-        [-0.67, -0.23, -0.7],
-    ];
-    for d in DIRECTIONS {
-        let q = p + DVec3::from_array(d) * reach;
-        match polyline_crossings(&[p, q], cycle) {
-            Some(0) => return false,
-            Some(_) => return true,
-            None => {}
-        }
-    }
-    true
-}

@@ -651,13 +651,8 @@ fn indices() -> Vec<Case> {
         );
     }
     // Statements that would change geometry or indices but are not understood: refused.
-    for stmt in [
-        "vp 0.5 0.5",
-        "cstype bspline",
-        "curv 0 1 1 2",
-        "surf 0 1 0 1 1 2 3 4",
-        "fo 1 2 3",
-    ] {
+    // (`vp` only serves free-form geometry, refused below; `fo` is the old name of `f`.)
+    for stmt in ["cstype bspline", "curv 0 1 1 2", "surf 0 1 0 1 1 2 3 4"] {
         let kw = stmt.split(' ').next().unwrap();
         v.push(
             Case::new(format!("index/obj/unknown-{kw}"), "check i.obj")
@@ -669,6 +664,17 @@ fn indices() -> Vec<Case> {
                 .names("i.obj"),
         );
     }
+    // `vp` alone is harmless; `fo` is read as `f` (here: a second copy of a face, exit 1).
+    v.push(
+        Case::new("index/obj/vp-alone", "check i.obj")
+            .file("i.obj", [obj(&r, &base), b"vp 0.5 0.5\n".to_vec()].concat())
+            .codes(&[0]),
+    );
+    v.push(
+        Case::new("index/obj/fo-is-f", "check i.obj")
+            .file("i.obj", [obj(&r, &base), b"fo 1 2 3\n".to_vec()].concat())
+            .codes(&[1]),
+    );
     // Statements that cannot change geometry are fine.
     v.push(
         Case::new("index/obj/harmless-statements", "check i.obj")
@@ -1331,7 +1337,7 @@ fn flags() -> Vec<Case> {
         c(
             "examples-max",
             "check --examples 18446744073709551615 in.obj",
-            &[0],
+            &[2],
             "--examples",
         ),
         c(
