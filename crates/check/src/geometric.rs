@@ -99,14 +99,6 @@ pub(crate) fn t_junctions(
     out
 }
 
-/// Face pairs with overlapping boxes the exact pairwise test takes on, per face, beyond a
-/// fixed allowance: a manifold mesh has about a dozen per face, a stack of coincident faces
-/// quadratically many. Above it the pairwise classes are left undecided (the mesh is then not
-/// acceptable), so time and memory stay linear in the input.
-pub(crate) const PAIRS_PER_FACE: usize = 48;
-/// The fixed allowance of [`PAIRS_PER_FACE`].
-pub(crate) const PAIRS_ALLOWANCE: usize = 1 << 22;
-
 /// The pairwise classes, from one bounding-volume hierarchy over the faces.
 pub(crate) struct PairwiseFindings {
     /// Faces meeting away from what they share, `(i, j)` with `i < j`, sorted.
@@ -143,7 +135,9 @@ impl PairwiseFindings {
         // Each face's plane once (a face meets about a dozen candidates), stored in the
         // tree's leaf order: the pairs come leaf by leaf, so the faces they read are then
         // near each other in memory (in a scanned mesh's own order they are not).
-        let budget = PAIRS_PER_FACE * faces.len() + PAIRS_ALLOWANCE;
+        // Above the shared budget the pairwise classes are left undecided (and the mesh
+        // unacceptable): testing every pair of a dense stack would take quadratic time.
+        let budget = envelope_predicates::bvh::pair_budget(faces.len());
         if tree.self_pair_count_up_to(budget) >= budget {
             return Self {
                 intersecting: Vec::new(),

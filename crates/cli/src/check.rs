@@ -124,7 +124,13 @@ fn render_text(input: &Path, read: &ReadReport, r: &CheckReport) -> String {
         }
         s.push('\n');
     }
-    let errors: Vec<&str> = r.errors().map(DegeneracyClass::key).collect();
+    let errors: Vec<String> = r
+        .errors()
+        .map(|c| match r.finding(c).undecided {
+            true => format!("{} (undecided)", c.key()),
+            false => c.key().to_owned(),
+        })
+        .collect();
     if errors.is_empty() {
         let _ = writeln!(s, "verdict     acceptable input");
     } else {

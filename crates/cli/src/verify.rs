@@ -163,7 +163,12 @@ fn render_text(args: &Args, c: &Certificate) -> String {
         "envelope_of: {} (approx within epsilon of orig everywhere)",
         c.envelope_of().as_str()
     );
-    if let Some(pairs) = &c.self_intersections {
+    if c.self_intersections_undecided {
+        let _ = writeln!(
+            out,
+            "self-intersections of approx: undecided (faces stacked too densely to test every pair; none among the pairs tested)"
+        );
+    } else if let Some(pairs) = &c.self_intersections {
         let first: Vec<String> = pairs
             .iter()
             .take(5)

@@ -216,6 +216,15 @@ pub struct Bvh {
     boxes: Vec<Aabb>,
 }
 
+/// How many overlapping pairs a self-pair walk over `items` items may take before a caller
+/// calls the input too dense to test every pair: 48 per item (a manifold mesh has about a
+/// dozen per face) plus 2^22. The input checker and the certificate share it, so that time
+/// and memory stay linear in the input (a stack of coincident faces has quadratically many).
+#[must_use]
+pub const fn pair_budget(items: usize) -> usize {
+    48 * items + (1 << 22)
+}
+
 /// Subtrees larger than this are built / traversed with rayon.
 const PAR_THRESHOLD: usize = 4096;
 
@@ -821,10 +830,42 @@ impl Bvh {
     /// ```
     #[must_use]
     pub fn self_pair_count_up_to(&self, limit: usize) -> usize {
-        if self.nodes.is_empty() {
-            return 0;
-        }
         let mut count = 0usize;
+        if limit > 0 {
+            self.self_pairs_while(|_, _| {
+                count += 1;
+                count < limit
+            });
+        }
+        count
+    }
+
+    /// Calls `f(i, j)`, `i < j`, for the pairs of items with overlapping boxes, one at a
+    /// time in a fixed order, until it returns false: a walk a caller can stop (the
+    /// self-pair walks of [`Bvh::self_pairs_where`] run to the end, in parallel).
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let boxes = vec![Aabb::from_points(&[DVec3::ZERO, DVec3::ONE]); 10];
+    /// let mut seen = 0;
+    /// Bvh::new(&boxes).self_pairs_while(|i, j| {
+    ///     assert!(i < j);
+    ///     seen += 1;
+    ///     seen < 7
+    /// });
+    /// assert_eq!(seen, 7);
+    /// ```
+    pub fn self_pairs_while(&self, mut f: impl FnMut(u32, u32) -> bool) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let mut visit = |k: usize, l: usize| {
+            !self.boxes[k].overlaps(&self.boxes[l]) || {
+                let (i, j) = ordered(self.items[k], self.items[l]);
+                f(i, j)
+            }
+        };
         // (a, b): the pairs within `a` when `a == b`, else the pairs across them.
         let mut stack = vec![(0u32, 0u32)];
         while let Some((na, nb)) = stack.pop() {
@@ -833,9 +874,11 @@ impl Bvh {
                 if a.leaf {
                     let (s, e) = (a.a as usize, (a.a + a.b) as usize);
                     for k in s..e {
-                        count += (k + 1..e)
-                            .filter(|&l| self.boxes[k].overlaps(&self.boxes[l]))
-                            .count();
+                        for l in k + 1..e {
+                            if !visit(k, l) {
+                                return;
+                            }
+                        }
                     }
                 } else {
                     stack.extend([(a.a, a.a), (a.b, a.b), (a.a, a.b)]);
@@ -843,9 +886,11 @@ impl Bvh {
             } else if a.bounds.overlaps(&b.bounds) {
                 if a.leaf && b.leaf {
                     for k in a.a as usize..(a.a + a.b) as usize {
-                        count += (b.a as usize..(b.a + b.b) as usize)
-                            .filter(|&l| self.boxes[k].overlaps(&self.boxes[l]))
-                            .count();
+                        for l in b.a as usize..(b.a + b.b) as usize {
+                            if !visit(k, l) {
+                                return;
+                            }
+                        }
                     }
                 } else if !a.leaf && (b.leaf || a.count >= b.count) {
                     stack.extend([(a.a, nb), (a.b, nb)]);
@@ -853,11 +898,7 @@ impl Bvh {
                     stack.extend([(na, b.a), (na, b.b)]);
                 }
             }
-            if count >= limit {
-                return limit;
-            }
         }
-        count
     }
 
     fn size(&self, n: u32) -> usize {

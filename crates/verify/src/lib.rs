@@ -42,7 +42,7 @@ mod numeric;
 use envelope_mesh::{FaceId, Topology, TriangleSoup, analyze};
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use envelope_predicates::bvh::Bvh;
+use envelope_predicates::bvh::{self, Bvh};
 use envelope_predicates::faces_intersect;
 use glam::DVec3;
 use serde_json::{Value, json};
@@ -233,6 +233,10 @@ pub struct Certificate {
     pub self_intersections: Option<Vec<(FaceId, FaceId)>>,
     /// Whether `self_intersections` lists every pair (false when it stopped at the first).
     pub self_intersections_complete: bool,
+    /// The faces of `approx` overlap in more pairs than [`bvh::pair_budget`] allows and
+    /// none of the pairs tested within it intersect: whether any pair does is not decided
+    /// (the verdict is then at best [`Verdict::Undecided`]).
+    pub self_intersections_undecided: bool,
     /// Topology of both, when asked.
     pub topology: Option<TopologyCheck>,
 }
@@ -340,6 +344,7 @@ impl Certificate {
             "self_intersections": self.self_intersections.as_ref().map(|p| json!({
                 "count": p.len(),
                 "complete": self.self_intersections_complete,
+                "undecided": self.self_intersections_undecided,
                 "pairs": p.iter().take(100).map(|(a, b)| [a.index(), b.index()]).collect::<Vec<_>>(),
             })),
             "topology": self.topology.map(|t| json!({
@@ -394,6 +399,25 @@ fn first_pair(tree: &Bvh, positions: &[DVec3], faces: &[[u32; 3]]) -> Option<(u3
         hit
     });
     pairs.first().copied()
+}
+
+/// The first intersecting pair in the tree's sequential pair order among the first `budget`
+/// pairs with overlapping boxes, or `None` (deterministic, whatever the thread count).
+fn bounded_first_pair(
+    tree: &Bvh,
+    positions: &[DVec3],
+    faces: &[[u32; 3]],
+    budget: usize,
+) -> Option<(u32, u32)> {
+    let (mut found, mut tested) = (None, 0usize);
+    tree.self_pairs_while(|i, j| {
+        tested += 1;
+        if faces_intersect(positions, faces[i as usize], faces[j as usize]) {
+            found = Some((i, j));
+        }
+        found.is_none() && tested < budget
+    });
+    found
 }
 
 /// [`envelope_predicates::self_intersections`] with the faces' BVH given (the same pairs).
@@ -479,6 +503,15 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
                 .as_ref()
                 .filter(|_| options.self_intersections)
                 .map(|t| {
+                    // A dense stack: pairs tested one at a time up to the budget, stopping
+                    // at the first that intersects.
+                    let budget = bvh::pair_budget(af.len());
+                    if t.bvh().self_pair_count_up_to(budget) >= budget {
+                        let pair = bounded_first_pair(t.bvh(), &approx.positions, &af, budget);
+                        let pairs: Vec<(FaceId, FaceId)> =
+                            pair.iter().map(|&(a, b)| (FaceId(a), FaceId(b))).collect();
+                        return (pairs, false, pair.is_none());
+                    }
                     let pairs = if options.first_intersection_only {
                         first_pair(t.bvh(), &approx.positions, &af)
                             .into_iter()
@@ -486,10 +519,11 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
                     } else {
                         all_pairs(t.bvh(), &approx.positions, &af)
                     };
-                    pairs
+                    let pairs = pairs
                         .into_iter()
                         .map(|(a, b)| (FaceId(a), FaceId(b)))
-                        .collect::<Vec<_>>()
+                        .collect::<Vec<_>>();
+                    (pairs, !options.first_intersection_only, false)
                 });
             let topo = options.topology.then(|| TopologyCheck {
                 orig: TopologySummary::of(orig),
@@ -498,6 +532,10 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
             (si, topo)
         },
     );
+    let (self_intersections, complete, undecided) = match self_intersections {
+        Some((pairs, complete, undecided)) => (Some(pairs), complete, undecided),
+        None => (None, !options.first_intersection_only, false),
+    };
     let mut c = Certificate {
         verdict: Verdict::Holds,
         epsilon: eps,
@@ -507,11 +545,14 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
         orig_to_approx,
         two_sided: options.orig_to_approx,
         self_intersections,
-        self_intersections_complete: !options.first_intersection_only,
+        self_intersections_complete: complete,
+        self_intersections_undecided: undecided,
         topology,
     };
     c.verdict = if !c.violations().is_empty() {
         Verdict::Violated
+    } else if c.self_intersections_undecided {
+        Verdict::Undecided
     } else if c.two_sided {
         c.approx_to_orig.verdict.max(c.orig_to_approx.verdict)
     } else {
