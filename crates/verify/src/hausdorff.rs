@@ -61,6 +61,9 @@ const MAX_LEVEL: u32 = 60;
 /// small ones at a small epsilon legitimately needs about (face size / eps)^2 of them.
 /// What is left when the budget runs out is undecided, never proved.
 const MAX_FACE_TINY: u64 = 1 << 16;
+/// All sub-triangles of a face, tiny or not, are bounded too: by the pass's tiny budget, at
+/// most this, plus 64 per triangle the face is compared with.
+const MAX_FACE_SUBDIVISIONS: u64 = 1 << 14;
 /// The first pass's budget (see [`one_sided`]): faces it leaves undecided are examined again
 /// with [`MAX_FACE_TINY`] only when no face has a witness.
 const FIRST_PASS_TINY: u64 = 1 << 10;
@@ -792,6 +795,11 @@ impl Search<'_> {
             d,
         }];
         let mut tiny = 0u64;
+        // All sub-triangles, tiny or not: a region at exactly epsilon along a curve on a face
+        // far larger than epsilon (a fuzzed cylinder 1e12 across at 3e-7 of it) otherwise
+        // takes about (face size / (eps 2^-10)) of them before any is tiny. Legitimate work
+        // grows with the triangles the face is compared with, so the allowance does too.
+        let budget = self.tiny_budget.min(MAX_FACE_SUBDIVISIONS) + 64 * stack[0].cands.len() as u64;
         while let Some(s) = stack.pop() {
             out.subdivisions += 1;
             let est = self.estimate(&s);
@@ -830,6 +838,7 @@ impl Search<'_> {
             if out.witness.is_some()
                 || s.level >= MAX_LEVEL
                 || tiny >= self.tiny_budget
+                || out.subdivisions >= budget
                 || diam * (1.0 + 1e-9) + 2.0 * delta <= self.tol.resolution
             {
                 out.undecided |= out.witness.is_none();
