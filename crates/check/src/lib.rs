@@ -14,6 +14,11 @@
 //! is [`DegeneracyClass::SliverTriangles`]: a shape-quality threshold computed in f64, reported
 //! as a warning because no guarantee rests on it.
 //!
+//! Time and memory stay linear in the input: when the faces' boxes overlap in more pairs than
+//! `envelope_predicates::bvh::pair_budget` allows (a stack of coincident faces has
+//! quadratically many), the pairwise classes and the T-junction search are not run but marked
+//! [`Finding::undecided`], which makes the mesh unacceptable: never a wrong "acceptable".
+//!
 //! The T-junction search is skipped when the pairwise test ran and found no intersecting
 //! pair, no face has zero area and every corner is finite: a T-junction makes one of the two
 //! (the faces at the vertex meet the edge's face away from what they share unless one of
