@@ -62,7 +62,8 @@ const MAX_LEVEL: u32 = 60;
 /// What is left when the budget runs out is undecided, never proved.
 const MAX_FACE_TINY: u64 = 1 << 16;
 /// All sub-triangles of a face, tiny or not, are bounded too: by the pass's tiny budget, at
-/// most this, plus 64 per triangle the face is compared with.
+/// most this, plus 64 per triangle the face is compared with (2^12 left fandisk's
+/// certificates at 1/64 % and 1/32 % undecided).
 const MAX_FACE_SUBDIVISIONS: u64 = 1 << 14;
 /// The first pass's budget (see [`one_sided`]): faces it leaves undecided are examined again
 /// with [`MAX_FACE_TINY`] only when no face has a witness.
@@ -111,18 +112,32 @@ struct KeyTable {
 }
 
 impl KeyTable {
-    fn new(tris: &[[DVec3; 3]]) -> KeyTable {
+    /// The table of `tris` and the triangles kept: each closed triangle once, in first
+    /// occurrence order (a repeated one would make every probe for its key walk the others:
+    /// quadratic for a stack of copies).
+    fn dedup(tris: Vec<[DVec3; 3]>) -> (KeyTable, Vec<[DVec3; 3]>) {
         let size = (2 * tris.len()).next_power_of_two().max(2);
-        let mut slots = vec![0u32; size];
-        let mask = size - 1;
-        for (i, t) in tris.iter().enumerate() {
-            let mut h = key_hash(&tri_key(t)) as usize & mask;
-            while slots[h] != 0 {
-                h = (h + 1) & mask;
+        let mut table = KeyTable {
+            slots: vec![0u32; size],
+            mask: size - 1,
+        };
+        let mut kept: Vec<[DVec3; 3]> = Vec::with_capacity(tris.len());
+        for t in tris {
+            let k = tri_key(&t);
+            let mut h = key_hash(&k) as usize & table.mask;
+            let fresh = loop {
+                match table.slots[h] {
+                    0 => break true,
+                    i if tri_key(&kept[i as usize - 1]) == k => break false,
+                    _ => h = (h + 1) & table.mask,
+                }
+            };
+            if fresh {
+                kept.push(t);
+                table.slots[h] = kept.len() as u32;
             }
-            slots[h] = i as u32 + 1;
         }
-        KeyTable { slots, mask }
+        (table, kept)
     }
 
     fn contains(&self, tris: &[[DVec3; 3]], t: &[DVec3; 3]) -> bool {
@@ -141,10 +156,13 @@ impl KeyTable {
 /// The mesh distances are measured to: its triangles, their boxes, a BVH and the set of its
 /// triangles' corner keys.
 pub(crate) struct Target {
+    /// The distinct triangles (a repeated one changes no distance).
     tris: Vec<[DVec3; 3]>,
     boxes: Vec<Aabb>,
     bvh: Bvh,
     keys: KeyTable,
+    /// Every face is in `tris`, in face order.
+    all_faces: bool,
 }
 
 impl Target {
@@ -153,9 +171,11 @@ impl Target {
             .iter()
             .map(|f| f.map(|i| positions[i as usize]))
             .collect();
+        let (keys, tris) = KeyTable::dedup(tris);
         let boxes: Vec<Aabb> = tris.iter().map(|&t| Aabb::from_triangle(t)).collect();
-        let (bvh, keys) = rayon::join(|| Bvh::new(&boxes), || KeyTable::new(&tris));
+        let bvh = Bvh::new(&boxes);
         Target {
+            all_faces: tris.len() == faces.len(),
             tris,
             boxes,
             bvh,
@@ -163,9 +183,10 @@ impl Target {
         }
     }
 
-    /// The BVH over the target's triangle boxes (item = face index).
-    pub(crate) fn bvh(&self) -> &Bvh {
-        &self.bvh
+    /// The BVH over the target's triangle boxes (item = face index), when every face is a
+    /// distinct triangle (else the distance search's tree holds each triangle once).
+    pub(crate) fn bvh(&self) -> Option<&Bvh> {
+        self.all_faces.then_some(&self.bvh)
     }
 
     /// Whether `t` is (bitwise) one of the target's triangles: then its distance is 0.

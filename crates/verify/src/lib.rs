@@ -503,21 +503,29 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
                 .as_ref()
                 .filter(|_| options.self_intersections)
                 .map(|t| {
+                    let built;
+                    let tree = match t.bvh() {
+                        Some(tree) => tree,
+                        None => {
+                            built = Bvh::from_triangles(&approx.positions, &af);
+                            &built
+                        }
+                    };
                     // A dense stack: pairs tested one at a time up to the budget, stopping
                     // at the first that intersects.
                     let budget = bvh::pair_budget(af.len());
-                    if t.bvh().self_pair_count_up_to(budget) >= budget {
-                        let pair = bounded_first_pair(t.bvh(), &approx.positions, &af, budget);
+                    if tree.self_pair_count_up_to(budget) >= budget {
+                        let pair = bounded_first_pair(tree, &approx.positions, &af, budget);
                         let pairs: Vec<(FaceId, FaceId)> =
                             pair.iter().map(|&(a, b)| (FaceId(a), FaceId(b))).collect();
                         return (pairs, false, pair.is_none());
                     }
                     let pairs = if options.first_intersection_only {
-                        first_pair(t.bvh(), &approx.positions, &af)
+                        first_pair(tree, &approx.positions, &af)
                             .into_iter()
                             .collect()
                     } else {
-                        all_pairs(t.bvh(), &approx.positions, &af)
+                        all_pairs(tree, &approx.positions, &af)
                     };
                     let pairs = pairs
                         .into_iter()

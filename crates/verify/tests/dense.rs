@@ -48,3 +48,20 @@ fn a_dense_stack_is_decided_within_the_budget() {
         Some(100 * 99 / 2)
     );
 }
+
+#[test]
+fn repeated_triangles_are_measured_once() {
+    // 200,000 copies of one face of a tetrahedron as `approx`: before each closed triangle
+    // was kept once, every probe of the target's corner-key table walked all the copies
+    // (minutes; now a fraction of a second in release).
+    let tet = envelope_mesh::generate::tetrahedron();
+    let face = tet.faces[0];
+    let stack = TriangleSoup::new(tet.positions.clone(), vec![face; 200_000]);
+    let c = certify(&tet, &stack, &Options::new(0.01));
+    assert_eq!(c.verdict, Verdict::Violated);
+    assert_eq!(c.orig_to_approx.verdict, Verdict::Violated);
+    assert_eq!(c.approx_to_orig.verdict, Verdict::Holds);
+    let one = TriangleSoup::new(tet.positions.clone(), vec![face]);
+    let d = certify(&tet, &one, &Options::new(0.01));
+    assert_eq!(c.orig_to_approx.upper, d.orig_to_approx.upper);
+}
