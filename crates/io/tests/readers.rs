@@ -3,6 +3,7 @@
 
 use envelope_io::{Format, PlyEncoding, ReadErrorKind, StlEncoding, read};
 use envelope_mesh::TriangleSoup;
+use envelope_predicates::polygon::interiors_overlap;
 use envelope_predicates::{Orientation, orient2d, triangles_intersect};
 use glam::{DVec2, DVec3};
 
@@ -219,18 +220,6 @@ fn obj_index_errors_quote_the_index_as_written() {
     );
     let e = read(&b"f 1 2 3\n"[..], Format::Obj).unwrap_err();
     assert!(e.to_string().contains("allowed: none"), "{e}");
-}
-
-/// Whether two counter-clockwise triangles' interiors overlap: they do unless an edge of one
-/// has the other entirely on its closed outer side (separating axis, exact).
-fn interiors_overlap(s: [DVec2; 3], t: [DVec2; 3]) -> bool {
-    let separates = |a: [DVec2; 3], b: [DVec2; 3]| {
-        (0..3).any(|k| {
-            b.iter()
-                .all(|&q| orient2d(a[k], a[(k + 1) % 3], q) != Orientation::Positive)
-        })
-    };
-    !separates(s, t) && !separates(t, s)
 }
 
 /// An OBJ file of one polygon in the plane z = 0 (counter-clockwise seen from +z).

@@ -206,6 +206,28 @@ fn triangulate_projected(p: &[DVec2]) -> Option<Vec<[u32; 3]>> {
     Some(triangles)
 }
 
+/// Whether the interiors of two counter-clockwise triangles in the plane overlap: they do
+/// unless an edge of one has the other entirely on its closed outer side (separating axis,
+/// decided by exact [`orient2d`]). Triangles that only touch do not overlap.
+///
+/// ```
+/// use envelope_predicates::polygon::interiors_overlap;
+/// use glam::DVec2;
+/// let t = [DVec2::ZERO, DVec2::X, DVec2::Y];
+/// assert!(interiors_overlap(t, [DVec2::splat(0.1), DVec2::new(2.0, 0.1), DVec2::new(0.1, 2.0)]));
+/// assert!(!interiors_overlap(t, [DVec2::X, DVec2::ONE, DVec2::Y])); // shares an edge only
+/// ```
+#[must_use]
+pub fn interiors_overlap(s: [DVec2; 3], t: [DVec2; 3]) -> bool {
+    let separates = |a: [DVec2; 3], b: [DVec2; 3]| {
+        (0..3).any(|k| {
+            b.iter()
+                .all(|&q| orient2d(a[k], a[(k + 1) % 3], q) != Orientation::Positive)
+        })
+    };
+    !separates(s, t) && !separates(t, s)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -290,18 +312,6 @@ mod tests {
                 assert!(!triangles_intersect(f(s), f(t)), "{s:?} {t:?}");
             }
         }
-    }
-
-    /// Whether two counter-clockwise triangles' interiors overlap: they do unless an edge of
-    /// one has the other entirely on its closed outer side (separating axis, exact).
-    fn interiors_overlap(s: [DVec2; 3], t: [DVec2; 3]) -> bool {
-        let separates = |a: [DVec2; 3], b: [DVec2; 3]| {
-            (0..3).any(|k| {
-                b.iter()
-                    .all(|&q| orient2d(a[k], a[(k + 1) % 3], q) != Orientation::Positive)
-            })
-        };
-        !separates(s, t) && !separates(t, s)
     }
 
     #[test]
