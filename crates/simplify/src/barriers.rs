@@ -899,17 +899,18 @@ fn magnitude(t: [DVec3; 3]) -> f64 {
 /// The box and one vertex of every connected component of `soup`'s faces.
 fn surface_components(soup: &TriangleSoup) -> Vec<(Aabb, DVec3)> {
     let (comp, n) = envelope_mesh::vertex_components(soup.num_vertices(), &soup.faces);
-    let mut out: Vec<Option<(Aabb, DVec3)>> = vec![None; n];
-    for (p, c) in soup.positions.iter().zip(&comp) {
+    // Every component has a vertex: its first one is set while its box is still empty.
+    let mut out = vec![(Aabb::EMPTY, DVec3::ZERO); n];
+    for (&p, c) in soup.positions.iter().zip(&comp) {
         if let Some(c) = c {
-            let slot = &mut out[*c as usize];
-            *slot = Some(match *slot {
-                None => (Aabb::from_points(&[*p]), *p),
-                Some((b, first)) => (b.union(&Aabb::from_points(&[*p])), first),
-            });
+            let (b, first) = &mut out[*c as usize];
+            if b.is_empty() {
+                *first = p;
+            }
+            *b = b.union(&Aabb::from_points(&[p]));
         }
     }
-    out.into_iter().flatten().collect()
+    out
 }
 
 /// Whether the directed edges of `old` and `new` cancel (`old - new` is closed).
