@@ -132,9 +132,6 @@ impl PairwiseFindings {
                 &built
             }
         };
-        // Each face's plane once (a face meets about a dozen candidates), stored in the
-        // tree's leaf order: the pairs come leaf by leaf, so the faces they read are then
-        // near each other in memory (in a scanned mesh's own order they are not).
         // Above the shared budget the pairwise classes are left undecided (and the mesh
         // unacceptable): testing every pair of a dense stack would take quadratic time.
         let budget = envelope_predicates::bvh::pair_budget(faces.len());
@@ -145,6 +142,9 @@ impl PairwiseFindings {
                 undecided: true,
             };
         }
+        // Each face's plane once (a face meets about a dozen candidates), stored in the
+        // tree's leaf order: the pairs come leaf by leaf, so the faces they read are then
+        // near each other in memory (in a scanned mesh's own order they are not).
         let order = tree.leaf_order();
         let mut rank = vec![0u32; order.len()];
         for (k, &i) in order.iter().enumerate() {
