@@ -342,8 +342,7 @@ impl Barriers {
     /// would carry a whole barrier component across, so the approximation would no longer
     /// lie between the envelopes as the input does although no triangle meets a barrier.
     /// This happens at large epsilons, where an inner envelope shrinks to a small closed
-    /// surface that one hole's filling can pass over (a sphere at a quarter of its diagonal
-    /// became a tetrahedron beside its inner envelope, 1.2 epsilon from the input).
+    /// surface that one hole's filling can pass over without touching it.
     ///
     /// The test: `C = old - new` is a closed surface (a 2-cycle) inside the box `B` of its
     /// corners; both parts are apart from every barrier (the mesh's faces and each accepted

@@ -57,13 +57,14 @@ const MAX_LEVEL: u32 = 60;
 /// Tiny sub-triangles (diameter below `eps * 2^-10`) examined per face at most. A region at
 /// exactly epsilon along a curve that the exact cut cannot prove (the nearest triangles
 /// share no edge) would otherwise be subdivided down to the resolution all along the curve:
-/// millions of exact tests. Larger sub-triangles are not counted: a big face over many
-/// small ones at a small epsilon legitimately needs about (face size / eps)^2 of them.
+/// millions of exact tests. Larger sub-triangles count only against the looser
+/// [`MAX_FACE_SUBDIVISIONS`]: a big face over many small ones at a small epsilon
+/// legitimately needs many of them.
 /// What is left when the budget runs out is undecided, never proved.
 const MAX_FACE_TINY: u64 = 1 << 16;
 /// All sub-triangles of a face, tiny or not, are bounded too: by the pass's tiny budget, at
-/// most this, plus 64 per triangle the face is compared with (2^12 left fandisk's
-/// certificates at 1/64 % and 1/32 % undecided).
+/// most this, plus 64 per triangle the face is compared with (legitimate work grows with
+/// those triangles).
 const MAX_FACE_SUBDIVISIONS: u64 = 1 << 14;
 /// The first pass's budget (see [`one_sided`]): faces it leaves undecided are examined again
 /// with [`MAX_FACE_TINY`] only when no face has a witness.
@@ -817,9 +818,8 @@ impl Search<'_> {
         }];
         let mut tiny = 0u64;
         // All sub-triangles, tiny or not: a region at exactly epsilon along a curve on a face
-        // far larger than epsilon (a fuzzed cylinder 1e12 across at 3e-7 of it) otherwise
-        // takes about (face size / (eps 2^-10)) of them before any is tiny. Legitimate work
-        // grows with the triangles the face is compared with, so the allowance does too.
+        // far larger than epsilon otherwise takes about (face size / (eps 2^-10)) of them
+        // before any is tiny.
         let budget = self.tiny_budget.min(MAX_FACE_SUBDIVISIONS) + 64 * stack[0].cands.len() as u64;
         while let Some(s) = stack.pop() {
             out.subdivisions += 1;
