@@ -31,7 +31,7 @@ use glam::DVec3;
 /// Outputs known to violate the bound, with the diagnosis. Open problem, not hidden.
 ///
 /// Empty. `mech-holes-shark.off` (4 border loops) was listed at 1/4 % and 1 %: the output
-/// was up to 6.7 eps from the input, at an interior edge joining two border vertices across
+/// was several eps from the input, at an interior edge joining two border vertices across
 /// a hole, because the envelopes are open along the borders and the tubes of 6.2 only
 /// constrain *new border edges*. The border walls of `envelope_simplify::border_walls`
 /// (full barriers joining outer and inner envelope along every border loop) close that gap.
@@ -45,8 +45,8 @@ fn full_requested() -> bool {
 /// fail when `h > eps + bound`: then the true distance is `>= h - bound > eps`, a certain
 /// violation. A pass means the true distance is `<= eps + 2 bound = 1.1 eps`. The bound is
 /// that loose because CGAL's branch and bound is very slow where the surfaces coincide
-/// (distance 0: a simplified flat box side took > 60 s and 5 GB at `1e-3 eps`, 15 s at
-/// `0.05 eps`). The exact check at `eps` is `envelope-verify`'s certificate, also run here
+/// (distance 0, as on a simplified flat box side), the slower the tighter the bound. The
+/// exact check at `eps` is `envelope-verify`'s certificate, also run here
 /// (and itself cross-checked against CGAL in `cross_verify`).
 fn within(oracle: &Oracle, a: &Path, b: &Path, eps: f64) -> Result<f64, String> {
     let bound = 0.05 * eps;

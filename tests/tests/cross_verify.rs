@@ -9,8 +9,8 @@
 //! bound `1e-3 eps`) must lie in our certified interval in both directions. Then epsilon
 //! `0.5 x` CGAL's value must be violated with a witness.
 //!
-//! The default run keeps to a few small meshes and one peer case (the debug build takes under a
-//! minute); `ENVELOPE_FULL_CORPUS=1` runs the larger selection, more tolerances, and both peer
+//! The default run keeps to a few small meshes and one peer case, so that the debug build
+//! stays quick; `ENVELOPE_FULL_CORPUS=1` runs the larger selection, more tolerances, and both peer
 //! meshes (fandisk, mech-holes-shark) at two tolerances.
 
 use std::path::{Path, PathBuf};
@@ -183,7 +183,7 @@ fn intervals_contain_cgal_on_peer_simplifications() {
     };
     let dir = tempfile::tempdir().unwrap();
     let mut checked = 0;
-    // CGAL's envelope collapse takes tens of seconds on these meshes: the default run keeps
+    // CGAL's envelope collapse is slow on these meshes: the default run keeps
     // one mesh and one tolerance.
     let full = full_corpus();
     let (meshes, tolerances): (&[&str], &[f64]) = if full {

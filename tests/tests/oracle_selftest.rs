@@ -320,7 +320,7 @@ fn topology_of_tetrahedron_torus_and_open_pieces() {
     assert_eq!(t.file_polygons, Some(2));
 }
 
-/// Files above this size are left out of the corpus sweep to keep it quick (about 7 s for all).
+/// Files above this size are left out of the corpus sweep to keep it quick.
 const SWEEP_MAX_BYTES: u64 = 4 << 20;
 
 #[test]
@@ -418,8 +418,8 @@ fn soup_self_intersections_match_pmp_on_corpus() {
     }
 }
 
-/// Limits stop a long Hausdorff request instead of letting it run (the corpus sweep had one
-/// at 16 minutes and 9.7 GB): one CPU second against a fine torus pair at a tiny error bound
+/// Limits stop a long Hausdorff request instead of letting it run (the corpus sweep met
+/// one): one CPU second against a fine torus pair at a tiny error bound
 /// ends with `OracleError::Limit`, and the same limited oracle still answers a cheap request.
 #[test]
 fn limits_stop_a_long_request() {

@@ -3,7 +3,7 @@
 //! growth of the global step's time with mesh size on icospheres (fitted exponent).
 //!
 //! `cargo run --release -p envelope-benches --bin global_vs_local [-- --quick] [--corpus DIR]`
-//! `--quick`: a CI smoke run on small generated meshes (under a minute). `--verify`: certify
+//! `--quick`: a short CI smoke run on small generated meshes. `--verify`: certify
 //! every output (`envelope-verify`; a violation fails the run). `--only NAME`: one corpus
 //! mesh. `--no-growth`: skip the icosphere series. The last column is the hybrid in its
 //! other order (`HybridOrder::GlobalFirst`: bounded global, then local).

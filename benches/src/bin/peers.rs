@@ -4,7 +4,7 @@
 //! * `envelope-collapse`: the same with `--placement collapse` (local algorithm, edge
 //!   collapses after the subset run), the configuration with the fewest faces for its time;
 //! * `envelope-hybrid` (only when named in `--tools`): `--method hybrid --placement collapse`,
-//!   at most 0.8 % fewer faces than `envelope-collapse` for up to twice its time;
+//!   slightly fewer faces than `envelope-collapse` for more time;
 //! * `cgal`: CGAL 5.5 `edge_collapse` with `Polyhedral_envelope_filter` (`benches/peers`);
 //! * `openmesh`: OpenMesh 9 `DecimaterT` with `ModQuadricT` + `ModHausdorffT` (`benches/peers`);
 //! * `meshopt`: meshoptimizer's `simplify` (the `meshopt` crate), target 0 triangles,

@@ -22,8 +22,7 @@
 //! The T-junction search is skipped when the pairwise test ran and found no intersecting
 //! pair, no face has zero area and every corner is finite: a T-junction makes one of the two
 //! (the faces at the vertex meet the edge's face away from what they share unless one of
-//! them is degenerate). Measured on armadillo (52,000 faces): 0.25 G instructions less per
-//! check.
+//! them is degenerate).
 //!
 //! ```
 //! use envelope_check::{check, CheckOptions, DegeneracyClass};

@@ -93,8 +93,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     // The command runs on a thread of rayon's pool: the local simplifier plans each batch of
     // removals in parallel, and from outside the pool every batch would wake a worker and
-    // put this thread to sleep until it is done (bunny00 at 1/64 % on one thread: 1.2 s of
-    // 4.2 s went to that).
+    // put this thread to sleep until it is done.
     let result = rayon::scope(move |_| match cli.command {
         Command::Check {
             input,

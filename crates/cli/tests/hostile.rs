@@ -176,7 +176,8 @@ fn assert_not_violated(
 }
 
 /// Regression test for the fuzz finding above (seeded run): the global method at 65/256 of
-/// the diagonal. Fails on 6f78b1a: 4 faces, input->output <= 1.1964 > epsilon 0.8796.
+/// the diagonal. Failed before the fix: the output's certificate was violated
+/// (input -> output above epsilon).
 #[test]
 fn fuzz_command_path_global_large_epsilon_certificate() {
     let data = fuzz_octasphere_input();
@@ -195,8 +196,8 @@ fn fuzz_command_path_global_large_epsilon_certificate() {
 
 /// The fuzz target's finding from an empty corpus, `b"C\x10J\x07"`: selector 0x43 (a recipe,
 /// binary PLY, local method, subset), epsilon 75/256 of the diagonal, recipe 7: the
-/// icosphere(1) (80 faces) scaled by 1e-12 (the missing scale byte reads as 0). Fails on
-/// 6f78b1a the same way: the output's certificate is violated (orig_to_approx).
+/// icosphere(1) (80 faces) scaled by 1e-12 (the missing scale byte reads as 0). Failed
+/// before the fix the same way: the output's certificate was violated (orig_to_approx).
 #[test]
 fn fuzz_command_path_local_large_epsilon_certificate() {
     let data: &[u8] = b"C\x10J\x07";

@@ -84,9 +84,8 @@ impl Default for GlobalOptions {
 
 impl GlobalOptions {
     /// The hybrid's global stage: regions up to 2 rings and 10 boundary vertices, 3
-    /// candidates per region, 4 passes. (12 and 16 boundary vertices, and 3 rings, gave the
-    /// same faces on all 16 rows of the `global_vs_local` benchmark at up to 1.2 and 1.6
-    /// times the time.)
+    /// candidates per region, 4 passes. (Larger regions gave the same faces on the
+    /// `global_vs_local` benchmark for more time.)
     #[must_use]
     pub fn bounded() -> Self {
         GlobalOptions {

@@ -208,12 +208,11 @@ fn fixed_bumps(seed: u64, n: usize) -> Vec<f64> {
 }
 
 /// Quality, not a guarantee: over a fixed set of 24 bumpy spheres at epsilons from 0.5 % to
-/// 3 % of the diagonal, global's total face count is not above local's (measured: 2,898
-/// against 2,968): the global method is the one that avoids local minima on small models
-/// (section 5.4). On one
-/// mesh global can be worse by more (the greedy set cover has no bound against the local
-/// order: 80 against 66 faces on a level-2 sphere at 2.9 %), so the comparison is on the
-/// total, on fixed inputs; the property test below checks only what is guaranteed.
+/// 3 % of the diagonal, global's total face count is not above local's: the global method
+/// is the one that avoids local minima on small models (section 5.4). On one mesh global can
+/// be worse by more (the greedy set cover has no bound against the local order), so the
+/// comparison is on the total, on fixed inputs; the property test below checks only what is
+/// guaranteed.
 #[test]
 fn global_is_close_to_local_in_total() {
     let (mut local_total, mut global_total) = (0, 0);

@@ -134,8 +134,7 @@ pub fn apart_beyond_first_plane(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bo
 /// sign. No new orientation at all: the four of the plane tests decide.
 ///
 /// Either case replaces the nine edge axes ([`edge_axes_apart`]: up to nine axes of six
-/// projections) that decided all the envelope proof's crossed pairs at small offsets (about
-/// 200,000 on armadillo at 1/64 %).
+/// projections) that decided all the envelope proof's crossed pairs at small offsets.
 #[must_use]
 pub fn straddling_apart(p1: &Planar, fs: [bool; 3], p2: &Planar, gs: [bool; 3]) -> bool {
     let shared = fs.iter().filter(|&&b| b).count();

@@ -13,11 +13,8 @@ use glam::DVec3;
 use crate::range::{next_down, next_up};
 
 /// Maximum number of items per leaf. 8 rather than 4: fewer node pairs walked for as many
-/// box tests at the leaves (`envelope simplify` on mech-holes-shark at 1/64 %, one thread,
-/// callgrind: 828.8 -> 817.0 M instructions; 16: 820.1 M); report seconds on two threads,
-/// medians of alternating runs, 0.0649 -> 0.0634 (21 runs), armadillo 0.2127 -> 0.2117 (7),
-/// fandisk 0.373 -> 0.364 (7), bunny00 0.868 -> 0.857 (3). Same outputs: a tree's shape
-/// decides where to look, never what is found.
+/// box tests at the leaves. Same outputs: a tree's shape decides where to look, never what
+/// is found.
 pub const LEAF_SIZE: usize = 8;
 
 /// A closed axis-aligned box `[min, max]`. An empty box has `min > max`.
