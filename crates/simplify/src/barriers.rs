@@ -63,7 +63,7 @@ impl Query {
     /// The same question, up to a rotation of the corners (which carries the border edges
     /// along): the answer is a function of the closed triangle and of its border segments.
     fn is(&self, t: [DVec3; 3], border_edges: [bool; 3]) -> bool {
-        crate::same_up_to_rotation((&self.corners, &self.border_edges), (&t, &border_edges))
+        same_up_to_rotation((&self.corners, &self.border_edges), (&t, &border_edges))
     }
 }
 
@@ -85,7 +85,7 @@ pub enum BarrierKind {
     /// A border tube (section 6.2): no new *border edge* may touch it. Tubes are not tested
     /// against whole triangles: the surface near a border leaves the tube through its wall.
     Tube,
-    /// A border wall ([`crate::border_walls`]): joins the outer and inner envelopes along a
+    /// A border wall (`border_walls`, module `walls`): joins the outer and inner envelopes along a
     /// border, and like them no candidate triangle may touch it.
     Wall,
 }
@@ -460,7 +460,7 @@ impl Barriers {
 
     /// The part of the validity test (5.1) that does not depend on the approximation: the
     /// corners of `t` are exactly collinear, or [`Self::blocks`] says it touches a barrier.
-    /// [`crate::EnvelopeFilter`] asks it first; the global simplifier screens candidates
+    /// `EnvelopeFilter` asks it first; the global simplifier screens candidates
     /// with it.
     #[must_use]
     pub fn refuses(&self, t: [DVec3; 3], border_edges: [bool; 3]) -> bool {
@@ -960,6 +960,16 @@ fn winding_not_zero(p: DVec3, region: &Aabb, cycle: &[[DVec3; 3]]) -> bool {
         }
     }
     true
+}
+
+/// Whether the triangle `(a, a_data)` is `(b, b_data)` up to a rotation of its corners, the
+/// per-corner data (border edges, positions) rotating along. The memories of
+/// [`Barriers::scoped`] and [`Nearby`] match their questions with it.
+pub(crate) fn same_up_to_rotation<A: PartialEq, B: PartialEq>(
+    (a, a_data): (&[A; 3], &[B; 3]),
+    (b, b_data): (&[A; 3], &[B; 3]),
+) -> bool {
+    (0..3).any(|r| (0..3).all(|k| a[(k + r) % 3] == b[k] && a_data[(k + r) % 3] == b_data[k]))
 }
 
 #[cfg(test)]

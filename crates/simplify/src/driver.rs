@@ -34,7 +34,7 @@ use glam::DVec3;
 use serde_json::{Value, json};
 use thiserror::Error;
 
-use crate::policy::Rejection;
+use crate::rules::Rejection;
 use crate::{
     BarrierError, Barriers, FiberTest, HoleFilling, Order, Placement, SimplifyError, VertexFibers,
     Visitor, border_walls, simplify_local_sliding,
@@ -119,7 +119,7 @@ pub enum DriverError {
         /// Repair rounds run.
         repair_rounds: u32,
     },
-    /// A list of epsilons that makes no chain ([`crate::lod_chain`]).
+    /// A list of epsilons that makes no chain (`lod_chain`).
     #[error("epsilons: {0}")]
     Epsilons(&'static str),
 }

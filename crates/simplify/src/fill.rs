@@ -21,7 +21,7 @@
 use crate::fiber::FiberPath;
 use crate::filter::{Approximation, CandidateProfile, Filter, Nearby, position_in};
 use crate::grid::FaceGrid;
-use crate::policy::aspect_ratio;
+use crate::rules::aspect_ratio;
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use glam::DVec3;
 use std::collections::HashMap;

@@ -119,7 +119,7 @@ impl Clear {
     fn knows(&self, t: [VertexId; 3], p: [DVec3; 3]) -> bool {
         self.candidates
             .iter()
-            .any(|(u, q)| crate::same_up_to_rotation((u, q), (&t, &p)))
+            .any(|(u, q)| crate::barriers::same_up_to_rotation((u, q), (&t, &p)))
     }
 }
 
@@ -256,7 +256,7 @@ pub trait Filter: Sync {
     /// A refusal that needs nothing of the approximation: true only when [`Filter::accepts`]
     /// is false for this candidate (its ids, corners and border edges) whatever
     /// `profile.approximation` is (mesh, placed, excluded and moved faces). Callers may ask
-    /// it first to skip work: the ear test ([`crate::fill`]) asks it of every ear before
+    /// it first to skip work: the ear test (module `fill`) asks it of every ear before
     /// any approximation test, so that a hole whose ears the barriers alone turn away never
     /// gathers the mesh faces around it. The default claims nothing.
     fn refuses_anyway(&self, profile: &CandidateProfile<'_>) -> bool {

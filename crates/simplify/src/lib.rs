@@ -24,7 +24,7 @@ mod filter;
 mod grid;
 pub mod local;
 pub mod lod;
-mod policy;
+mod rules;
 mod walls;
 
 pub use barriers::{BarrierError, BarrierKind, Barriers};
@@ -33,28 +33,17 @@ pub use driver::{
     SimplifyStep, Stage, StepInput, StepOutcome, VerifyReport, input_problems, peak_memory_bytes,
     simplify, simplify_with,
 };
-pub use fiber::FiberTest;
+pub use fiber::{FiberTest, VertexFibers};
 pub use fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
 pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, Nearby, NoFilter};
 pub use grid::FaceGrid;
 pub use local::{
     AUTO_MOVING_DIVISOR, HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Placement,
-    Policies, Removal, RemovalQueue, SimplifyError, Stats, VertexFibers, queue_vertices,
-    simplify_local, simplify_local_from, simplify_local_sliding, simplify_local_visited,
-    simplify_local_with,
+    Policies, Removal, RemovalQueue, SimplifyError, Stats, queue_vertices, simplify_local,
+    simplify_local_from, simplify_local_sliding, simplify_local_visited, simplify_local_with,
 };
 pub use lod::{Level, LodOptions, LodRule, Screen, lod_chain};
-pub use policy::{
+pub use rules::{
     Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor, aspect_ratio,
 };
 pub use walls::{WALL_SEGMENTS, Wall, border_walls};
-
-/// Whether the triangle `(a, a_data)` is `(b, b_data)` up to a rotation of its corners, the
-/// per-corner data (border edges, positions) rotating along. The memories of
-/// [`Barriers::scoped`] and [`Nearby`] match their questions with it.
-pub(crate) fn same_up_to_rotation<A: PartialEq, B: PartialEq>(
-    (a, a_data): (&[A; 3], &[B; 3]),
-    (b, b_data): (&[A; 3], &[B; 3]),
-) -> bool {
-    (0..3).any(|r| (0..3).all(|k| a[(k + r) % 3] == b[k] && a_data[(k + r) % 3] == b_data[k]))
-}

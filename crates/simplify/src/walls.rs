@@ -47,7 +47,7 @@
 //! Border chains (open border paths, only next to non-manifold edges) get no wall, and a
 //! loop segment is skipped when one of its ends is a non-manifold border vertex (more than
 //! two border edges: a pinch), where "the outward side" is not defined by one fan. Acceptable
-//! input ([`crate::input_problems`]) has neither.
+//! input (the driver's `input_problems`) has neither.
 
 use envelope_mesh::{Topology, TriangleSoup, VertexId};
 use glam::DVec3;

@@ -7,7 +7,7 @@ use super::plan::{LocalSimplifier, Plan, in_range};
 use super::{Removal, VertexFibers};
 use crate::fill::{FillContext, HoleFiller};
 use crate::filter::Filter;
-use crate::policy::Rejection;
+use crate::rules::Rejection;
 use envelope_mesh::{HalfEdgeMesh, VertexId};
 use glam::DVec3;
 

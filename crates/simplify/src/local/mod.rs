@@ -55,13 +55,14 @@ mod slide;
 mod tests;
 mod verdicts;
 
-use crate::fiber::FiberTest;
+use crate::fiber::{FiberTest, VertexFibers};
 use crate::fill::HoleFiller;
 use crate::filter::Filter;
-use crate::policy::{Exhaust, Fifo, FlatFirst, QueueOrder, StopRule, TargetFaces, Visitor};
+use crate::rules::{
+    Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor,
+};
 use crate::{Barriers, EnvelopeFilter, Exhaustive, Greedy};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
-use glam::DVec3;
 pub use plan::{LocalSimplifier, Removal};
 pub use queue::{RemovalQueue, queue_vertices};
 use run::run;
@@ -123,6 +124,19 @@ pub struct Stats {
     /// Whether the moving phase ran (with [`Placement::Slide`] and [`Placement::Collapse`]
     /// always; with [`Placement::Auto`] when few vertices were left).
     pub moving_phase: bool,
+}
+
+/// Counts a failed attempt at `v` and tells the visitor.
+fn rejected(stats: &mut Stats, visitor: &mut dyn Visitor, v: VertexId, reason: Rejection) {
+    if reason == Rejection::NoFillAcrossFiber {
+        stats.no_valid_fill += 1;
+        stats.no_fill_across_fiber += 1;
+    } else if reason == Rejection::NoValidFill {
+        stats.no_valid_fill += 1;
+    } else {
+        stats.refused += 1;
+    }
+    visitor.on_rejected(v, reason);
 }
 
 /// The hole-filling strategy of [`Options`].
@@ -196,26 +210,6 @@ pub enum Placement {
     /// run left at most one vertex in [`AUTO_MOVING_DIVISOR`] of those it started with (see
     /// the module docs for why); otherwise the output is [`Placement::Subset`]'s.
     Auto,
-}
-
-/// The fiber of every vertex (by vertex id): the segment from its inner envelope point to its
-/// outer one (f64 constructions of `envelope-offset`), along which [`Placement::Slide`]
-/// moves it.
-#[derive(Clone, Copy, Debug)]
-pub struct VertexFibers<'a> {
-    /// `v - eps_minus n_v`.
-    pub inner: &'a [DVec3],
-    /// `v + eps_plus n_v`.
-    pub outer: &'a [DVec3],
-}
-
-impl VertexFibers<'_> {
-    /// `(inner point, outer - inner)` of `v`; `None` without a fiber of positive length.
-    fn segment(&self, v: VertexId) -> Option<(DVec3, DVec3)> {
-        let (a, b) = (*self.inner.get(v.index())?, *self.outer.get(v.index())?);
-        let d = b - a;
-        (d.length_squared() > 0.0 && d.is_finite()).then_some((a, d))
-    }
 }
 
 /// The policies of [`simplify_local_with`].

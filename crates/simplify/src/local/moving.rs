@@ -7,12 +7,11 @@
 use super::collapse::collapse_candidates;
 use super::plan::{LocalSimplifier, Plan};
 use super::queue::{independent_batch, queue_vertices};
-use super::run::rejected;
 use super::scheduler::plan_each;
-use super::{Policies, SimplifyError, Stats, VertexFibers};
+use super::{Policies, SimplifyError, Stats, VertexFibers, rejected};
 use crate::fill::HoleFiller;
 use crate::filter::Filter;
-use crate::policy::{Fifo, Rejection, Visitor};
+use crate::rules::{Fifo, Rejection, Visitor};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
 

@@ -6,7 +6,7 @@ use crate::fiber::FiberTest;
 use crate::fill::{FillContext, Hole, HoleFiller};
 use crate::filter::{Approximation, CandidateProfile, Filter, Nearby, position_in};
 use crate::grid::FaceGrid;
-use crate::policy::Rejection;
+use crate::rules::Rejection;
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
 use glam::DVec3;

@@ -1,7 +1,7 @@
 //! The removal queue (section 5.2) and the batches taken off it for parallel planning:
 //! vertices whose boxes are apart from everything queued before them.
 
-use crate::policy::QueueOrder;
+use crate::rules::QueueOrder;
 use envelope_mesh::{HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
 use std::cmp::Ordering;

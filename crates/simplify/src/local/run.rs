@@ -6,9 +6,9 @@ use super::plan::LocalSimplifier;
 use super::queue::{RemovalQueue, RingBoxes, independent_batch, queue_vertices};
 use super::scheduler::{Awake, plan_each};
 use super::verdicts::{Doomed, FillNothing};
-use super::{AUTO_MOVING_DIVISOR, Policies, SimplifyError, Stats};
+use super::{AUTO_MOVING_DIVISOR, Policies, SimplifyError, Stats, rejected};
 use crate::grid::FaceGrid;
-use crate::policy::{Rejection, Visitor};
+use crate::rules::{Rejection, Visitor};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
 
 pub(super) fn run(
@@ -49,12 +49,13 @@ pub(super) fn run(
     let mut local = LocalSimplifier::without_grid(mesh, policies.keep_border)
         .with_fiber_test(policies.fiber_test);
     let mut rings = RingBoxes::default();
+    let take_ahead = || verdicts.take_one();
     let awake = Awake::new();
     rayon::in_place_scope(|scope| -> Result<(), SimplifyError> {
         // The other threads take verdicts ahead while this one builds the face index (the
         // verdicts read none), selects and commits.
         if batched {
-            awake.hold(scope, &verdicts);
+            awake.hold(scope, &take_ahead);
         }
         local.grid = FaceGrid::from_mesh(local.mesh());
         'run: loop {
@@ -99,7 +100,7 @@ pub(super) fn run(
                 )
             };
             if batched {
-                awake.hold(scope, &verdicts);
+                awake.hold(scope, &take_ahead);
             }
             // Commit in queue order: the same calls, in the same order, as one at a time.
             for (&(v, ahead), (plan, tests)) in batch.iter().zip(plans) {
@@ -146,22 +147,4 @@ pub(super) fn run(
     stats.vertices_after = local.mesh().num_vertices();
     stats.faces_after = local.mesh().num_faces();
     Ok(stats)
-}
-
-/// Counts a failed attempt at `v` and tells the visitor.
-pub(super) fn rejected(
-    stats: &mut Stats,
-    visitor: &mut dyn Visitor,
-    v: VertexId,
-    reason: Rejection,
-) {
-    if reason == Rejection::NoFillAcrossFiber {
-        stats.no_valid_fill += 1;
-        stats.no_fill_across_fiber += 1;
-    } else if reason == Rejection::NoValidFill {
-        stats.no_valid_fill += 1;
-    } else {
-        stats.refused += 1;
-    }
-    visitor.on_rejected(v, reason);
 }

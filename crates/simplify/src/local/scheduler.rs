@@ -1,17 +1,14 @@
 //! The thread scheduler of the batched runs: who plans what, and what the other threads do
 //! between the rounds. It knows nothing of geometry and decides nothing of the outcome.
 
-use super::verdicts::Doomed;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering as Mem};
 
 /// Keeps the other threads of the pool busy between the short parallel rounds of a batched
-/// run: while the calling thread selects and commits (tens of microseconds a batch), each
-/// of them takes fiber verdicts ahead of the queue ([`Doomed::take_one`]), then spins until
-/// the next round begins or [`Awake::MAX_SPIN`] passes, so that the next round's work is
-/// taken at once rather than after a wake-up. It decides nothing: a verdict is the same
-/// whichever thread computes it and whenever, so the outcome never depends on it.
-/// mech-holes-shark at 1/64 % (117 rounds): the spinning alone took the rounds' wall time
-/// from 0.032 to 0.030 s for 0.047 s of planning.
+/// run: while the calling thread selects and commits, each of them works aside (the run's
+/// fiber verdicts ahead of the queue), then spins until the next round begins or
+/// [`Awake::MAX_SPIN`] passes, so that the next round's work is taken at once rather than
+/// after a wake-up. It decides nothing: the work aside is the same whichever thread does it
+/// and whenever, so the outcome never depends on it.
 pub(super) struct Awake {
     round: AtomicU64,
     caller: Option<usize>,
@@ -27,8 +24,13 @@ impl Awake {
         }
     }
 
-    /// One job for each other thread, until [`Awake::release`]: verdicts, then spinning.
-    pub(super) fn hold<'s>(&'s self, scope: &rayon::Scope<'s>, verdicts: &'s Doomed<'_>) {
+    /// One job for each other thread, until [`Awake::release`]: `aside` until it returns false
+    /// (work that decides nothing: the run's fiber verdicts ahead), then spinning.
+    pub(super) fn hold<'s, A: Fn() -> bool + Sync>(
+        &'s self,
+        scope: &rayon::Scope<'s>,
+        aside: &'s A,
+    ) {
         let round = self.round.load(Mem::Acquire);
         for _ in 1..rayon::current_num_threads() {
             scope.spawn(move |_| {
@@ -37,7 +39,7 @@ impl Awake {
                     return;
                 }
                 let current = || self.round.load(Mem::Acquire) == round;
-                while current() && verdicts.take_one() {}
+                while current() && aside() {}
                 let start = std::time::Instant::now();
                 while current() && start.elapsed() < Self::MAX_SPIN {
                     std::hint::spin_loop();

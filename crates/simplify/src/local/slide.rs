@@ -6,7 +6,7 @@ use super::plan::{LocalSimplifier, in_range};
 use super::{Removal, VertexFibers};
 use crate::fill::HoleFiller;
 use crate::filter::Filter;
-use crate::policy::Rejection;
+use crate::rules::Rejection;
 use envelope_mesh::VertexId;
 use glam::DVec3;
 

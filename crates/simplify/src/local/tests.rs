@@ -5,7 +5,7 @@ use super::queue::{Entry, RemovalQueue, queue_vertices};
 use super::scheduler::plan_each;
 use super::verdicts::{Doomed, FillNothing, Verdict};
 use crate::filter::Filter;
-use crate::policy::{Fifo, FlatFirst, QueueOrder, Rejection};
+use crate::rules::{Fifo, FlatFirst, QueueOrder, Rejection};
 use crate::{Barriers, EnvelopeFilter};
 use envelope_mesh::{HalfEdgeMesh, VertexId, generate};
 use glam::DVec3;

@@ -6,7 +6,7 @@ use super::queue::RemovalQueue;
 use super::scheduler::Finally;
 use crate::fill::{FillContext, HoleFiller};
 use crate::filter::Filter;
-use crate::policy::Rejection;
+use crate::rules::Rejection;
 use envelope_mesh::VertexId;
 use std::sync::atomic::{AtomicU8, AtomicU64, AtomicUsize, Ordering as Mem};
 

@@ -1,7 +1,7 @@
 //! The small policies of the local simplifier, after CGAL's Surface_mesh_simplification
 //! concepts: which vertex to try next ([`QueueOrder`], a priority), when to stop
 //! ([`StopRule`]), and who is told what happened ([`Visitor`]). Constraints are
-//! [`crate::Filter`]s; hole filling strategies are [`crate::HoleFiller`]s.
+//! [`Filter`](crate::filter::Filter)s; hole filling strategies are `HoleFiller`s (module `fill`).
 
 use envelope_mesh::{AddFaceError, FaceId, HalfEdgeMesh, VertexId};
 
@@ -96,12 +96,12 @@ pub enum Rejection {
     NonManifold,
     /// The one-ring repeats a vertex (cannot happen on a valid manifold; kept for safety).
     RepeatedNeighbour,
-    /// The valence is above [`crate::MAX_HOLE`].
+    /// The valence is above the local algorithm's `MAX_HOLE`.
     HoleTooLarge,
     /// No valid triangulation of the hole was found.
     NoValidFill,
     /// No valid triangulation of the hole exists: every triangle on its vertices that meets
-    /// the vertex's fiber path is refused (the fiber test, [`crate::FiberTest`]).
+    /// the vertex's fiber path is refused (the fiber test, [`FiberTest`](crate::fiber::FiberTest)).
     NoFillAcrossFiber,
     /// The mesh refused the filling (a topology guard; should not happen after the checks).
     MeshRefused(AddFaceError),
