@@ -34,11 +34,14 @@ use glam::DVec3;
 use serde_json::{Value, json};
 use thiserror::Error;
 
-use crate::rules::Rejection;
-use crate::{
-    BarrierError, Barriers, FiberTest, HoleFilling, Order, Placement, SimplifyError, VertexFibers,
-    Visitor, border_walls, simplify_local_sliding,
+use crate::barriers::{BarrierError, Barriers};
+use crate::fiber::{FiberTest, VertexFibers};
+use crate::local::{
+    HoleFilling, Options as LocalOptions, Order, Placement, SimplifyError, Stats,
+    simplify_local_from,
 };
+use crate::rules::{Rejection, Visitor};
+use crate::walls::border_walls;
 
 /// What [`simplify`] does.
 #[derive(Debug)]
@@ -281,7 +284,7 @@ pub struct SimplifyReport {
     pub collapsed_removals: usize,
     /// Removal attempts.
     pub attempts: usize,
-    /// Attempts the fiber test turned away ([`crate::FiberTest`]; part of the failed ones).
+    /// Attempts the fiber test turned away ([`FiberTest`]; part of the failed ones).
     pub no_fill_across_fiber: usize,
     /// Genus of the input (`None`: undefined).
     pub genus_in: Option<u32>,
@@ -468,7 +471,7 @@ pub struct StepInput<'a> {
 #[derive(Clone, Debug, PartialEq)]
 pub struct StepOutcome {
     /// Counts (attempts, removals, candidate tests).
-    pub stats: crate::Stats,
+    pub stats: Stats,
     /// The method's name for the report.
     pub method: &'static str,
     /// Extra report fields (`Value::Null` when none).
@@ -505,8 +508,8 @@ impl SimplifyStep for LocalStep {
 
 impl LocalStep {
     /// [`SimplifyStep::run`] with the queue started from `seeds` (`None`: every vertex), see
-    /// [`crate::simplify_local_from`]: for a local pass after another step changed the mesh
-    /// in a few places.
+    /// [`simplify_local_from`](crate::policy::simplify_local_from): for a local pass after
+    /// another step changed the mesh in a few places.
     pub fn run_from(
         &self,
         mesh: &mut HalfEdgeMesh,
@@ -741,9 +744,9 @@ fn run_local(
     input: &StepInput<'_>,
     seeds: Option<&[VertexId]>,
     progress: &mut dyn Progress,
-) -> Result<crate::Stats, SimplifyError> {
+) -> Result<Stats, SimplifyError> {
     let options = input.options;
-    let local_options = crate::Options {
+    let local_options = LocalOptions {
         order: options.order,
         hole_filling: options.hole_filling,
         target_faces: options.target_faces,
@@ -759,7 +762,7 @@ fn run_local(
         attempts: 0,
         removed: 0,
     };
-    simplify_local_sliding(
+    simplify_local_from(
         mesh,
         input.barriers,
         &local_options,

@@ -559,7 +559,7 @@ impl HoleFiller for Greedy {
 ///
 /// A triangulation is valid when each triangle passes the topology guards and the filter
 /// with nothing placed, and no two of its triangles meet away from shared vertex ids (exact).
-/// This equals placing them one by one with [`crate::EnvelopeFilter`]; a custom filter that
+/// This equals placing them one by one with [`crate::filter::EnvelopeFilter`]; a custom filter that
 /// looks at `placed` sees it empty here.
 #[derive(Clone, Copy, Debug)]
 pub struct Exhaustive {

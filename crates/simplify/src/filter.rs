@@ -21,7 +21,7 @@
 //! touches a barrier and is rejected. That is conservative (such a vertex and the fans
 //! around it are frozen) and never unsafe. Barrier contact is never excused by position.
 
-use crate::Barriers;
+use crate::barriers::Barriers;
 use crate::grid::FaceGrid;
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;

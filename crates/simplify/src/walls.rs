@@ -11,7 +11,7 @@
 //! envelope triangle (a chord across a hole of `mech-holes-shark.off`, 6.7 eps from the
 //! input). A wall is a strip that joins the outer envelope's boundary to the inner one's on
 //! the outward side of the border; walls are *full* barriers
-//! ([`crate::BarrierKind::Wall`]): no candidate triangle may touch them.
+//! ([`crate::barriers::BarrierKind::Wall`]): no candidate triangle may touch them.
 //!
 //! # Construction
 //!

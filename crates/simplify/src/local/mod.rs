@@ -55,21 +55,21 @@ mod slide;
 mod tests;
 mod verdicts;
 
+use crate::barriers::Barriers;
 use crate::fiber::{FiberTest, VertexFibers};
 use crate::fill::HoleFiller;
-use crate::filter::Filter;
+use crate::fill::{Exhaustive, Greedy};
+use crate::filter::{EnvelopeFilter, Filter};
 use crate::rules::{
     Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor,
 };
-use crate::{Barriers, EnvelopeFilter, Exhaustive, Greedy};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
 pub use plan::{LocalSimplifier, Removal};
-pub use queue::{RemovalQueue, queue_vertices};
 use run::run;
 use thiserror::Error;
 
 /// Vertices of larger valence are not tried (their candidate lists grow cubically).
-pub const MAX_HOLE: usize = 40;
+pub(crate) const MAX_HOLE: usize = 40;
 
 /// [`Placement::Auto`] runs the moving phase when the subset run left at most one vertex in
 /// this many of those it started with.
@@ -244,7 +244,7 @@ pub struct Policies<'p> {
 ///
 /// ```
 /// use envelope_mesh::{generate, HalfEdgeMesh};
-/// use envelope_simplify::{simplify_local, Barriers, Options};
+/// use envelope_simplify::policy::{simplify_local, Barriers, Options};
 /// let mut m = HalfEdgeMesh::from_soup(&generate::tetrahedron()).unwrap();
 /// let stats = simplify_local(&mut m, &Barriers::none(), &Options::default()).unwrap();
 /// assert_eq!((stats.removed, m.num_faces()), (0, 4)); // nothing can go
@@ -254,37 +254,20 @@ pub fn simplify_local(
     barriers: &Barriers,
     options: &Options,
 ) -> Result<Stats, SimplifyError> {
-    simplify_local_visited(mesh, barriers, options, &mut ())
+    simplify_local_from(mesh, barriers, options, None, None, None, &mut ())
 }
 
-/// [`simplify_local`] reporting every attempt to `visitor` (progress bars, tracing).
-pub fn simplify_local_visited(
-    mesh: &mut HalfEdgeMesh,
-    barriers: &Barriers,
-    options: &Options,
-    visitor: &mut dyn Visitor,
-) -> Result<Stats, SimplifyError> {
-    simplify_local_from(mesh, barriers, options, None, visitor)
-}
-
-/// [`simplify_local_visited`] with the queue started from `seeds` (in their order; `None`:
-/// every vertex, in id order) instead of every vertex: after another step changed the mesh
-/// in a few places, the vertices around the changes, as the local algorithm re-queues the
-/// hole's vertices after a removal. Seeds that are no longer in the mesh are skipped.
+/// [`simplify_local`] with the queue started from `seeds` (in their order; `None`: every
+/// vertex, in id order), the vertices' fibers, the fiber test, and a visitor told of every
+/// attempt (progress bars, tracing).
+///
+/// * `seeds`: after another step changed the mesh in a few places, the vertices around the
+///   changes, as the local algorithm re-queues the hole's vertices after a removal. Seeds
+///   that are no longer in the mesh are skipped.
+/// * `fibers`: what [`Placement::Slide`] needs (without them, or with [`Placement::Subset`],
+///   no vertex moves).
+/// * `fiber_test`: see [`Policies::fiber_test`]; its envelopes must be among `barriers`.
 pub fn simplify_local_from(
-    mesh: &mut HalfEdgeMesh,
-    barriers: &Barriers,
-    options: &Options,
-    seeds: Option<&[VertexId]>,
-    visitor: &mut dyn Visitor,
-) -> Result<Stats, SimplifyError> {
-    simplify_local_sliding(mesh, barriers, options, seeds, None, None, visitor)
-}
-
-/// [`simplify_local_from`] with the vertices' fibers, which [`Placement::Slide`] needs
-/// (without them, or with [`Placement::Subset`], no vertex moves), and the fiber test
-/// ([`Policies::fiber_test`]: `fiber_test`'s envelopes must be among `barriers`).
-pub fn simplify_local_sliding(
     mesh: &mut HalfEdgeMesh,
     barriers: &Barriers,
     options: &Options,

@@ -36,7 +36,7 @@ impl Ord for Entry {
 
 /// The removal queue: each vertex at most once, smallest priority first, then first queued.
 #[derive(Clone, Debug, Default)]
-pub struct RemovalQueue {
+pub(crate) struct RemovalQueue {
     heap: BinaryHeap<Entry>,
     /// Entries in the order the heap would pop them, at constant cost each: those queued
     /// with a first-in-first-out order ([`QueueOrder::is_fifo`]: one priority for every
@@ -114,16 +114,11 @@ impl RemovalQueue {
         Some(e.v)
     }
 
-    /// Number of queued vertices.
+    /// Number of queued vertices (the tests compare it with a plain heap's).
+    #[cfg(test)]
     #[must_use]
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.heap.len() + self.fifo.len()
-    }
-
-    /// True when nothing is queued.
-    #[must_use]
-    pub fn is_empty(&self) -> bool {
-        self.heap.is_empty() && self.fifo.is_empty()
     }
 
     /// Each queued vertex is live, flagged, and stored once; the deque is in queue order.
@@ -256,7 +251,7 @@ fn one_ring_box(mesh: &HalfEdgeMesh, v: VertexId) -> Aabb {
 /// Every live vertex, in id order, prioritised by `order` (section 5.2: "placing all
 /// vertices in a queue").
 #[must_use]
-pub fn queue_vertices(mesh: &HalfEdgeMesh, order: &dyn QueueOrder) -> RemovalQueue {
+pub(crate) fn queue_vertices(mesh: &HalfEdgeMesh, order: &dyn QueueOrder) -> RemovalQueue {
     let mut q = RemovalQueue::default();
     for v in mesh.vertices() {
         q.push(mesh, order, v);

@@ -4,9 +4,10 @@ use super::plan::LocalSimplifier;
 use super::queue::{Entry, RemovalQueue, queue_vertices};
 use super::scheduler::plan_each;
 use super::verdicts::{Doomed, FillNothing, Verdict};
+use crate::barriers::Barriers;
+use crate::filter::EnvelopeFilter;
 use crate::filter::Filter;
 use crate::rules::{Fifo, FlatFirst, QueueOrder, Rejection};
-use crate::{Barriers, EnvelopeFilter};
 use envelope_mesh::{HalfEdgeMesh, VertexId, generate};
 use glam::DVec3;
 use std::collections::BinaryHeap;
@@ -47,7 +48,7 @@ fn plan_each_answers_in_batch_order() {
 /// when a verdict lands on another vertex, or when a thread's verdict is lost.
 #[test]
 fn verdicts_are_the_plans_answers_whoever_takes_them() {
-    use crate::{FiberTest, VertexFibers};
+    use crate::fiber::FiberTest;
     use envelope_offset::{EnvelopeOptions, EpsilonField, build_envelopes};
     let mut soup = generate::icosphere(3, 1.0);
     for p in &mut soup.positions {
