@@ -106,9 +106,9 @@ pub enum DriverError {
     /// The half-edge structure refused the input.
     #[error("mesh: {0}")]
     Build(#[from] BuildError),
-    /// The simplifier stopped.
+    /// The simplifier stopped (for a cancellation: [`DriverError::Cancelled`]).
     #[error("simplify: {0}")]
-    Simplify(#[from] SimplifyError),
+    Simplify(SimplifyError),
     /// The envelopes (or tubes) could not be proved free of intersections, even after the
     /// repair rounds: simplifying between them could give a wrong answer, so nothing is.
     #[error(
@@ -125,6 +125,27 @@ pub enum DriverError {
     /// A list of epsilons that makes no chain (`lod_chain`).
     #[error("epsilons: {0}")]
     Epsilons(&'static str),
+    /// [`Progress::cancelled`] said so.
+    #[error("cancelled")]
+    Cancelled,
+}
+
+impl From<SimplifyError> for DriverError {
+    fn from(e: SimplifyError) -> Self {
+        match e {
+            SimplifyError::Cancelled => Self::Cancelled,
+            e => Self::Simplify(e),
+        }
+    }
+}
+
+/// `Err(DriverError::Cancelled)` when `progress` asks for it (between stages).
+fn go_on(progress: &mut dyn Progress) -> Result<(), DriverError> {
+    if progress.cancelled() {
+        Err(DriverError::Cancelled)
+    } else {
+        Ok(())
+    }
 }
 
 fn describe_classes(c: &[(DegeneracyClass, usize)]) -> String {
@@ -160,6 +181,11 @@ pub trait Progress {
     fn stage(&mut self, _stage: Stage) {}
     /// During [`Stage::Simplify`]: removal attempts so far and vertices removed so far.
     fn step(&mut self, _attempts: usize, _removed: usize) {}
+    /// Whether to stop with [`DriverError::Cancelled`]; asked between stages and once per
+    /// round of the local algorithm.
+    fn cancelled(&mut self) -> bool {
+        false
+    }
 }
 
 impl Progress for () {}
@@ -426,6 +452,9 @@ impl Visitor for ProgressVisitor<'_> {
         self.removed += 1;
     }
     fn on_rejected(&mut self, _: envelope_mesh::VertexId, _: Rejection) {}
+    fn cancelled(&mut self) -> bool {
+        self.progress.cancelled()
+    }
 }
 
 /// Simplifies `soup` within the requested epsilon (see the module docs). The output has
@@ -535,7 +564,9 @@ pub fn simplify_with(
 ) -> Result<(TriangleSoup, SimplifyReport), DriverError> {
     let start = Instant::now();
     progress.stage(Stage::Check);
+    go_on(progress)?;
     progress.stage(Stage::Envelopes);
+    go_on(progress)?;
     // The input's topology and face tree, which the check and the envelopes both need:
     // computed once, side by side (the analysis is sequential, the tree parallel). Not for
     // a face naming a missing vertex: the check alone reports that.
@@ -662,9 +693,11 @@ pub fn simplify_with(
     );
     let barriers = barriers?.with_pins(&pins);
     let mut mesh = mesh?;
+    go_on(progress)?;
     progress.stage(Stage::Simplify {
         vertices: mesh.num_vertices(),
     });
+    go_on(progress)?;
     let t_simp = Instant::now();
     let input = StepInput {
         barriers: &barriers,
@@ -675,6 +708,7 @@ pub fn simplify_with(
     };
     let outcome = step.run(&mut mesh, &input, progress)?;
     let stats = outcome.stats;
+    go_on(progress)?;
 
     let simplify_seconds = t_simp.elapsed().as_secs_f64();
     // The half-edge count: the same numbers as `analyze(&out)`, without its edge table.
@@ -683,6 +717,7 @@ pub fn simplify_with(
 
     let verify = if options.verify {
         progress.stage(Stage::Verify);
+        go_on(progress)?;
         let t = Instant::now();
         let c = envelope_verify::certify(soup, &out, &envelope_verify::Options::new(epsilon_abs));
         Some(VerifyReport::from_certificate(

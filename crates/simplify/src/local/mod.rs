@@ -89,6 +89,9 @@ pub enum SimplifyError {
         /// What was wrong.
         message: String,
     },
+    /// The visitor asked the run to stop ([`Visitor::cancelled`]).
+    #[error("cancelled")]
+    Cancelled,
 }
 
 /// Counts of one run.

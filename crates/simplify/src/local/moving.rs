@@ -56,6 +56,9 @@ pub(super) fn moving_phase(
         collapse: policies.collapse,
     };
     loop {
+        if visitor.cancelled() {
+            return Err(SimplifyError::Cancelled);
+        }
         let batch: Vec<VertexId> = if policies.check_each_step {
             queue.pop().into_iter().collect()
         } else {

@@ -51,6 +51,7 @@ pub(super) fn run(
     let mut rings = RingBoxes::default();
     let take_ahead = || verdicts.take_one();
     let awake = Awake::new();
+    let mut cancelled = false;
     rayon::in_place_scope(|scope| -> Result<(), SimplifyError> {
         // The other threads take verdicts ahead while this one builds the face index (the
         // verdicts read none), selects and commits.
@@ -59,6 +60,10 @@ pub(super) fn run(
         }
         local.grid = FaceGrid::from_mesh(local.mesh());
         'run: loop {
+            if visitor.cancelled() {
+                cancelled = true;
+                break;
+            }
             let batch: Vec<(VertexId, bool)> = if batched {
                 independent_batch(
                     &mut queue,
@@ -135,6 +140,9 @@ pub(super) fn run(
         awake.release();
         Ok(())
     })?;
+    if cancelled {
+        return Err(SimplifyError::Cancelled);
+    }
     local.candidate_tests += verdicts.used_tests();
     let few_left = local.mesh().num_vertices() * AUTO_MOVING_DIVISOR <= stats.vertices_before;
     if (policies.fibers.is_some() || policies.collapse)
