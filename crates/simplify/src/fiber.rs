@@ -1,7 +1,7 @@
 //! The fiber test: a necessary condition for removing an interior vertex, from its fiber
 //! (our addition; the paper has none). At small epsilons almost every removal attempt
-//! fails (armadillo at 1/64 %: 26,967 of 27,717); this test turns most of them away after
-//! a few orientation tests and barrier queries, before the ear test and the greedy pass.
+//! fails; this test turns most of them away after a few orientation tests and barrier
+//! queries, before the ear test and the greedy pass.
 //!
 //! **The claim.** Let `v` be an interior vertex of the approximation with fan `F` (a disk
 //! whose boundary is the link loop `L`), `p` and `q` its points on the inner and outer

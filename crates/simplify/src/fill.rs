@@ -475,11 +475,10 @@ impl Greedy {
 /// [`Filter`] contract a triangle rejected with nothing placed is rejected with more placed.
 /// So when this fails every filler fails too, and asking it first changes no outcome, only
 /// the work: at most `n` tests instead of a failing greedy pass's dozens (at small epsilon
-/// most attempts fail; on armadillo at 1/64 % the second ear turns away most of the holes
-/// whose first ear passes). Rejections are cached in the context; the test stops as soon as
-/// the condition holds, so when every ear passes it costs two tests (ears 0 and 2), and as
-/// soon as it cannot (the ears not rejected yet are one, or two consecutive ones: armadillo
-/// at 1/64 %, single thread, 1.5 % fewer instructions, same outputs). It runs twice: first
+/// most attempts fail, and the second ear turns away most of the holes whose first ear
+/// passes). Rejections are cached in the context; the test stops as soon as the condition
+/// holds, so when every ear passes it costs two tests (ears 0 and 2), and as soon as it
+/// cannot (the ears not rejected yet are one, or two consecutive ones). It runs twice: first
 /// with [`Filter::refuses_anyway`] alone (the barriers: no approximation test, nothing of
 /// the mesh gathered), then, when that leaves two ears apart, with the full test.
 pub(crate) fn ears_allow_a_filling(ctx: &mut FillContext<'_>) -> bool {

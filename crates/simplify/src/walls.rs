@@ -8,8 +8,7 @@
 //! edges lie about `eps+ + eps-` apart, one above and one below each input border edge. The
 //! border tubes only constrain *new border edges*; an interior candidate triangle next to a
 //! border can leave the space between the envelopes through that gap without touching any
-//! envelope triangle (a chord across a hole of `mech-holes-shark.off`, 6.7 eps from the
-//! input). A wall is a strip that joins the outer envelope's boundary to the inner one's on
+//! envelope triangle (a chord across a hole, far from the input). A wall is a strip that joins the outer envelope's boundary to the inner one's on
 //! the outward side of the border; walls are *full* barriers
 //! ([`crate::barriers::BarrierKind::Wall`]): no candidate triangle may touch them.
 //!

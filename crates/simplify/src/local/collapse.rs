@@ -16,9 +16,9 @@ pub(super) const COLLAPSE_TRIES: usize = 8;
 
 /// A collapse position whose root-mean-square distance to the planes of the faces around
 /// `v` and `w` exceeds this many times the local offset (half the longer fiber of `v` and
-/// `w`) is not tried. A choice, measured: on armadillo at 1/64 % such positions are 88 % of
-/// the tries and 0.6 % of the successes (3 of 543); the test is f64 and only skips, so it can
-/// cost faces, never the guarantee.
+/// `w`) is not tried. A choice, measured: such positions are most of the tries and almost
+/// none of the successes; the test is f64 and only skips, so it can cost faces, never the
+/// guarantee.
 pub(super) const COLLAPSE_REACH: f64 = 1.25;
 
 /// The positions an edge collapse of `v` may try, at most [`COLLAPSE_TRIES`], cheapest first

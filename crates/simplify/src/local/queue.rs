@@ -152,11 +152,7 @@ impl RemovalQueue {
 /// How far [`independent_batch`] looks into the queue, and how many it takes at most.
 /// Larger batches wake the other threads less often and leave less of the batch's last plan
 /// alone on one thread, but the selection is serial and its box tests grow with the square
-/// of the window. bunny00 at 1/64 %, 2 threads (instrumented run): 1,989 batches with 256
-/// and 64, the selection 0.046 s and the planning 1.076 s of wall time for 1.728 s of work;
-/// 1,130 batches with 512 and 128, 0.058 s and 0.983 s for 1.724 s; 675 with 1,024 and 256,
-/// 0.088 s and 0.966 s. armadillo at 1/64 % gains nothing beyond 256 (its selection took
-/// 0.021, 0.036 and 0.068 s).
+/// of the window; these sizes balance the two.
 const BATCH_WINDOW: usize = 512;
 const BATCH_LIMIT: usize = 128;
 
@@ -176,8 +172,7 @@ const BATCH_LIMIT: usize = 128;
 /// earlier in the batch changes is on that removal's hole, so it is queued again and
 /// attempted anew; the only departure from one-at-a-time order is that its first attempt
 /// came before the removal. (Holding doomed vertices back like the others made the
-/// batches mostly skipped vertices: armadillo at 1/64 %, 149 batches of 2 to 29 plans
-/// each; now 51 of 128.)
+/// batches mostly skipped vertices, and small.)
 ///
 /// The batches depend on the queue and the mesh only, never on the number of threads, so
 /// the output does not either.

@@ -59,14 +59,10 @@ impl Awake {
 /// plan: the doomed ones) are planned on the calling thread; the others in parallel, the
 /// threads taking them one at a time, the costliest first by `cost` (ties in batch order),
 /// or inline for a single one. Plans take from microseconds to a millisecond: a long one
-/// begun last leaves the other threads idle until it ends. mech-holes-shark at 1/64 %, two
-/// threads, 117 rounds (instrumented runs): rayon's adaptive split, 28.7 ms of wall time
-/// for the rounds' plans; one job per plan, 22.2 ms with 3.7 ms of one thread waiting for
-/// the other's last plan; taken costliest first, 19.2-20.3 ms with 0.7-0.8 ms, for 33-35 ms
-/// of planning. A thread that finds no plan left calls `aside` (work that decides nothing
-/// of the batch: the run's verdicts ahead) until the last plan ends, spinning when it has
-/// none: mech-holes-shark at 1/64 %, 1.8 ms of such waiting in 114 rounds (instrumented),
-/// the batched run 29.7 -> 28.7 ms (trimmed means of 40 alternating runs).
+/// begun last leaves the other threads idle until it ends, hence costliest first (less
+/// waiting than rayon's adaptive split or one job per plan in queue order). A thread that
+/// finds no plan left calls `aside` (work that decides nothing of the batch: the run's
+/// verdicts ahead) until the last plan ends, spinning when it has none.
 pub(super) fn plan_each<T: Sync, R: Send>(
     batch: &[T],
     inline: impl Fn(&T) -> bool,

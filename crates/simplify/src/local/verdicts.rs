@@ -12,7 +12,7 @@ use std::sync::atomic::{AtomicU8, AtomicU64, AtomicUsize, Ordering as Mem};
 
 /// The vertices whose removal the fiber test turned away on the starting mesh, as long as their
 /// fan stays as it was (the subset run of a first-in-first-out queue; not in the paper). At
-/// small epsilons that is almost every attempt (armadillo at 1/64 %: 26,130 of 27,717). Each
+/// small epsilons that is almost every attempt. Each
 /// verdict is the plan's own answer (`LocalSimplifier::plan` with a filler that fills nothing)
 /// on a copy of the starting mesh, taken in vertex order (the queue's when it starts with every
 /// vertex): by the other threads while the calling thread selects and commits ([`Awake`]), and
@@ -21,8 +21,8 @@ use std::sync::atomic::{AtomicU8, AtomicU64, AtomicUsize, Ordering as Mem};
 /// computes it and whenever, and the queue only asks for the verdicts of vertices whose fan
 /// never changed: the outcome is the same as with every verdict computed before the run, and
 /// the same for any number of threads. A vertex whose fan changes before the queue reaches it
-/// needs no verdict (mech-holes-shark at 1/64 %: 1,455 of 5,246, of which about 1,220 are
-/// never computed; the others were taken ahead before their fan changed).
+/// needs no verdict (most such are never computed; the others were taken ahead before their
+/// fan changed).
 ///
 /// **Why a verdict holds while the fan stays.** The plan's answer
 /// [`Rejection::NoFillAcrossFiber`] depends on the vertex's fan (its checks, its hole, the
