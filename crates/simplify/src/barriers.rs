@@ -125,7 +125,7 @@ pub enum BarrierError {
 ///
 /// ```
 /// use envelope_mesh::generate;
-/// use envelope_simplify::Barriers;
+/// use envelope_simplify::policy::Barriers;
 /// let b = Barriers::new(vec![generate::icosphere(1, 1.1), generate::icosphere(1, 0.9)], vec![]).unwrap();
 /// assert_eq!(b.num_triangles(), 160);
 /// assert!(!b.has_tubes());
@@ -201,7 +201,7 @@ impl Barriers {
     /// ```
     /// use envelope_mesh::generate;
     /// use envelope_predicates::bvh::{Aabb, Bvh};
-    /// use envelope_simplify::Barriers;
+    /// use envelope_simplify::policy::Barriers;
     /// use glam::DVec3;
     /// let (outer, inner) = (generate::icosphere(1, 1.1), generate::icosphere(1, 0.9));
     /// let boxes: Vec<Aabb> = [&outer, &inner]
@@ -355,7 +355,7 @@ impl Barriers {
     ///
     /// ```
     /// use envelope_mesh::generate;
-    /// use envelope_simplify::Barriers;
+    /// use envelope_simplify::policy::Barriers;
     /// use glam::DVec3;
     /// let inner = generate::icosphere(1, 0.1);
     /// let b = Barriers::new(vec![inner], vec![]).unwrap();
@@ -412,7 +412,7 @@ impl Barriers {
     ///
     /// ```
     /// use envelope_mesh::TriangleSoup;
-    /// use envelope_simplify::Barriers;
+    /// use envelope_simplify::policy::Barriers;
     /// use glam::DVec3;
     /// let roof = TriangleSoup::from_raw(&[[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]], &[[0, 1, 2]]);
     /// let candidate = [DVec3::ZERO, DVec3::new(1.0, 0.0, -1.0), DVec3::new(0.0, 1.0, -1.0)];
@@ -576,7 +576,7 @@ impl Barriers {
     /// ```
     /// use envelope_mesh::generate;
     /// use envelope_predicates::bvh::Aabb;
-    /// use envelope_simplify::Barriers;
+    /// use envelope_simplify::policy::Barriers;
     /// use glam::DVec3;
     /// let b = Barriers::new(vec![generate::icosphere(2, 1.0)], vec![]).unwrap();
     /// let t = [DVec3::new(0.9, 0.0, 0.0), DVec3::new(1.1, 0.1, 0.0), DVec3::new(1.0, -0.1, 0.1)];
@@ -601,7 +601,7 @@ impl Barriers {
     /// ```
     /// use envelope_mesh::generate;
     /// use envelope_predicates::bvh::Aabb;
-    /// use envelope_simplify::Barriers;
+    /// use envelope_simplify::policy::Barriers;
     /// use glam::DVec3;
     /// let sphere = generate::icosphere(2, 1.0);
     /// let b = Barriers::new(vec![sphere.clone()], vec![]).unwrap();

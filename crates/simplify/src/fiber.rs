@@ -74,7 +74,7 @@ impl VertexFibers<'_> {
 ///
 /// ```
 /// use envelope_mesh::generate;
-/// use envelope_simplify::{FiberTest, VertexFibers};
+/// use envelope_simplify::policy::{FiberTest, VertexFibers};
 /// let sphere = generate::icosphere(2, 1.0);
 /// let scaled = |s: f64| sphere.positions.iter().map(|&p| p * s).collect::<Vec<_>>();
 /// let (inner, outer) = (scaled(0.99), scaled(1.01));

@@ -70,7 +70,7 @@ pub struct Approximation<'a> {
 /// ```
 /// use envelope_mesh::{HalfEdgeMesh, VertexId, generate};
 /// use envelope_predicates::bvh::Aabb;
-/// use envelope_simplify::{Approximation, FaceGrid, Nearby};
+/// use envelope_simplify::policy::{Approximation, FaceGrid, Nearby};
 /// use glam::DVec3;
 /// let mesh = HalfEdgeMesh::from_soup(&generate::icosphere(1, 1.0)).unwrap();
 /// let grid = FaceGrid::from_mesh(&mesh);
