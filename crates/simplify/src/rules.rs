@@ -116,10 +116,8 @@ pub trait Visitor {
     fn on_removed(&mut self, _v: VertexId, _faces: &[FaceId]) {}
     /// `v` was kept, for `reason`.
     fn on_rejected(&mut self, _v: VertexId, _reason: Rejection) {}
-    /// Whether the run should stop with [`SimplifyError::Cancelled`]; asked once per round
-    /// of the run (a batch, or one vertex when not batched).
-    ///
-    /// [`SimplifyError::Cancelled`]: crate::local::SimplifyError::Cancelled
+    /// Whether the run should stop with `SimplifyError::Cancelled`; asked once per round of
+    /// the run (a batch, or one vertex when not batched).
     fn cancelled(&mut self) -> bool {
         false
     }
