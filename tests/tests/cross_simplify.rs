@@ -33,7 +33,7 @@ use glam::DVec3;
 /// Empty. `mech-holes-shark.off` (4 border loops) was listed at 1/4 % and 1 %: the output
 /// was several eps from the input, at an interior edge joining two border vertices across
 /// a hole, because the envelopes are open along the borders and the tubes of 6.2 only
-/// constrain *new border edges*. The border walls of `envelope_simplify::border_walls`
+/// constrain *new border edges*. The border walls of `envelope_simplify::policy::border_walls`
 /// (full barriers joining outer and inner envelope along every border loop) close that gap.
 const KNOWN_FAILURES: &[(&str, f64)] = &[];
 

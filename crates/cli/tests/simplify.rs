@@ -350,7 +350,7 @@ fn default_placement_collapses_only_when_few_vertices_are_left() {
             "{eps}: default output differs from {ran}'s"
         );
         let left = r["output_vertices"].as_u64().unwrap();
-        let divisor = envelope_simplify::AUTO_MOVING_DIVISOR as u64;
+        let divisor = envelope_simplify::policy::AUTO_MOVING_DIVISOR as u64;
         let few = left * divisor <= r["removed_vertices"].as_u64().unwrap() + left;
         assert_eq!(few, ran == "collapse", "{eps}: {left} vertices left");
     }

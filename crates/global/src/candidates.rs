@@ -37,13 +37,13 @@
 
 use crate::region::{Region, ball, ball_any, border_next, region};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
-use envelope_simplify::{Barriers, aspect_ratio};
+use envelope_simplify::policy::{Barriers, aspect_ratio};
 use glam::DVec3;
 
 /// The per-vertex prism edges: inner and outer envelope points of every input vertex,
 /// indexed by vertex id (f64 constructions of `envelope-offset`); the same fibers the local
 /// simplifier slides vertices along.
-pub use envelope_simplify::VertexFibers as Fibers;
+pub use envelope_simplify::policy::VertexFibers as Fibers;
 
 /// Whether the triangle with corners `t` meets the fiber of `v` (exact on the f64 points; a
 /// vertex without a fiber is never covered).

@@ -26,7 +26,7 @@
 //! | ties | seed id (first in id order, as the local algorithm's queue), then aspect ratio, rings, corner ids |
 //! | when a patch stands for its region | every triangle valid (5.1), and, for a region of several vertices, the fiber of every removed vertex meets the patch (exact; the generalized projection of the region onto the patch). Without this, a large region filled across its short boundary collapses the surface between the envelopes (seen on the figure 8 bar: a 4-face output) |
 //! | sub-holes | the local algorithm's greedy filling ([`Greedy::fill_from`]), every triangle through the same [`EnvelopeFilter`] |
-//! | border vertices | removed in open regions ([`Region::open`](crate::Region)) when the barriers have border tubes (as in the local algorithm): the hole is the chain left on the region's boundary, closed by a new border edge that the fill tests against the tubes ([`CandidateProfile::border_edges`](envelope_simplify::CandidateProfile)) and refuses when it already exists; the projection condition below applies to the removed interior vertices, the removed border vertices are taken on the local algorithm's terms (the tube test) |
+//! | border vertices | removed in open regions ([`Region::open`](crate::Region)) when the barriers have border tubes (as in the local algorithm): the hole is the chain left on the region's boundary, closed by a new border edge that the fill tests against the tubes ([`CandidateProfile::border_edges`](envelope_simplify::policy::CandidateProfile)) and refuses when it already exists; the projection condition below applies to the removed interior vertices, the removed border vertices are taken on the local algorithm's terms (the tube test) |
 //! | passes | after the first, only seeds within `max_rings` rings of a change are generated again |
 //!
 //! Genus and orientation: a region is a disk and the hole a simple polygon filled with
@@ -36,8 +36,9 @@
 use crate::candidates::{Candidate, Fibers, Generated, Reach, covers, seed_candidates};
 use crate::region::{ball_any, region};
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
-use envelope_simplify::{
-    Barriers, EnvelopeFilter, FaceGrid, FillContext, Filter, Greedy, Hole, Progress,
+use envelope_simplify::Progress;
+use envelope_simplify::policy::{
+    Barriers, EnvelopeFilter, FaceGrid, FillContext, Filter, Greedy, Hole,
 };
 use glam::DVec3;
 use rayon::prelude::*;
@@ -170,7 +171,7 @@ impl GlobalStats {
 /// ```
 /// use envelope_global::{Fibers, GlobalOptions, simplify_global};
 /// use envelope_mesh::{generate, HalfEdgeMesh};
-/// use envelope_simplify::Barriers;
+/// use envelope_simplify::policy::Barriers;
 /// let soup = generate::icosphere(1, 1.0);
 /// let mut m = HalfEdgeMesh::from_soup(&soup).unwrap();
 /// // Fibers along the radius (a sphere's normals), 0.3 each way, no barrier at all.
@@ -197,7 +198,7 @@ pub fn simplify_global(
 }
 
 /// [`simplify_global`] with any validity filter (which must test
-/// [`CandidateProfile::border_edges`](envelope_simplify::CandidateProfile) when
+/// [`CandidateProfile::border_edges`](envelope_simplify::policy::CandidateProfile) when
 /// [`GlobalOptions::border`] is set).
 pub fn simplify_global_with(
     mesh: &mut HalfEdgeMesh,

@@ -6,9 +6,11 @@
 use crate::candidates::Fibers;
 use crate::global::{GlobalError, GlobalOptions, GlobalStats, simplify_global};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
+use envelope_simplify::policy::{
+    Options as LocalOptions, SimplifyError, Stats, simplify_local_from,
+};
 use envelope_simplify::{
-    HoleFilling, LocalStep, Options as LocalOptions, Placement, Progress, SimplifyError,
-    SimplifyStep, Stats, StepInput, StepOutcome, simplify_local_from,
+    HoleFilling, LocalStep, Placement, Progress, SimplifyStep, StepInput, StepOutcome,
 };
 use serde_json::json;
 use std::collections::HashSet;
@@ -148,7 +150,7 @@ pub struct HybridStep {
     /// Which stage runs first.
     pub order: HybridOrder,
     /// A last stage: local again over every remaining vertex, with every triangulation of
-    /// holes up to this many vertices tried ([`envelope_simplify::Exhaustive`]) where the
+    /// holes up to this many vertices tried ([`envelope_simplify::policy::Exhaustive`]) where the
     /// greedy filling of the first stages found none. Skipped when the job's own hole
     /// filling is already exhaustive.
     pub polish: Option<usize>,
@@ -215,7 +217,8 @@ impl SimplifyStep for HybridStep {
                     check_each_step: false,
                     placement: Placement::Subset,
                 };
-                let l = simplify_local_from(mesh, input.barriers, &options, None, &mut ())?;
+                let l =
+                    simplify_local_from(mesh, input.barriers, &options, None, None, None, &mut ())?;
                 add_local(&mut stats, &l);
                 Some(l)
             }

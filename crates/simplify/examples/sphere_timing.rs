@@ -5,7 +5,8 @@
 
 use envelope_mesh::{HalfEdgeMesh, generate};
 use envelope_predicates::self_intersections;
-use envelope_simplify::{Barriers, HoleFilling, Options, simplify_local};
+use envelope_simplify::HoleFilling;
+use envelope_simplify::policy::{Barriers, Options, simplify_local};
 use std::time::Instant;
 
 fn main() {

@@ -63,7 +63,7 @@ impl Query {
     /// The same question, up to a rotation of the corners (which carries the border edges
     /// along): the answer is a function of the closed triangle and of its border segments.
     fn is(&self, t: [DVec3; 3], border_edges: [bool; 3]) -> bool {
-        crate::same_up_to_rotation((&self.corners, &self.border_edges), (&t, &border_edges))
+        same_up_to_rotation((&self.corners, &self.border_edges), (&t, &border_edges))
     }
 }
 
@@ -85,7 +85,7 @@ pub enum BarrierKind {
     /// A border tube (section 6.2): no new *border edge* may touch it. Tubes are not tested
     /// against whole triangles: the surface near a border leaves the tube through its wall.
     Tube,
-    /// A border wall ([`crate::border_walls`]): joins the outer and inner envelopes along a
+    /// A border wall (`border_walls`, module `walls`): joins the outer and inner envelopes along a
     /// border, and like them no candidate triangle may touch it.
     Wall,
 }
@@ -125,7 +125,7 @@ pub enum BarrierError {
 ///
 /// ```
 /// use envelope_mesh::generate;
-/// use envelope_simplify::Barriers;
+/// use envelope_simplify::policy::Barriers;
 /// let b = Barriers::new(vec![generate::icosphere(1, 1.1), generate::icosphere(1, 0.9)], vec![]).unwrap();
 /// assert_eq!(b.num_triangles(), 160);
 /// assert!(!b.has_tubes());
@@ -201,7 +201,7 @@ impl Barriers {
     /// ```
     /// use envelope_mesh::generate;
     /// use envelope_predicates::bvh::{Aabb, Bvh};
-    /// use envelope_simplify::Barriers;
+    /// use envelope_simplify::policy::Barriers;
     /// use glam::DVec3;
     /// let (outer, inner) = (generate::icosphere(1, 1.1), generate::icosphere(1, 0.9));
     /// let boxes: Vec<Aabb> = [&outer, &inner]
@@ -355,7 +355,7 @@ impl Barriers {
     ///
     /// ```
     /// use envelope_mesh::generate;
-    /// use envelope_simplify::Barriers;
+    /// use envelope_simplify::policy::Barriers;
     /// use glam::DVec3;
     /// let inner = generate::icosphere(1, 0.1);
     /// let b = Barriers::new(vec![inner], vec![]).unwrap();
@@ -412,7 +412,7 @@ impl Barriers {
     ///
     /// ```
     /// use envelope_mesh::TriangleSoup;
-    /// use envelope_simplify::Barriers;
+    /// use envelope_simplify::policy::Barriers;
     /// use glam::DVec3;
     /// let roof = TriangleSoup::from_raw(&[[0.0, 0.0, 0.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]], &[[0, 1, 2]]);
     /// let candidate = [DVec3::ZERO, DVec3::new(1.0, 0.0, -1.0), DVec3::new(0.0, 1.0, -1.0)];
@@ -460,7 +460,7 @@ impl Barriers {
 
     /// The part of the validity test (5.1) that does not depend on the approximation: the
     /// corners of `t` are exactly collinear, or [`Self::blocks`] says it touches a barrier.
-    /// [`crate::EnvelopeFilter`] asks it first; the global simplifier screens candidates
+    /// `EnvelopeFilter` asks it first; the global simplifier screens candidates
     /// with it.
     #[must_use]
     pub fn refuses(&self, t: [DVec3; 3], border_edges: [bool; 3]) -> bool {
@@ -477,8 +477,7 @@ impl Barriers {
     /// running on this thread, the triangles gathered there, else the BVH. In such a
     /// region a query that passed before passes again at once: the barriers never change,
     /// and the answer depends on nothing else (the local simplifier's ear test and its
-    /// greedy fill ask about many of the same triangles; on bunny00 at 1/64 %, 97k of the
-    /// 263k queries that pass are such repeats).
+    /// greedy fill ask about many of the same triangles).
     #[must_use]
     pub fn blocks(&self, t: [DVec3; 3], border_edges: [bool; 3]) -> bool {
         let Some(bvh) = &self.bvh else {
@@ -577,7 +576,7 @@ impl Barriers {
     /// ```
     /// use envelope_mesh::generate;
     /// use envelope_predicates::bvh::Aabb;
-    /// use envelope_simplify::Barriers;
+    /// use envelope_simplify::policy::Barriers;
     /// use glam::DVec3;
     /// let b = Barriers::new(vec![generate::icosphere(2, 1.0)], vec![]).unwrap();
     /// let t = [DVec3::new(0.9, 0.0, 0.0), DVec3::new(1.1, 0.1, 0.0), DVec3::new(1.0, -0.1, 0.1)];
@@ -602,7 +601,7 @@ impl Barriers {
     /// ```
     /// use envelope_mesh::generate;
     /// use envelope_predicates::bvh::Aabb;
-    /// use envelope_simplify::Barriers;
+    /// use envelope_simplify::policy::Barriers;
     /// use glam::DVec3;
     /// let sphere = generate::icosphere(2, 1.0);
     /// let b = Barriers::new(vec![sphere.clone()], vec![]).unwrap();
@@ -960,6 +959,16 @@ fn winding_not_zero(p: DVec3, region: &Aabb, cycle: &[[DVec3; 3]]) -> bool {
         }
     }
     true
+}
+
+/// Whether the triangle `(a, a_data)` is `(b, b_data)` up to a rotation of its corners, the
+/// per-corner data (border edges, positions) rotating along. The memories of
+/// [`Barriers::scoped`] and [`Nearby`] match their questions with it.
+pub(crate) fn same_up_to_rotation<A: PartialEq, B: PartialEq>(
+    (a, a_data): (&[A; 3], &[B; 3]),
+    (b, b_data): (&[A; 3], &[B; 3]),
+) -> bool {
+    (0..3).any(|r| (0..3).all(|k| a[(k + r) % 3] == b[k] && a_data[(k + r) % 3] == b_data[k]))
 }
 
 #[cfg(test)]

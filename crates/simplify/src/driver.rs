@@ -34,11 +34,14 @@ use glam::DVec3;
 use serde_json::{Value, json};
 use thiserror::Error;
 
-use crate::policy::Rejection;
-use crate::{
-    BarrierError, Barriers, FiberTest, HoleFilling, Order, Placement, SimplifyError, VertexFibers,
-    Visitor, border_walls, simplify_local_sliding,
+use crate::barriers::{BarrierError, Barriers};
+use crate::fiber::{FiberTest, VertexFibers};
+use crate::local::{
+    HoleFilling, Options as LocalOptions, Order, Placement, SimplifyError, Stats,
+    simplify_local_from,
 };
+use crate::rules::{Rejection, Visitor};
+use crate::walls::border_walls;
 
 /// What [`simplify`] does.
 #[derive(Debug)]
@@ -103,9 +106,9 @@ pub enum DriverError {
     /// The half-edge structure refused the input.
     #[error("mesh: {0}")]
     Build(#[from] BuildError),
-    /// The simplifier stopped.
+    /// The simplifier stopped (for a cancellation: [`DriverError::Cancelled`]).
     #[error("simplify: {0}")]
-    Simplify(#[from] SimplifyError),
+    Simplify(SimplifyError),
     /// The envelopes (or tubes) could not be proved free of intersections, even after the
     /// repair rounds: simplifying between them could give a wrong answer, so nothing is.
     #[error(
@@ -119,9 +122,30 @@ pub enum DriverError {
         /// Repair rounds run.
         repair_rounds: u32,
     },
-    /// A list of epsilons that makes no chain ([`crate::lod_chain`]).
+    /// A list of epsilons that makes no chain (`lod_chain`).
     #[error("epsilons: {0}")]
     Epsilons(&'static str),
+    /// [`Progress::cancelled`] said so.
+    #[error("cancelled")]
+    Cancelled,
+}
+
+impl From<SimplifyError> for DriverError {
+    fn from(e: SimplifyError) -> Self {
+        match e {
+            SimplifyError::Cancelled => Self::Cancelled,
+            e => Self::Simplify(e),
+        }
+    }
+}
+
+/// `Err(DriverError::Cancelled)` when `progress` asks for it (between stages).
+fn go_on(progress: &mut dyn Progress) -> Result<(), DriverError> {
+    if progress.cancelled() {
+        Err(DriverError::Cancelled)
+    } else {
+        Ok(())
+    }
 }
 
 fn describe_classes(c: &[(DegeneracyClass, usize)]) -> String {
@@ -157,6 +181,11 @@ pub trait Progress {
     fn stage(&mut self, _stage: Stage) {}
     /// During [`Stage::Simplify`]: removal attempts so far and vertices removed so far.
     fn step(&mut self, _attempts: usize, _removed: usize) {}
+    /// Whether to stop with [`DriverError::Cancelled`]; asked between stages and once per
+    /// round of the local algorithm.
+    fn cancelled(&mut self) -> bool {
+        false
+    }
 }
 
 impl Progress for () {}
@@ -281,7 +310,7 @@ pub struct SimplifyReport {
     pub collapsed_removals: usize,
     /// Removal attempts.
     pub attempts: usize,
-    /// Attempts the fiber test turned away ([`crate::FiberTest`]; part of the failed ones).
+    /// Attempts the fiber test turned away ([`FiberTest`]; part of the failed ones).
     pub no_fill_across_fiber: usize,
     /// Genus of the input (`None`: undefined).
     pub genus_in: Option<u32>,
@@ -423,6 +452,9 @@ impl Visitor for ProgressVisitor<'_> {
         self.removed += 1;
     }
     fn on_rejected(&mut self, _: envelope_mesh::VertexId, _: Rejection) {}
+    fn cancelled(&mut self) -> bool {
+        self.progress.cancelled()
+    }
 }
 
 /// Simplifies `soup` within the requested epsilon (see the module docs). The output has
@@ -468,7 +500,7 @@ pub struct StepInput<'a> {
 #[derive(Clone, Debug, PartialEq)]
 pub struct StepOutcome {
     /// Counts (attempts, removals, candidate tests).
-    pub stats: crate::Stats,
+    pub stats: Stats,
     /// The method's name for the report.
     pub method: &'static str,
     /// Extra report fields (`Value::Null` when none).
@@ -505,8 +537,8 @@ impl SimplifyStep for LocalStep {
 
 impl LocalStep {
     /// [`SimplifyStep::run`] with the queue started from `seeds` (`None`: every vertex), see
-    /// [`crate::simplify_local_from`]: for a local pass after another step changed the mesh
-    /// in a few places.
+    /// [`simplify_local_from`](crate::policy::simplify_local_from): for a local pass after
+    /// another step changed the mesh in a few places.
     pub fn run_from(
         &self,
         mesh: &mut HalfEdgeMesh,
@@ -532,7 +564,9 @@ pub fn simplify_with(
 ) -> Result<(TriangleSoup, SimplifyReport), DriverError> {
     let start = Instant::now();
     progress.stage(Stage::Check);
+    go_on(progress)?;
     progress.stage(Stage::Envelopes);
+    go_on(progress)?;
     // The input's topology and face tree, which the check and the envelopes both need:
     // computed once, side by side (the analysis is sequential, the tree parallel). Not for
     // a face naming a missing vertex: the check alone reports that.
@@ -659,9 +693,11 @@ pub fn simplify_with(
     );
     let barriers = barriers?.with_pins(&pins);
     let mut mesh = mesh?;
+    go_on(progress)?;
     progress.stage(Stage::Simplify {
         vertices: mesh.num_vertices(),
     });
+    go_on(progress)?;
     let t_simp = Instant::now();
     let input = StepInput {
         barriers: &barriers,
@@ -672,6 +708,7 @@ pub fn simplify_with(
     };
     let outcome = step.run(&mut mesh, &input, progress)?;
     let stats = outcome.stats;
+    go_on(progress)?;
 
     let simplify_seconds = t_simp.elapsed().as_secs_f64();
     // The half-edge count: the same numbers as `analyze(&out)`, without its edge table.
@@ -680,6 +717,7 @@ pub fn simplify_with(
 
     let verify = if options.verify {
         progress.stage(Stage::Verify);
+        go_on(progress)?;
         let t = Instant::now();
         let c = envelope_verify::certify(soup, &out, &envelope_verify::Options::new(epsilon_abs));
         Some(VerifyReport::from_certificate(
@@ -741,9 +779,9 @@ fn run_local(
     input: &StepInput<'_>,
     seeds: Option<&[VertexId]>,
     progress: &mut dyn Progress,
-) -> Result<crate::Stats, SimplifyError> {
+) -> Result<Stats, SimplifyError> {
     let options = input.options;
-    let local_options = crate::Options {
+    let local_options = LocalOptions {
         order: options.order,
         hole_filling: options.hole_filling,
         target_faces: options.target_faces,
@@ -759,7 +797,7 @@ fn run_local(
         attempts: 0,
         removed: 0,
     };
-    simplify_local_sliding(
+    simplify_local_from(
         mesh,
         input.barriers,
         &local_options,

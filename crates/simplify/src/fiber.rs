@@ -1,7 +1,7 @@
 //! The fiber test: a necessary condition for removing an interior vertex, from its fiber
 //! (our addition; the paper has none). At small epsilons almost every removal attempt
-//! fails (armadillo at 1/64 %: 26,967 of 27,717); this test turns most of them away after
-//! a few orientation tests and barrier queries, before the ear test and the greedy pass.
+//! fails; this test turns most of them away after a few orientation tests and barrier
+//! queries, before the ear test and the greedy pass.
 //!
 //! **The claim.** Let `v` be an interior vertex of the approximation with fan `F` (a disk
 //! whose boundary is the link loop `L`), `p` and `q` its points on the inner and outer
@@ -24,7 +24,7 @@
 //! `π` meets `G` with intersection number `±1` by 3, in particular `π` meets a triangle of
 //! `G`. Hence: **when every triangle on the hole's vertices that meets `π` is refused
 //! whatever the approximation ([`Filter::refuses_anyway`], topology guards), no valid
-//! filling exists**, and the attempt ends with [`Rejection::NoFillAcrossFiber`]. In
+//! filling exists**, and the attempt ends with `Rejection::NoFillAcrossFiber`. In
 //! particular when no such triangle meets `π` at all: the link lies entirely below `p`
 //! or entirely above `q` along the fiber (a peak or a pit deeper than the envelopes).
 //!
@@ -41,22 +41,40 @@
 //! other barriers than the filter's, it would at worst turn away a removable vertex (more
 //! faces), never let an invalid filling in.
 //!
-//! [`EnvelopeFilter`]: crate::EnvelopeFilter
-//! [`Filter::refuses_anyway`]: crate::Filter::refuses_anyway
-//! [`Rejection::NoFillAcrossFiber`]: crate::Rejection::NoFillAcrossFiber
+//! [`EnvelopeFilter`]: crate::filter::EnvelopeFilter
+//! [`Filter::refuses_anyway`]: crate::filter::Filter::refuses_anyway
 
-use crate::local::VertexFibers;
 use envelope_mesh::{VertexFaces, VertexId, vertex_components};
 use envelope_predicates::bvh::Aabb;
 use envelope_predicates::{polyline_crossings, strictly_one_side_of_plane};
 use glam::{DVec2, DVec3};
+
+/// The fiber of every vertex (by vertex id): the segment from its inner envelope point to its
+/// outer one (f64 constructions of `envelope-offset`), along which the local algorithm's
+/// `Placement::Slide` moves it.
+#[derive(Clone, Copy, Debug)]
+pub struct VertexFibers<'a> {
+    /// `v - eps_minus n_v`.
+    pub inner: &'a [DVec3],
+    /// `v + eps_plus n_v`.
+    pub outer: &'a [DVec3],
+}
+
+impl VertexFibers<'_> {
+    /// `(inner point, outer - inner)` of `v`; `None` without a fiber of positive length.
+    pub(crate) fn segment(&self, v: VertexId) -> Option<(DVec3, DVec3)> {
+        let (a, b) = (*self.inner.get(v.index())?, *self.outer.get(v.index())?);
+        let d = b - a;
+        (d.length_squared() > 0.0 && d.is_finite()).then_some((a, d))
+    }
+}
 
 /// What the fiber test needs beyond the fibers: the connected components of the envelope
 /// meshes and the box of each (condition 2 of the [module docs](self)).
 ///
 /// ```
 /// use envelope_mesh::generate;
-/// use envelope_simplify::{FiberTest, VertexFibers};
+/// use envelope_simplify::policy::{FiberTest, VertexFibers};
 /// let sphere = generate::icosphere(2, 1.0);
 /// let scaled = |s: f64| sphere.positions.iter().map(|&p| p * s).collect::<Vec<_>>();
 /// let (inner, outer) = (scaled(0.99), scaled(1.01));
@@ -78,7 +96,7 @@ impl<'a> FiberTest<'a> {
     /// The test for envelopes whose vertex `i` is `fibers.inner[i]` / `fibers.outer[i]` and
     /// whose faces are `faces` (both envelopes; in `envelope simplify`, the input's faces).
     /// The caller promises condition 1 of the [module docs](self) for the simplification it
-    /// is given to; [`crate::simplify`] gives it only with proved envelopes and no pins.
+    /// is given to; the driver's `simplify` gives it only with proved envelopes and no pins.
     #[must_use]
     pub fn new(fibers: VertexFibers<'a>, faces: &[[VertexId; 3]]) -> Self {
         let n = fibers.inner.len().min(fibers.outer.len());
@@ -101,7 +119,7 @@ impl<'a> FiberTest<'a> {
 
     /// The faces (of the `faces` given to [`Self::new`]) around vertex `v`: their envelope
     /// triangles are where the fiber test's candidates are mostly refused (a hint for
-    /// [`crate::Filter::within_near`]).
+    /// [`crate::filter::Filter::within_near`]).
     #[must_use]
     pub fn faces_around(&self, v: VertexId) -> &[u32] {
         self.fans.of(v.index())

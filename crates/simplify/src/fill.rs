@@ -21,7 +21,7 @@
 use crate::fiber::FiberPath;
 use crate::filter::{Approximation, CandidateProfile, Filter, Nearby, position_in};
 use crate::grid::FaceGrid;
-use crate::policy::aspect_ratio;
+use crate::rules::aspect_ratio;
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use glam::DVec3;
 use std::collections::HashMap;
@@ -475,11 +475,10 @@ impl Greedy {
 /// [`Filter`] contract a triangle rejected with nothing placed is rejected with more placed.
 /// So when this fails every filler fails too, and asking it first changes no outcome, only
 /// the work: at most `n` tests instead of a failing greedy pass's dozens (at small epsilon
-/// most attempts fail; on armadillo at 1/64 % the second ear turns away most of the holes
-/// whose first ear passes). Rejections are cached in the context; the test stops as soon as
-/// the condition holds, so when every ear passes it costs two tests (ears 0 and 2), and as
-/// soon as it cannot (the ears not rejected yet are one, or two consecutive ones: armadillo
-/// at 1/64 %, single thread, 1.5 % fewer instructions, same outputs). It runs twice: first
+/// most attempts fail, and the second ear turns away most of the holes whose first ear
+/// passes). Rejections are cached in the context; the test stops as soon as the condition
+/// holds, so when every ear passes it costs two tests (ears 0 and 2), and as soon as it
+/// cannot (the ears not rejected yet are one, or two consecutive ones). It runs twice: first
 /// with [`Filter::refuses_anyway`] alone (the barriers: no approximation test, nothing of
 /// the mesh gathered), then, when that leaves two ears apart, with the full test.
 pub(crate) fn ears_allow_a_filling(ctx: &mut FillContext<'_>) -> bool {
@@ -559,7 +558,7 @@ impl HoleFiller for Greedy {
 ///
 /// A triangulation is valid when each triangle passes the topology guards and the filter
 /// with nothing placed, and no two of its triangles meet away from shared vertex ids (exact).
-/// This equals placing them one by one with [`crate::EnvelopeFilter`]; a custom filter that
+/// This equals placing them one by one with [`crate::filter::EnvelopeFilter`]; a custom filter that
 /// looks at `placed` sees it empty here.
 #[derive(Clone, Copy, Debug)]
 pub struct Exhaustive {

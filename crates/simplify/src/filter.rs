@@ -21,7 +21,7 @@
 //! touches a barrier and is rejected. That is conservative (such a vertex and the fans
 //! around it are frozen) and never unsafe. Barrier contact is never excused by position.
 
-use crate::Barriers;
+use crate::barriers::Barriers;
 use crate::grid::FaceGrid;
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
@@ -70,7 +70,7 @@ pub struct Approximation<'a> {
 /// ```
 /// use envelope_mesh::{HalfEdgeMesh, VertexId, generate};
 /// use envelope_predicates::bvh::Aabb;
-/// use envelope_simplify::{Approximation, FaceGrid, Nearby};
+/// use envelope_simplify::policy::{Approximation, FaceGrid, Nearby};
 /// use glam::DVec3;
 /// let mesh = HalfEdgeMesh::from_soup(&generate::icosphere(1, 1.0)).unwrap();
 /// let grid = FaceGrid::from_mesh(&mesh);
@@ -119,7 +119,7 @@ impl Clear {
     fn knows(&self, t: [VertexId; 3], p: [DVec3; 3]) -> bool {
         self.candidates
             .iter()
-            .any(|(u, q)| crate::same_up_to_rotation((u, q), (&t, &p)))
+            .any(|(u, q)| crate::barriers::same_up_to_rotation((u, q), (&t, &p)))
     }
 }
 
@@ -256,7 +256,7 @@ pub trait Filter: Sync {
     /// A refusal that needs nothing of the approximation: true only when [`Filter::accepts`]
     /// is false for this candidate (its ids, corners and border edges) whatever
     /// `profile.approximation` is (mesh, placed, excluded and moved faces). Callers may ask
-    /// it first to skip work: the ear test ([`crate::fill`]) asks it of every ear before
+    /// it first to skip work: the ear test (module `fill`) asks it of every ear before
     /// any approximation test, so that a hole whose ears the barriers alone turn away never
     /// gathers the mesh faces around it. The default claims nothing.
     fn refuses_anyway(&self, profile: &CandidateProfile<'_>) -> bool {

@@ -1,17 +1,19 @@
-//! The local simplifier of Simplification Envelopes (Cohen et al. 1996, sections 5.1, 5.2,
-//! and the border handling of 6.2).
+//! The simplifier of Simplification Envelopes (Cohen et al. 1996): the local algorithm of
+//! sections 5.1 and 5.2 with the border handling of 6.2, run between envelopes by a driver.
 //!
-//! * [`Barriers`]: the envelopes and border tubes as plain triangles (built elsewhere).
-//! * [`EnvelopeFilter`]: the validity test of 5.1, one [`Filter`] shared with the global
-//!   simplifier; [`FaceGrid`] indexes the current approximation for it.
-//! * [`simplify_local`]: the local algorithm of 5.2 (see [`local`] for every
-//!   choice the paper leaves open); [`simplify_local_with`] takes any [`Policies`]:
-//!   [`QueueOrder`], [`HoleFiller`] ([`Greedy`], [`Exhaustive`]), [`StopRule`], [`Visitor`].
+//! The front door is the driver: [`simplify`] (and [`simplify_with`], which takes another
+//! [`SimplifyStep`]) does the whole job (input check, envelopes, border tubes and walls, the
+//! local algorithm, an optional certificate) and reports it in a [`SimplifyReport`];
+//! [`lod_chain`] makes nested levels of detail (7.2). Their options and reports are at the
+//! crate root.
 //!
-//! * [`border_walls`]: half-tubes closing the space between the envelopes along borders.
-//! * [`simplify`]: the whole job (input check, envelopes, local algorithm, optional
-//!   certificate) with a [`SimplifyReport`]; [`lod_chain`]: nested levels of detail (7.2).
+//! [`policy`] is for those who write their own policies or simplification steps: the
+//! barriers, the validity filter of 5.1 shared with the global simplifier, hole fillers,
+//! queue orders, stop rules, visitors, the fiber test, border walls, and the local
+//! algorithm's lower-level entry points ([`policy::simplify_local`] and its variants).
 //!
+//! Inside, the modules form a chain: `grid`, `barriers`, `fiber`, `filter`, `rules`,
+//! `walls`, `fill`, then `local` (the algorithm, one idea per file), `driver`, `lod`.
 //! Decisions are exact predicates (`envelope-predicates`); aspect ratios and queue
 //! priorities are f64 numbers that only order the work.
 #![forbid(unsafe_code)]
@@ -22,39 +24,16 @@ mod fiber;
 mod fill;
 mod filter;
 mod grid;
-pub mod local;
-pub mod lod;
-mod policy;
+mod local;
+mod lod;
+pub mod policy;
+mod rules;
 mod walls;
 
-pub use barriers::{BarrierError, BarrierKind, Barriers};
 pub use driver::{
     DriverError, EnvelopeReport, LocalStep, Progress, SimplifyOptions, SimplifyReport,
     SimplifyStep, Stage, StepInput, StepOutcome, VerifyReport, input_problems, peak_memory_bytes,
     simplify, simplify_with,
 };
-pub use fiber::FiberTest;
-pub use fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
-pub use filter::{Approximation, CandidateProfile, EnvelopeFilter, Filter, Nearby, NoFilter};
-pub use grid::FaceGrid;
-pub use local::{
-    AUTO_MOVING_DIVISOR, HoleFilling, LocalSimplifier, MAX_HOLE, Options, Order, Placement,
-    Policies, Removal, RemovalQueue, SimplifyError, Stats, VertexFibers, queue_vertices,
-    simplify_local, simplify_local_from, simplify_local_sliding, simplify_local_visited,
-    simplify_local_with,
-};
+pub use local::{HoleFilling, Order, Placement};
 pub use lod::{Level, LodOptions, LodRule, Screen, lod_chain};
-pub use policy::{
-    Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor, aspect_ratio,
-};
-pub use walls::{WALL_SEGMENTS, Wall, border_walls};
-
-/// Whether the triangle `(a, a_data)` is `(b, b_data)` up to a rotation of its corners, the
-/// per-corner data (border edges, positions) rotating along. The memories of
-/// [`Barriers::scoped`] and [`Nearby`] match their questions with it.
-pub(crate) fn same_up_to_rotation<A: PartialEq, B: PartialEq>(
-    (a, a_data): (&[A; 3], &[B; 3]),
-    (b, b_data): (&[A; 3], &[B; 3]),
-) -> bool {
-    (0..3).any(|r| (0..3).all(|k| a[(k + r) % 3] == b[k] && a_data[(k + r) % 3] == b_data[k]))
-}

@@ -26,8 +26,9 @@ use envelope_mesh::TriangleSoup;
 use envelope_offset::{EpsilonField, Method};
 use serde_json::{Value, json};
 
+use crate::driver::simplify;
 use crate::driver::{DriverError, Progress, SimplifyOptions, SimplifyReport, VerifyReport};
-use crate::{HoleFilling, simplify};
+use crate::local::HoleFilling;
 
 /// How each level's step epsilon relates to the requested epsilons (see the module docs).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

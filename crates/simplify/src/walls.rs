@@ -8,10 +8,9 @@
 //! edges lie about `eps+ + eps-` apart, one above and one below each input border edge. The
 //! border tubes only constrain *new border edges*; an interior candidate triangle next to a
 //! border can leave the space between the envelopes through that gap without touching any
-//! envelope triangle (a chord across a hole of `mech-holes-shark.off`, 6.7 eps from the
-//! input). A wall is a strip that joins the outer envelope's boundary to the inner one's on
+//! envelope triangle (a chord across a hole, far from the input). A wall is a strip that joins the outer envelope's boundary to the inner one's on
 //! the outward side of the border; walls are *full* barriers
-//! ([`crate::BarrierKind::Wall`]): no candidate triangle may touch them.
+//! ([`crate::barriers::BarrierKind::Wall`]): no candidate triangle may touch them.
 //!
 //! # Construction
 //!
@@ -47,7 +46,7 @@
 //! Border chains (open border paths, only next to non-manifold edges) get no wall, and a
 //! loop segment is skipped when one of its ends is a non-manifold border vertex (more than
 //! two border edges: a pinch), where "the outward side" is not defined by one fan. Acceptable
-//! input ([`crate::input_problems`]) has neither.
+//! input (the driver's `input_problems`) has neither.
 
 use envelope_mesh::{Topology, TriangleSoup, VertexId};
 use glam::DVec3;

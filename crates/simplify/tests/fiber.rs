@@ -4,10 +4,10 @@
 //! of the attempts away (so it is exercised); and `simplify` reports its count.
 use envelope_mesh::{HalfEdgeMesh, TriangleSoup, generate};
 use envelope_offset::{EnvelopeOptions, Envelopes, EpsilonField, build_envelopes};
-use envelope_simplify::{
-    Barriers, FiberTest, Options, Placement, SimplifyOptions, Stats, VertexFibers, simplify,
-    simplify_local_sliding,
+use envelope_simplify::policy::{
+    Barriers, FiberTest, Options, Stats, VertexFibers, simplify_local_from,
 };
+use envelope_simplify::{Placement, SimplifyOptions, simplify};
 
 fn bumpy(subdivisions: u32) -> TriangleSoup {
     let mut s = generate::icosphere(subdivisions, 1.0);
@@ -43,7 +43,7 @@ fn run(
         ..Options::default()
     };
     let mut m = HalfEdgeMesh::from_soup(s).unwrap();
-    let stats = simplify_local_sliding(
+    let stats = simplify_local_from(
         &mut m,
         &barriers,
         &options,

@@ -3,9 +3,10 @@
 
 use envelope_mesh::{FaceId, HalfEdgeMesh, TriangleSoup, VertexId, analyze, generate};
 use envelope_predicates::{self_intersections, triangles_intersect};
-use envelope_simplify::{
+use envelope_simplify::HoleFilling;
+use envelope_simplify::policy::{
     BarrierKind, Barriers, CandidateProfile, EnvelopeFilter, Exhaust, Exhaustive, Fifo, Filter,
-    Greedy, HoleFilling, LocalSimplifier, Options, Policies, Rejection, Stats, simplify_local,
+    Greedy, LocalSimplifier, Options, Policies, Rejection, Stats, simplify_local,
     simplify_local_with,
 };
 use proptest::prelude::*;
@@ -382,7 +383,7 @@ fn exhaustive_fills_where_the_single_pass_gets_stuck() {
     assert_guarantees(&s, &m, &barriers);
 
     // Whole runs: exhaustive ends with no more faces than greedy on this case.
-    let run = |filler: &dyn envelope_simplify::HoleFiller| -> usize {
+    let run = |filler: &dyn envelope_simplify::policy::HoleFiller| -> usize {
         let mut m = mesh(&s);
         let policies = Policies {
             filter: &filter,
@@ -453,7 +454,7 @@ fn stop_rule_and_visitor() {
         removed: usize,
         rejected: usize,
     }
-    impl envelope_simplify::Visitor for Count {
+    impl envelope_simplify::policy::Visitor for Count {
         fn on_attempt(&mut self, _: VertexId) {
             self.attempts += 1;
         }
@@ -473,7 +474,7 @@ fn stop_rule_and_visitor() {
         filter: &filter,
         order: &Fifo,
         filler: &Greedy::default(),
-        stop: &envelope_simplify::TargetFaces(1000),
+        stop: &envelope_simplify::policy::TargetFaces(1000),
         keep_border: true,
         check_each_step: false,
         fibers: None,
@@ -590,26 +591,42 @@ fn a_seeded_queue_starts_from_its_seeds() {
     let barriers = Barriers::none();
     let options = Options::default();
     let mut none = mesh(&soup);
-    let s =
-        envelope_simplify::simplify_local_from(&mut none, &barriers, &options, Some(&[]), &mut ())
-            .unwrap();
+    let s = envelope_simplify::policy::simplify_local_from(
+        &mut none,
+        &barriers,
+        &options,
+        Some(&[]),
+        None,
+        None,
+        &mut (),
+    )
+    .unwrap();
     assert_eq!((s.attempts, none.num_faces()), (0, soup.num_faces()));
     let all: Vec<VertexId> = mesh(&soup).vertices().collect();
     let (mut a, mut b) = (mesh(&soup), mesh(&soup));
-    let sa =
-        envelope_simplify::simplify_local_from(&mut a, &barriers, &options, Some(&all), &mut ())
-            .unwrap();
+    let sa = envelope_simplify::policy::simplify_local_from(
+        &mut a,
+        &barriers,
+        &options,
+        Some(&all),
+        None,
+        None,
+        &mut (),
+    )
+    .unwrap();
     let sb = simplify_local(&mut b, &barriers, &options).unwrap();
     assert_eq!(sa, sb);
     assert_eq!(a.to_soup(), b.to_soup());
     // One seed without barriers: it goes, and the re-queued ring lets the removals spread,
     // but never to more attempts than a full run.
     let mut one = mesh(&soup);
-    let s1 = envelope_simplify::simplify_local_from(
+    let s1 = envelope_simplify::policy::simplify_local_from(
         &mut one,
         &barriers,
         &options,
         Some(&[VertexId(0)]),
+        None,
+        None,
         &mut (),
     )
     .unwrap();

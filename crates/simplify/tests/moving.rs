@@ -12,10 +12,11 @@
 //! link condition).
 use envelope_mesh::{HalfEdgeMesh, TriangleSoup, VertexId, generate};
 use envelope_offset::{EnvelopeOptions, Envelopes, EpsilonField, build_envelopes};
-use envelope_simplify::{
-    Barriers, EnvelopeFilter, Greedy, LocalSimplifier, Options, Placement, Rejection,
-    SimplifyOptions, Stats, VertexFibers, simplify, simplify_local_sliding,
+use envelope_simplify::policy::{
+    Barriers, EnvelopeFilter, Greedy, LocalSimplifier, Options, Rejection, Stats, VertexFibers,
+    simplify_local_from,
 };
+use envelope_simplify::{Placement, SimplifyOptions, simplify};
 use envelope_verify::Verdict;
 use glam::DVec3;
 
@@ -50,7 +51,7 @@ fn run(s: &TriangleSoup, env: &Envelopes, placement: Placement) -> (HalfEdgeMesh
         ..Options::default()
     };
     let mut m = HalfEdgeMesh::from_soup(s).unwrap();
-    let stats = simplify_local_sliding(
+    let stats = simplify_local_from(
         &mut m,
         &barriers(env),
         &options,
@@ -375,7 +376,7 @@ fn the_moving_phase_does_not_depend_on_the_thread_count() {
         let mut m = HalfEdgeMesh::from_soup(&s).unwrap();
         let stats = pool
             .install(|| {
-                simplify_local_sliding(&mut m, &b, &options, None, Some(fibers), None, &mut ())
+                simplify_local_from(&mut m, &b, &options, None, Some(fibers), None, &mut ())
             })
             .unwrap();
         m.sanity_check().unwrap();
@@ -452,7 +453,8 @@ fn auto_moves_vertices_only_when_the_subset_run_left_few() {
         let (subset, _) = run(&s, &env, Placement::Subset);
         let (collapse, sc) = run(&s, &env, Placement::Collapse);
         let (auto, sa) = run(&s, &env, Placement::Auto);
-        let few_left = subset.num_vertices() * envelope_simplify::AUTO_MOVING_DIVISOR <= before;
+        let few_left =
+            subset.num_vertices() * envelope_simplify::policy::AUTO_MOVING_DIVISOR <= before;
         let expected = if few_left { &collapse } else { &subset };
         assert_eq!(
             auto.to_soup(),

@@ -3,7 +3,8 @@
 
 use envelope_mesh::{VertexId, analyze, generate};
 use envelope_offset::{EnvelopeOptions, EpsilonField, build_envelopes};
-use envelope_simplify::{SimplifyOptions, WALL_SEGMENTS, border_walls, simplify};
+use envelope_simplify::policy::{WALL_SEGMENTS, border_walls};
+use envelope_simplify::{SimplifyOptions, simplify};
 use envelope_verify::Verdict;
 
 #[test]

@@ -1,0 +1,215 @@
+//! The moving phase after the subset run ([`Placement::Slide`], [`Placement::Collapse`]):
+//! each vertex that is left tries the plain removal, the slide, then the collapses.
+//!
+//! [`Placement::Slide`]: super::Placement::Slide
+//! [`Placement::Collapse`]: super::Placement::Collapse
+
+use super::collapse::collapse_candidates;
+use super::plan::{LocalSimplifier, Plan};
+use super::queue::{independent_batch, queue_vertices};
+use super::scheduler::plan_each;
+use super::{Policies, SimplifyError, Stats, VertexFibers, rejected};
+use crate::fill::HoleFiller;
+use crate::filter::Filter;
+use crate::rules::{Fifo, Rejection, Visitor};
+use envelope_mesh::{HalfEdgeMesh, VertexId};
+use envelope_predicates::bvh::Aabb;
+
+/// The phase after the subset run ([`Placement::Slide`], [`Placement::Collapse`]): every
+/// live vertex in id order, first in first out: the plain removal, else the slide of
+/// [`LocalSimplifier::try_slide_remove`] (with fibers), else (with `policies.collapse`) the
+/// collapse of [`LocalSimplifier::try_collapse`] on the positions of `collapse_candidates`,
+/// cheapest first, until one passes; after a removal the hole's vertices and the neighbours
+/// of moved vertices are queued again. The first time round, the plain removal is skipped:
+/// the subset run failed it last, and by the paper's rule (only neighbours are queued again)
+/// nothing around it changed since; only vertices queued again after a change try it. (A
+/// removal near a vertex but not next to it, across a thin part, can unblock it; the subset
+/// run gives those up too.)
+///
+/// Batched like the subset run, with the box of [`moving_box`] (the two-ring and the
+/// neighbours' fibers: every face a slide or collapse of the vertex reads or changes) in
+/// place of the one-ring's; a slid or collapsed position outside that box is not tried, so
+/// the box holds. With `check_each_step`, one vertex at a time (same plans, other re-queue
+/// order).
+pub(super) fn moving_phase(
+    local: &mut LocalSimplifier<'_>,
+    policies: &Policies<'_>,
+    stats: &mut Stats,
+    visitor: &mut dyn Visitor,
+) -> Result<(), SimplifyError> {
+    let mut queue = queue_vertices(local.mesh(), &Fifo);
+    // Whether the vertex's neighbourhood changed since the subset run failed it.
+    let mut changed = vec![
+        false;
+        local
+            .mesh()
+            .vertices()
+            .map(|v| v.index() + 1)
+            .max()
+            .unwrap_or(0)
+    ];
+    let fibers = policies.fibers.as_ref();
+    let ways = Ways {
+        filter: policies.filter,
+        filler: policies.filler,
+        fibers,
+        collapse: policies.collapse,
+    };
+    loop {
+        if visitor.cancelled() {
+            return Err(SimplifyError::Cancelled);
+        }
+        let batch: Vec<VertexId> = if policies.check_each_step {
+            queue.pop().into_iter().collect()
+        } else {
+            independent_batch(
+                &mut queue,
+                local.mesh(),
+                |m, v| moving_box(m, v, fibers),
+                |_| false,
+            )
+            .into_iter()
+            .map(|(v, _)| v)
+            .collect()
+        };
+        if batch.is_empty() {
+            break;
+        }
+        let jobs: Vec<(VertexId, bool)> = batch
+            .iter()
+            .map(|&v| (v, std::mem::take(&mut changed[v.index()])))
+            .collect();
+        let plans = {
+            let local = &*local;
+            plan_each(
+                &jobs,
+                |_| false,
+                |_| 0,
+                |&(v, plain)| local.plan_stuck(v, plain, &ways),
+                || false,
+            )
+        };
+        for (&v, (plan, tests)) in batch.iter().zip(plans) {
+            if policies.stop.should_stop(local.mesh().num_faces()) {
+                return Ok(());
+            }
+            stats.attempts += 1;
+            visitor.on_attempt(v);
+            local.candidate_tests += tests;
+            let result = plan.and_then(|(plan, way)| {
+                let moved: Vec<VertexId> = plan.moves.iter().map(|m| m.0).collect();
+                local.apply(v, plan).map(|removal| (removal, way, moved))
+            });
+            match result {
+                Ok((removal, way, moved)) => {
+                    stats.removed += 1;
+                    stats.slid += usize::from(way == Way::Slid);
+                    stats.collapsed += usize::from(way == Way::Collapsed);
+                    visitor.on_removed(v, &removal.faces);
+                    let around = moved.iter().flat_map(|&u| local.mesh().vertex_neighbors(u));
+                    let again: Vec<VertexId> = removal
+                        .hole
+                        .vertices
+                        .iter()
+                        .copied()
+                        .chain(around)
+                        .collect();
+                    for w in again {
+                        if local.mesh().contains_vertex(w) {
+                            changed[w.index()] = true;
+                            queue.push(local.mesh(), &Fifo, w);
+                        }
+                    }
+                }
+                Err(reason) => rejected(stats, visitor, v, reason),
+            }
+            if policies.check_each_step {
+                local
+                    .sanity_check()
+                    .map_err(|message| SimplifyError::SanityCheck { after: v, message })?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// What the moving phase may try (the thread-safe part of [`Policies`]).
+struct Ways<'p> {
+    filter: &'p dyn Filter,
+    filler: &'p dyn HoleFiller,
+    fibers: Option<&'p VertexFibers<'p>>,
+    collapse: bool,
+}
+
+/// How a removal of the moving phase went.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Way {
+    Plain,
+    Slid,
+    Collapsed,
+}
+
+/// The box of `v`'s two-ring and of its neighbours' fibers: every face that a slide or a
+/// collapse of `v` reads or changes lies in it, when the slid and collapsed positions do.
+fn moving_box(m: &HalfEdgeMesh, v: VertexId, fibers: Option<&VertexFibers<'_>>) -> Aabb {
+    let mut points = vec![m.position(v)];
+    for u in m.vertex_neighbors(v) {
+        points.extend(m.vertex_neighbors(u).map(|x| m.position(x)));
+        if let Some((a, d)) = fibers.and_then(|f| f.segment(u)) {
+            points.extend([a, a + d]);
+        }
+    }
+    Aabb::from_points(&points)
+}
+
+impl LocalSimplifier<'_> {
+    /// The moving phase's plan for `v` (read only): the plain removal when `plain`, else or
+    /// then the slide, then the collapses (see `moving_phase`), each position inside
+    /// [`moving_box`]. Also returns the filter calls.
+    fn plan_stuck(
+        &self,
+        v: VertexId,
+        plain: bool,
+        ways: &Ways<'_>,
+    ) -> (Result<(Plan, Way), Rejection>, u64) {
+        let (filter, filler) = (ways.filter, ways.filler);
+        let mut tests = 0;
+        if plain {
+            let (plan, t) = self.plan(v, filter, filler);
+            tests += t;
+            match plan {
+                Ok(plan) => return (Ok((plan, Way::Plain)), tests),
+                Err(Rejection::NoValidFill | Rejection::NoFillAcrossFiber) => {}
+                Err(other) => return (Err(other), tests),
+            }
+        }
+        let m = &*self.mesh;
+        if !m.contains_vertex(v) || m.is_isolated(v) {
+            return (Err(Rejection::NotAVertex), tests);
+        }
+        let fibers = ways.fibers;
+        let reach = moving_box(m, v, fibers);
+        if let Some(moves) = fibers.and_then(|f| self.slide_moves(v, f).ok()) {
+            if moves.iter().all(|&(_, q)| reach.contains(q)) {
+                let (plan, t) = self.plan_moved(v, moves, filter, filler);
+                tests += t;
+                if let Ok(plan) = plan {
+                    return (Ok((plan, Way::Slid)), tests);
+                }
+            }
+        }
+        if ways.collapse {
+            for (_, w, p) in collapse_candidates(m, v, fibers) {
+                if !reach.contains(p) {
+                    continue;
+                }
+                let (plan, t) = self.plan_collapse(v, w, p, filter);
+                tests += t;
+                if let Ok(plan) = plan {
+                    return (Ok((plan, Way::Collapsed)), tests);
+                }
+            }
+        }
+        (Err(Rejection::NoValidFill), tests)
+    }
+}
