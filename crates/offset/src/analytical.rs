@@ -428,7 +428,7 @@ mod tests {
     /// them clipped, many just outside.
     #[test]
     fn shortcuts_skip_only_triangles_that_cannot_lower_delta() {
-        let mut bits = crate::xorshift(0x2545_F491_4F6C_DD1D);
+        let mut bits = crate::tests::xorshift(0x2545_F491_4F6C_DD1D);
         let mut next = move || (bits() >> 11) as f64 / (1u64 << 53) as f64;
         let (mut skipped, mut met) = (0, 0);
         for _ in 0..20_000 {

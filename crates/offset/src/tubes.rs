@@ -524,7 +524,7 @@ mod tests {
     /// the same contacts, on random tube triangles around a bumpy grid and its envelopes.
     #[test]
     fn tube_contacts_are_those_of_one_tree_over_everything() {
-        let mut next = crate::xorshift(0x0DDB_1A5E_5BAD_5EED);
+        let mut next = crate::tests::xorshift(0x0DDB_1A5E_5BAD_5EED);
         let mut unit = || (next() >> 11) as f64 / (1u64 << 53) as f64;
         // A 4 x 4 vertex grid, z bumpy; envelopes 0.1 above and below.
         let mut positions = Vec::new();
