@@ -7,7 +7,7 @@ use glam::DVec3;
 use crate::engine::StepPolicy;
 use crate::error::EnvelopeError;
 use crate::numerical::numerical_eps;
-use crate::options::{EnvelopeOptions, MAX_TUBE_SEGMENTS, Method};
+use crate::options::{EnvelopeMethod, EnvelopeOptions, MAX_TUBE_SEGMENTS};
 use crate::proof::Proof;
 use crate::repair::{Proved, prove_and_repair};
 use crate::tubes::Tube;
@@ -37,9 +37,9 @@ pub struct Envelopes {
     pub eps_minus: Vec<f64>,
     /// Border tubes (empty for closed meshes).
     pub tubes: Vec<Tube>,
-    /// The method whose offsets these are ([`Method::Analytical`] or [`Method::Numerical`];
-    /// with [`Method::Auto`], the one it kept).
-    pub method: Method,
+    /// The method whose offsets these are ([`EnvelopeMethod::Analytical`] or [`EnvelopeMethod::Numerical`];
+    /// with [`EnvelopeMethod::Auto`], the one it kept).
+    pub method: EnvelopeMethod,
     /// The exact non-intersection proof.
     pub proof: Proof,
     /// A tree over the faces of [`Envelopes::outer`] then those of [`Envelopes::inner`]
@@ -188,18 +188,18 @@ pub fn build_envelopes_with(
             tree,
         },
     ) = match options.method {
-        Method::Analytical => (Method::Analytical, prove(analytical(), None)),
-        Method::Numerical => (Method::Numerical, prove(numerical(None), None)),
-        Method::Auto => {
+        EnvelopeMethod::Analytical => (EnvelopeMethod::Analytical, prove(analytical(), None)),
+        EnvelopeMethod::Numerical => (EnvelopeMethod::Numerical, prove(numerical(None), None)),
+        EnvelopeMethod::Auto => {
             let short = |e: &[f64]| e.iter().zip(&targets).any(|(x, r)| x < r);
             let a = prove(analytical(), None);
             if !a.proof.holds() {
                 // Repair gave up: numerical from scratch, and the better of the two.
                 let n = prove(numerical(None), None);
                 if n.proof.holds() || n.total() > a.total() {
-                    (Method::Numerical, n)
+                    (EnvelopeMethod::Numerical, n)
                 } else {
-                    (Method::Analytical, a)
+                    (EnvelopeMethod::Analytical, a)
                 }
             } else if short(&a.eps_plus) || short(&a.eps_minus) {
                 // Clipping or repair cut some offsets: grow those numerically from the
@@ -207,12 +207,12 @@ pub fn build_envelopes_with(
                 // pairs of faces that did not move were proved with the analytical ones).
                 let n = prove(numerical(Some((&a.eps_plus, &a.eps_minus))), Some(&a));
                 if n.proof.holds() && n.total() >= a.total() {
-                    (Method::Numerical, n)
+                    (EnvelopeMethod::Numerical, n)
                 } else {
-                    (Method::Analytical, a)
+                    (EnvelopeMethod::Analytical, a)
                 }
             } else {
-                (Method::Analytical, a)
+                (EnvelopeMethod::Analytical, a)
             }
         }
     };

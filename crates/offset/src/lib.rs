@@ -8,9 +8,9 @@
 //! 2. evaluate the [`EpsilonField`] per vertex (6.3),
 //! 3. compute [`vertex_normals`] within 90 degrees of every adjacent face (3); a vertex with
 //!    none (a folded fan) is *pinned*: offsets zero there ([`Envelopes::pinned`]),
-//! 4. compute per-vertex `eps_plus` / `eps_minus` by the [`Method::Analytical`] prism
-//!    clipping (4.1) or the [`Method::Numerical`] iterative growth (4.2) (or the growth
-//!    from the proved clipping where it fell short: [`Method::Auto`]),
+//! 4. compute per-vertex `eps_plus` / `eps_minus` by the [`EnvelopeMethod::Analytical`] prism
+//!    clipping (4.1) or the [`EnvelopeMethod::Numerical`] iterative growth (4.2) (or the growth
+//!    from the proved clipping where it fell short: [`EnvelopeMethod::Auto`]),
 //! 5. place the envelope vertices `v ± eps_v n_v` (f64 constructions, same connectivity),
 //! 6. **prove** exactly that input, outer and inner envelope are pairwise and individually
 //!    free of intersections ([`Proof`]); when the proof fails (the analytical distances are
@@ -59,6 +59,8 @@ pub use field::{
     parse_epsilon_values, read_epsilon_file,
 };
 pub use normals::{VertexNormals, vertex_normals};
-pub use options::{EPSILON_FLOOR, EnvelopeOptions, MAX_TUBE_SEGMENTS, Method, NumericalParams};
+pub use options::{
+    EPSILON_FLOOR, EnvelopeMethod, EnvelopeOptions, MAX_TUBE_SEGMENTS, NumericalParams,
+};
 pub use proof::{Contact, Proof, Surface};
 pub use tubes::Tube;

@@ -4,7 +4,7 @@ use crate::field::EpsilonField;
 
 /// How the per-vertex epsilon is found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum Method {
+pub enum EnvelopeMethod {
     /// Prism clipping (section 4.1), then the exact proof and repair.
     Analytical,
     /// Iterative growth with exact checks (section 4.2).
@@ -62,7 +62,7 @@ pub struct EnvelopeOptions {
     /// Requested epsilon per vertex.
     pub epsilon: EpsilonField,
     /// Analytical or numerical.
-    pub method: Method,
+    pub method: EnvelopeMethod,
     /// Numerical-method parameters (also used to grow tubes).
     pub numerical: NumericalParams,
     /// Vertices per tube ring; `None` builds no tubes.
@@ -82,7 +82,7 @@ impl EnvelopeOptions {
     pub fn new(epsilon: EpsilonField) -> Self {
         EnvelopeOptions {
             epsilon,
-            method: Method::default(),
+            method: EnvelopeMethod::default(),
             numerical: NumericalParams::default(),
             tube_segments: Some(8),
             max_repair_rounds: 30,
