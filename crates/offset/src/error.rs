@@ -33,8 +33,7 @@ pub enum EnvelopeError {
         vertex: VertexId,
     },
     /// An epsilon too small to be represented as an offset beside the mesh's coordinates
-    /// (below [`EPSILON_FLOOR`](crate::options::EPSILON_FLOOR) times the largest coordinate
-    /// magnitude).
+    /// (below 2^-40 times the largest coordinate magnitude).
     #[error(
         "epsilon {epsilon:e}{} is below 2^-40 times the largest coordinate magnitude \
          {magnitude:e} (at least {floor:e} is needed): offsets that small are lost in the \

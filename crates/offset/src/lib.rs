@@ -56,11 +56,9 @@ pub use build::{Envelopes, build_envelopes, build_envelopes_with, face_tree};
 pub use error::EnvelopeError;
 pub use field::{
     EpsilonField, EpsilonFileError, EpsilonParseError, EpsilonSpec, parse_epsilon,
-    parse_epsilon_values, read_epsilon_file,
+    read_epsilon_file,
 };
 pub use normals::{VertexNormals, vertex_normals};
-pub use options::{
-    EPSILON_FLOOR, EnvelopeMethod, EnvelopeOptions, MAX_TUBE_SEGMENTS, NumericalParams,
-};
+pub use options::{EnvelopeMethod, EnvelopeOptions, NumericalParams};
 pub use proof::{Contact, Proof, Surface};
 pub use tubes::Tube;

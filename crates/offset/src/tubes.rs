@@ -83,17 +83,17 @@ pub(crate) fn frames(pts: &[DVec3], closed: bool) -> Vec<[DVec3; 3]> {
 
 /// Everything the tube stage needs from the envelope stage.
 pub(crate) struct TubeInput<'a> {
-    pub soup: &'a TriangleSoup,
-    pub faces: &'a [[u32; 3]],
-    pub outer: &'a [DVec3],
-    pub inner: &'a [DVec3],
-    pub requested: &'a [f64],
-    pub diagonal: f64,
+    pub(crate) soup: &'a TriangleSoup,
+    pub(crate) faces: &'a [[u32; 3]],
+    pub(crate) outer: &'a [DVec3],
+    pub(crate) inner: &'a [DVec3],
+    pub(crate) requested: &'a [f64],
+    pub(crate) diagonal: f64,
     /// Trees over the boxes of the input, outer and inner faces (face `f` of the three in
     /// that order, at these positions), when the envelope proof left them: part
     /// `(tree, first)` holds face `first + i` as item `i`, the parts in order, each face in
     /// one.
-    pub surfaces: Option<&'a [(&'a Bvh, u32)]>,
+    pub(crate) surfaces: Option<&'a [(&'a Bvh, u32)]>,
 }
 
 struct Layout {
