@@ -102,10 +102,10 @@ pub(crate) fn numerical_eps_sorted(
 }
 
 /// The growth from proved offsets where a few vertices fell short (the automatic method
-/// after the analytical one: mech-holes-shark at 1/64 %, 3 movers among 10,192 faces), on
-/// the part of the mesh they can reach: the faces around every mover and every face with a
-/// copy (input, outer or inner, at the start) whose box overlaps a mover's reach, renumbered
-/// in the whole mesh's Z-order. The same growth as on the whole mesh:
+/// after the analytical one), on the part of the mesh they can reach: the faces around
+/// every mover and every face with a copy (input, outer or inner, at the start) whose box
+/// overlaps a mover's reach, renumbered in the whole mesh's Z-order. The same growth as on
+/// the whole mesh:
 ///
 /// - the movers are the same, in the same order (Z-order in the whole mesh's box, ties by
 ///   vertex id), with the same stars (a mover's fan is all there) and the same steps (from
@@ -117,9 +117,8 @@ pub(crate) fn numerical_eps_sorted(
 /// - what is left out never moves and meets no reach. More faces than needed change only
 ///   the work (every face of an input face's three copies is taken).
 ///
-/// mech-holes-shark at 1/64 %, two threads (instrumented run): the growth 2.7 -> 0.5 ms
-/// (the renumbering and the scene's arrays for 5,246 vertices and 30,576 faces were
-/// nearly all of it, for three movers).
+/// Why: for a few movers, renumbering the whole mesh and building its scene's arrays would
+/// be nearly all of the work.
 pub(crate) struct Near<'a> {
     pub(crate) soup: &'a TriangleSoup,
     pub(crate) vf: &'a VertexFaces,
@@ -251,8 +250,8 @@ impl Near<'_> {
 
 /// [`numerical_eps_ordered`] builds its tree over the faces its movers can reach only when
 /// there are fewer movers than one per this many scene faces (the growth from proved
-/// offsets where a few fell short: mech-holes-shark at 1/64 %, 3 movers among 30,576 scene
-/// faces, 0.010 -> 0.003 s).
+/// offsets where a few fell short: then a tree over the few faces they can reach is cheaper
+/// to build than one over the whole scene).
 const FEW_MOVERS: usize = 64;
 
 fn order_pos(soup: &TriangleSoup, order: &[u32], v: VertexId) -> DVec3 {

@@ -19,7 +19,7 @@
 //!   target, halved while they still meet something) and grow with the numerical engine
 //!   ([`crate::engine`]), each ring one mover. At small epsilons that is one proof and no
 //!   growth; the result is that of starting every ring narrow whenever the growth would have
-//!   reached every target anyway (mech-holes-shark at seven epsilons: the same outputs).
+//!   reached every target anyway.
 //!
 //! "Until it would intersect the surface": a tube necessarily crosses the surface and the
 //! envelopes at its own border, so a tube face between rings `i` and `i+1` is exempt against
