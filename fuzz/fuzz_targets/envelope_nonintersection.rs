@@ -8,7 +8,7 @@
 
 use arbitrary::Arbitrary;
 use envelope_mesh::generate;
-use envelope_offset::{EnvelopeOptions, EpsilonField, Method, build_envelopes};
+use envelope_offset::{EnvelopeMethod, EnvelopeOptions, EpsilonField, build_envelopes};
 use envelope_predicates::self_intersections;
 use glam::DVec3;
 use libfuzzer_sys::fuzz_target;
@@ -40,9 +40,9 @@ fuzz_target!(|case: Case| {
     let eps = (f64::from(case.eps_code) + 1.0) / 2048.0 * soup.diagonal();
     let mut options = EnvelopeOptions::new(EpsilonField::Constant(eps));
     options.method = if case.analytical {
-        Method::Analytical
+        EnvelopeMethod::Analytical
     } else {
-        Method::Numerical
+        EnvelopeMethod::Numerical
     };
     let env = match build_envelopes(&soup, &options) {
         Ok(e) => e,

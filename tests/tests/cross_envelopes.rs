@@ -22,7 +22,7 @@ use std::path::Path;
 
 use envelope_io::{Format, read_path, write_path};
 use envelope_mesh::{TriangleSoup, generate};
-use envelope_offset::{EnvelopeOptions, Envelopes, EpsilonField, Method, build_envelopes};
+use envelope_offset::{EnvelopeMethod, EnvelopeOptions, Envelopes, EpsilonField, build_envelopes};
 use envelope_tests::r#gen::sq_dist_point_triangle_f64;
 use envelope_tests::oracle::{Oracle, corpus_meshes, oracle_or_skip};
 use glam::DVec3;
@@ -69,7 +69,7 @@ fn check_case(oracle: &Oracle, dir: &Path, name: &str, input: &TriangleSoup) -> 
     write_exact(&input_path, input);
     let d = input.diagonal();
     let mut checked = 0;
-    for method in [Method::Numerical, Method::Analytical] {
+    for method in [EnvelopeMethod::Numerical, EnvelopeMethod::Analytical] {
         for t in [0.0025, 0.01] {
             let label = format!("{name} {method:?} eps={t}D");
             let mut o = EnvelopeOptions::new(EpsilonField::Constant(t * d));

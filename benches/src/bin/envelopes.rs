@@ -19,7 +19,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use envelope_mesh::{TriangleSoup, generate};
-use envelope_offset::{EnvelopeOptions, EpsilonField, Method, build_envelopes};
+use envelope_offset::{EnvelopeMethod, EnvelopeOptions, EpsilonField, build_envelopes};
 
 fn vm_hwm_mib() -> f64 {
     std::fs::read_to_string("/proc/self/status")
@@ -46,7 +46,7 @@ fn cpu_seconds() -> f64 {
 }
 
 /// Runs one row in a child process and prints its row; true when it proved.
-fn run_child(args: &[String], mesh: &str, eps: &str, method: Method) -> bool {
+fn run_child(args: &[String], mesh: &str, eps: &str, method: EnvelopeMethod) -> bool {
     let mut cmd = std::process::Command::new(std::env::current_exe().expect("own path"));
     let mesh_key = mesh.split_whitespace().next().unwrap_or(mesh);
     cmd.args(args.iter().filter(|a| *a != "--isolate"))
@@ -130,7 +130,7 @@ fn main() -> ExitCode {
             if only_eps.as_ref().is_some_and(|e| e != label) {
                 continue;
             }
-            for method in [Method::Numerical, Method::Analytical] {
+            for method in [EnvelopeMethod::Numerical, EnvelopeMethod::Analytical] {
                 if only_method
                     .as_ref()
                     .is_some_and(|m| !format!("{method:?}").eq_ignore_ascii_case(m))

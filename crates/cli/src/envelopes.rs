@@ -11,7 +11,9 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use envelope_io::{Format, PlyEncoding, read_path};
-use envelope_offset::{EnvelopeOptions, EpsilonField, Method, build_envelopes, read_epsilon_file};
+use envelope_offset::{
+    EnvelopeMethod, EnvelopeOptions, EpsilonField, build_envelopes, read_epsilon_file,
+};
 
 use crate::outputs::{Plan, Staging};
 use crate::ranges::{self, Length};
@@ -111,9 +113,9 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     ranges::epsilon_in_range(&flag, &args.input.display().to_string(), &field, &soup)?;
     let mut options = EnvelopeOptions::new(field);
     options.method = match args.method {
-        MethodArg::Analytical => Method::Analytical,
-        MethodArg::Numerical => Method::Numerical,
-        MethodArg::Auto => Method::Auto,
+        MethodArg::Analytical => EnvelopeMethod::Analytical,
+        MethodArg::Numerical => EnvelopeMethod::Numerical,
+        MethodArg::Auto => EnvelopeMethod::Auto,
     };
     options.tube_segments = (args.tube_segments > 0).then_some(args.tube_segments);
     let start = Instant::now();

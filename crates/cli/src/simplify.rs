@@ -14,7 +14,7 @@ use std::process::ExitCode;
 
 use envelope_io::read_path;
 use envelope_mesh::TriangleSoup;
-use envelope_offset::{EpsilonField, Method, read_epsilon_file};
+use envelope_offset::{EnvelopeMethod, EpsilonField, read_epsilon_file};
 use envelope_simplify::{
     DriverError, HoleFilling, Placement, Progress, SimplifyOptions, SimplifyReport, Stage,
     simplify_with,
@@ -38,11 +38,11 @@ pub(crate) enum MethodArg {
 }
 
 impl MethodArg {
-    pub(crate) fn method(self) -> Method {
+    pub(crate) fn method(self) -> EnvelopeMethod {
         match self {
-            MethodArg::Analytical => Method::Analytical,
-            MethodArg::Numerical => Method::Numerical,
-            MethodArg::Auto => Method::Auto,
+            MethodArg::Analytical => EnvelopeMethod::Analytical,
+            MethodArg::Numerical => EnvelopeMethod::Numerical,
+            MethodArg::Auto => EnvelopeMethod::Auto,
         }
     }
 }

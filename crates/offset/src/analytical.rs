@@ -1,27 +1,23 @@
 //! Analytical epsilon (Cohen et al. 4.1).
 //!
 //! For every fundamental triangle `t = v0 v1 v2` and each side (`s = +1` outer, `-1` inner),
-//! the prism of height `2 eps`: `P(b, λ) = Σ b_i (v_i + λ d_i)`, `d_i = 2 s eps_i n_i`,
-//! barycentric `b`, `λ ∈ [0, 1]` (its sides are exactly the paper's bilinear patches, and
-//! with a per-vertex field each corner rises by its own `2 eps_i`). Every input triangle `Δ`
+//! the prism of height `2 eps` with corner directions `d_i = 2 s eps_i n_i` (with a
+//! per-vertex field each corner rises by its own `2 eps_i`). Every input triangle `Δ`
 //! sharing no vertex with `t` whose box meets the prism's box (BVH) is clipped against the
-//! prism; the candidate closest points are the paper's "vertex of `Δ` inside the prism, or
-//! intersection of one of its edges with the sides", plus two cases the paper's 2-D figure
-//! hides: a prism edge (vertical or of the top cap) piercing `Δ`, and `Δ`'s edges crossing the
-//! caps. `δ` is the Euclidean distance from `t` of the closest candidate,
-//! `eps_new(t) = min δ / 2`, and `eps_new(v)` is the minimum over the triangles of `v` (and
-//! the requested `eps_v`).
+//! prism ([`envelope_prism::clip`], which lists the candidate closest points); `δ` is the
+//! Euclidean distance from `t` of the closest candidate, `eps_new(t) = min δ / 2`, and
+//! `eps_new(v)` is the minimum over the triangles of `v` (and the requested `eps_v`).
 //!
-//! Everything here is an f64 construction (roots of the cubic / quadratic that place a point on
-//! a cross-section plane or a patch, by bisection and the quadratic formula). The result is
-//! not trusted: [`crate::build_envelopes`] follows it with the exact proof, and halves the
-//! epsilon of every vertex of an offending envelope face until the proof holds (see the
-//! crate docs). The paper's octree is replaced by the BVH of `envelope-predicates`; a
-//! triangle the BVH returns is skipped without clipping when it lies apart from the convex
-//! hull of the prism's six corners, or farther from `t`'s box than the closest candidate so
-//! far (both with a margin, see `PRUNE_TOLERANCE`; the offsets are the same either way).
+//! The clipping is an f64 construction. The result is not trusted: [`crate::build_envelopes`]
+//! follows it with the exact proof, and halves the epsilon of every vertex of an offending
+//! envelope face until the proof holds (see the crate docs). The paper's octree is replaced
+//! by the BVH of `envelope-predicates`; a triangle the BVH returns is skipped without
+//! clipping when it lies apart from the convex hull of the prism's six corners, or farther
+//! from `t`'s box than the closest candidate so far (both with a margin, see
+//! [`clip::PRUNE_TOLERANCE`]; the offsets are the same either way).
 use envelope_mesh::{TriangleSoup, VertexFaces};
 use envelope_predicates::bvh::{Aabb, Bvh};
+use envelope_prism::clip;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -37,8 +33,7 @@ pub(crate) fn analytical_eps(
     let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
     // The faces in the tree's leaf order: each one's query then walks the nodes, and reads the
     // faces and positions, that the one before read (in the input's order they may be far
-    // apart: armadillo at 1/64 %, one thread, 0.069 -> 0.045 s for this step). Each face's
-    // result depends on nothing else, so the order changes no number.
+    // apart). Each face's result depends on nothing else, so the order changes no number.
     let in_id_order: Vec<u32>;
     let order: &[u32] = match bvh.leaf_order() {
         o if o.len() == faces.len() => o,
@@ -58,10 +53,9 @@ pub(crate) fn analytical_eps(
             // same triangles, in the same order, as a query of its own would give).
             let side = |s: f64| {
                 let d = f.map(|i| normals[i as usize] * (2.0 * s * requested[i as usize]));
-                let top = [v[0] + d[0], v[1] + d[1], v[2] + d[2]];
-                let b = t_box.union(&Aabb::from_triangle(top));
-                let scale = b.min.abs().max(b.max.abs()).max_element();
-                (d, top, b.inflated(scale * 1e-12), scale)
+                let top = clip::prism_top(v, d);
+                let (b, scale) = clip::prism_box(&t_box, top);
+                (d, top, b, scale)
             };
             let sides = [side(1.0), side(-1.0)];
             let mut delta = [f64::INFINITY; 2];
@@ -78,14 +72,16 @@ pub(crate) fn analytical_eps(
                         continue;
                     }
                     // Two shortcuts that skip only triangles whose candidate points could
-                    // not lower `delta` (see `PRUNE_TOLERANCE`): every point of `tg` is
+                    // not lower `delta` (see `clip::PRUNE_TOLERANCE`): every point of `tg` is
                     // farther from `t` than the gap between their boxes, and the prism lies
                     // in the convex hull of its six corners.
-                    let tol = PRUNE_TOLERANCE * scale.max(g_scale);
-                    if box_gap(&t_box, &g_box) > delta[k] + tol || hull_misses(v, *top, tg, tol) {
+                    let tol = clip::PRUNE_TOLERANCE * scale.max(g_scale);
+                    if clip::box_gap(&t_box, &g_box) > delta[k] + tol
+                        || clip::hull_misses(v, *top, tg, tol)
+                    {
                         continue;
                     }
-                    delta[k] = delta[k].min(closest_in_prism(v, *d, tg));
+                    delta[k] = delta[k].min(clip::closest_in_prism(v, *d, tg));
                 }
             });
             delta.map(|x| x / 2.0)
@@ -104,375 +100,4 @@ pub(crate) fn analytical_eps(
         }
     }
     (plus, minus)
-}
-
-/// Margin of the two shortcuts of [`analytical_eps`], relative to the largest coordinate
-/// magnitude of the prism's box and of the other triangle: a triangle is skipped only when it is apart from the prism's
-/// hull, or from `t`'s box by more than the current `delta`, by more than this. It is far
-/// above both the rounding of the f64 projections (about 1e-15 relative) and the slack that
-/// [`closest_in_prism`] allows its candidate points (1e-9 of a parameter, 1e-12 of a
-/// barycentric coordinate; an edge is at most 2 sqrt(3) times that magnitude), so
-/// the shortcuts change no `delta` that [`closest_in_prism`] would find. They are f64
-/// constructions like the rest of this module and, like it, are not trusted: the exact proof
-/// follows.
-const PRUNE_TOLERANCE: f64 = 1e-8;
-
-/// Euclidean distance between two boxes (0 when they overlap; f64).
-fn box_gap(a: &Aabb, b: &Aabb) -> f64 {
-    let gap = (a.min - b.max).max(b.min - a.max).max(DVec3::ZERO);
-    gap.length()
-}
-
-/// True when triangle `g` is apart, by more than `tol`, from the convex hull of the prism's
-/// six corners `t` and `top` (which holds the prism: every point of it is a convex
-/// combination of the corners). Separating axes: the normals of `t`, `top` and `g`, and the
-/// in-plane normals of the edges of `t` and of `top`; each is normalised, so `tol` is a
-/// length. f64; used only to skip work (see [`PRUNE_TOLERANCE`]).
-fn hull_misses(t: [DVec3; 3], top: [DVec3; 3], g: [DVec3; 3], tol: f64) -> bool {
-    let hull = [t[0], t[1], t[2], top[0], top[1], top[2]];
-    let apart = |axis: DVec3| {
-        let len = axis.length();
-        if !(len > 0.0 && len.is_finite()) {
-            return false;
-        }
-        let a = axis / len;
-        let (mut hlo, mut hhi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for p in hull {
-            let x = a.dot(p);
-            hlo = hlo.min(x);
-            hhi = hhi.max(x);
-        }
-        let (mut glo, mut ghi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for p in g {
-            let x = a.dot(p);
-            glo = glo.min(x);
-            ghi = ghi.max(x);
-        }
-        glo > hhi + tol || ghi < hlo - tol
-    };
-    let normal = |c: [DVec3; 3]| (c[1] - c[0]).cross(c[2] - c[0]);
-    let (nt, ntop) = (normal(t), normal(top));
-    if apart(nt) || apart(ntop) || apart(normal(g)) {
-        return true;
-    }
-    (0..3).any(|i| {
-        let j = (i + 1) % 3;
-        apart((t[j] - t[i]).cross(nt)) || apart((top[j] - top[i]).cross(ntop))
-    })
-}
-
-/// Distance from `t` of the closest point of triangle `g` inside the prism of `t` with
-/// corner directions `d` (infinity when `g` misses the prism).
-pub(crate) fn closest_in_prism(t: [DVec3; 3], d: [DVec3; 3], g: [DVec3; 3]) -> f64 {
-    let mut best = f64::INFINITY;
-    let mut consider = |p: DVec3| best = best.min(point_triangle_distance(p, t));
-    let top = [t[0] + d[0], t[1] + d[1], t[2] + d[2]];
-    for &p in &g {
-        if point_in_prism(p, t, d) {
-            consider(p);
-        }
-    }
-    for i in 0..3 {
-        let (p, q) = (g[i], g[(i + 1) % 3]);
-        for j in 0..3 {
-            let (a, b) = (j, (j + 1) % 3);
-            for x in segment_patch(p, q, t[a], t[b], d[a], d[b]) {
-                consider(x);
-            }
-        }
-        for cap in [t, top] {
-            if let Some(x) = segment_triangle_point(p, q, cap) {
-                consider(x);
-            }
-        }
-        // Prism edges piercing g: vertical edges and top-cap edges.
-        if let Some(x) = segment_triangle_point(t[i], top[i], g) {
-            consider(x);
-        }
-        if let Some(x) = segment_triangle_point(top[i], top[(i + 1) % 3], g) {
-            consider(x);
-        }
-    }
-    best
-}
-
-fn cross_section(t: [DVec3; 3], d: [DVec3; 3], l: f64) -> [DVec3; 3] {
-    [t[0] + d[0] * l, t[1] + d[1] * l, t[2] + d[2] * l]
-}
-
-fn plane_value(t: [DVec3; 3], d: [DVec3; 3], l: f64, p: DVec3) -> f64 {
-    let c = cross_section(t, d, l);
-    (c[1] - c[0]).cross(c[2] - c[0]).dot(p - c[0])
-}
-
-/// `p` lies on some cross-section `T(λ)`, `λ ∈ [0, 1]`, inside it (f64, approximate).
-fn point_in_prism(p: DVec3, t: [DVec3; 3], d: [DVec3; 3]) -> bool {
-    const N: usize = 8;
-    let mut prev = plane_value(t, d, 0.0, p);
-    for k in 1..=N {
-        let l1 = k as f64 / N as f64;
-        let cur = plane_value(t, d, l1, p);
-        if prev == 0.0 || (prev < 0.0) != (cur < 0.0) || cur == 0.0 {
-            let (mut lo, mut hi, mut flo) = ((k - 1) as f64 / N as f64, l1, prev);
-            for _ in 0..60 {
-                let mid = 0.5 * (lo + hi);
-                let fm = plane_value(t, d, mid, p);
-                if (fm < 0.0) == (flo < 0.0) && fm != 0.0 {
-                    lo = mid;
-                    flo = fm;
-                } else {
-                    hi = mid;
-                }
-            }
-            if barycentric_inside(p, cross_section(t, d, 0.5 * (lo + hi))) {
-                return true;
-            }
-        }
-        prev = cur;
-    }
-    false
-}
-
-fn barycentric_inside(p: DVec3, c: [DVec3; 3]) -> bool {
-    let n = (c[1] - c[0]).cross(c[2] - c[0]);
-    let nn = n.length_squared();
-    if nn.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-        return false;
-    }
-    let tol = -1e-9 * nn;
-    (0..3).all(|i| (c[(i + 1) % 3] - c[i]).cross(p - c[i]).dot(n) >= tol)
-}
-
-/// Intersections of segment `pq` with the bilinear patch `(1-s)(a + λ da) + s(b + λ db)`.
-fn segment_patch(p: DVec3, q: DVec3, a: DVec3, b: DVec3, da: DVec3, db: DVec3) -> Vec<DVec3> {
-    let e = q - p;
-    // f(λ) = det[B(λ) - A(λ), p - A(λ), e] is quadratic in λ: fit it from three samples.
-    let f = |l: f64| {
-        let (al, bl) = (a + da * l, b + db * l);
-        (bl - al).cross(p - al).dot(e)
-    };
-    let (f0, fh, f1) = (f(0.0), f(0.5), f(1.0));
-    let qa = 2.0 * f1 - 4.0 * fh + 2.0 * f0;
-    let qb = -f1 + 4.0 * fh - 3.0 * f0;
-    let qc = f0;
-    let mut roots = Vec::with_capacity(2);
-    let scale = qa.abs().max(qb.abs()).max(qc.abs());
-    if scale == 0.0 {
-        return Vec::new(); // coplanar for every λ: covered by the other candidates
-    }
-    if qa.abs() <= 1e-12 * scale {
-        if qb != 0.0 {
-            roots.push(-qc / qb);
-        }
-    } else {
-        let disc = qb * qb - 4.0 * qa * qc;
-        if disc >= 0.0 {
-            let s = disc.sqrt();
-            let q0 = -0.5 * (qb + qb.signum() * s);
-            roots.push(q0 / qa);
-            if q0 != 0.0 {
-                roots.push(qc / q0);
-            }
-        }
-    }
-    let mut out = Vec::new();
-    for l in roots {
-        if !(-1e-12..=1.0 + 1e-12).contains(&l) {
-            continue;
-        }
-        let l = l.clamp(0.0, 1.0);
-        let (al, bl) = (a + da * l, b + db * l);
-        if let Some((u, s)) = line_params(p, e, al, bl - al)
-            && (-1e-9..=1.0 + 1e-9).contains(&u)
-            && (-1e-9..=1.0 + 1e-9).contains(&s)
-        {
-            out.push(p + e * u.clamp(0.0, 1.0));
-        }
-    }
-    out
-}
-
-/// Parameters of the closest points of lines `p + u e` and `a + s w`.
-fn line_params(p: DVec3, e: DVec3, a: DVec3, w: DVec3) -> Option<(f64, f64)> {
-    let r = p - a;
-    let (ee, ew, ww) = (e.dot(e), e.dot(w), w.dot(w));
-    let (er, wr) = (e.dot(r), w.dot(r));
-    let den = ee * ww - ew * ew;
-    if den.partial_cmp(&(1e-14 * ee * ww)) != Some(std::cmp::Ordering::Greater) {
-        return None;
-    }
-    let u = (ew * wr - ww * er) / den;
-    let s = (ee * wr - ew * er) / den;
-    Some((u, s))
-}
-
-/// Where segment `pq` crosses triangle `t` (Möller-Trumbore, f64).
-fn segment_triangle_point(p: DVec3, q: DVec3, t: [DVec3; 3]) -> Option<DVec3> {
-    let e = q - p;
-    let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
-    let h = e.cross(e2);
-    let det = e1.dot(h);
-    if det.abs() <= 1e-300 {
-        return None;
-    }
-    let s = p - t[0];
-    let u = s.dot(h) / det;
-    let qv = s.cross(e1);
-    let v = e.dot(qv) / det;
-    let w = e2.dot(qv) / det;
-    let tol = 1e-12;
-    (u >= -tol && v >= -tol && u + v <= 1.0 + tol && (-tol..=1.0 + tol).contains(&w))
-        .then(|| p + e * w.clamp(0.0, 1.0))
-}
-
-/// Euclidean distance from `p` to triangle `t` (Ericson, f64).
-pub(crate) fn point_triangle_distance(p: DVec3, t: [DVec3; 3]) -> f64 {
-    let [a, b, c] = t;
-    let (ab, ac, ap) = (b - a, c - a, p - a);
-    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return p.distance(a);
-    }
-    let bp = p - b;
-    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return p.distance(b);
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        let v = d1 / (d1 - d3);
-        return p.distance(a + ab * v);
-    }
-    let cp = p - c;
-    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return p.distance(c);
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        let w = d2 / (d2 - d6);
-        return p.distance(a + ac * w);
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return p.distance(b + (c - b) * w);
-    }
-    let denom = 1.0 / (va + vb + vc);
-    let (v, w) = (vb * denom, vc * denom);
-    p.distance(a + ab * v + ac * w)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    const T: [DVec3; 3] = [DVec3::ZERO, DVec3::X, DVec3::Y];
-
-    #[test]
-    fn triangle_above_inside_prism() {
-        let d = [DVec3::Z * 2.0; 3];
-        let g = [
-            DVec3::new(0.1, 0.1, 0.5),
-            DVec3::new(0.3, 0.1, 0.7),
-            DVec3::new(0.1, 0.3, 0.9),
-        ];
-        assert!((closest_in_prism(T, d, g) - 0.5).abs() < 1e-12);
-    }
-
-    #[test]
-    fn triangle_beside_prism_is_ignored() {
-        let d = [DVec3::Z * 2.0; 3];
-        let g = [
-            DVec3::new(2.0, 2.0, 0.5),
-            DVec3::new(3.0, 2.0, 0.5),
-            DVec3::new(2.0, 3.0, 0.5),
-        ];
-        assert_eq!(closest_in_prism(T, d, g), f64::INFINITY);
-    }
-
-    #[test]
-    fn large_triangle_slicing_the_prism() {
-        // A horizontal triangle at height 0.4 covering the whole prism: pierced by the
-        // vertical prism edges.
-        let d = [DVec3::Z * 2.0; 3];
-        let g = [
-            DVec3::new(-5.0, -5.0, 0.4),
-            DVec3::new(10.0, -5.0, 0.4),
-            DVec3::new(-5.0, 10.0, 0.4),
-        ];
-        assert!((closest_in_prism(T, d, g) - 0.4).abs() < 1e-12);
-    }
-
-    #[test]
-    fn edge_through_slanted_side() {
-        // Diverging normals: the side over edge (0,0)-(1,0) leans outward (-y); a segment at
-        // y = -0.25, z = 1 is inside the prism between the sides.
-        let d = [
-            DVec3::new(0.0, -0.5, 1.0) * 2.0,
-            DVec3::new(0.0, -0.5, 1.0) * 2.0,
-            DVec3::Z * 2.0,
-        ];
-        let g = [
-            DVec3::new(0.2, -0.25, 1.0),
-            DVec3::new(0.6, -0.25, 1.0),
-            DVec3::new(0.4, -3.0, 1.0),
-        ];
-        let delta = closest_in_prism(T, d, g);
-        assert!((1.0..1.1).contains(&delta), "{delta}");
-    }
-
-    /// The two shortcuts of `analytical_eps` skip only triangles that `closest_in_prism` finds
-    /// no point of (or none closer than a known `delta`): random prisms (diverging,
-    /// converging and tilted corner directions) against random triangles near them, many of
-    /// them clipped, many just outside.
-    #[test]
-    fn shortcuts_skip_only_triangles_that_cannot_lower_delta() {
-        let mut bits = crate::xorshift(0x2545_F491_4F6C_DD1D);
-        let mut next = move || (bits() >> 11) as f64 / (1u64 << 53) as f64;
-        let (mut skipped, mut met) = (0, 0);
-        for _ in 0..20_000 {
-            let mut p = |s: f64| {
-                let (x, y, z) = (next(), next(), next());
-                DVec3::new(x - 0.5, y - 0.5, z - 0.5) * s
-            };
-            let t = [p(2.0), p(2.0), p(2.0)];
-            let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
-            if n == DVec3::ZERO {
-                continue;
-            }
-            let h = 0.05 + p(2.0).x.abs();
-            let d = [(n + p(1.2)) * h, (n + p(1.2)) * h, (n + p(1.2)) * h];
-            let top = [t[0] + d[0], t[1] + d[1], t[2] + d[2]];
-            let c = (t[0] + t[1] + t[2] + top[0] + top[1] + top[2]) / 6.0;
-            let g = [c + p(3.0), c + p(3.0), c + p(3.0)];
-            let delta = closest_in_prism(t, d, g);
-            if delta.is_finite() {
-                met += 1;
-            }
-            let scale = [t, top, g]
-                .iter()
-                .flatten()
-                .map(|q| q.abs().max_element())
-                .fold(0.0, f64::max);
-            let tol = PRUNE_TOLERANCE * scale;
-            if hull_misses(t, top, g, tol) {
-                skipped += 1;
-                assert_eq!(
-                    delta,
-                    f64::INFINITY,
-                    "skipped a clipped triangle: {t:?} {d:?} {g:?}"
-                );
-            }
-            let gap = box_gap(&Aabb::from_triangle(t), &Aabb::from_triangle(g));
-            assert!(
-                gap <= delta + tol,
-                "box gap {gap} above the distance {delta}"
-            );
-        }
-        assert!(
-            skipped > 2_000 && met > 2_000,
-            "skipped {skipped}, met {met}"
-        );
-    }
 }

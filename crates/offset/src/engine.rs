@@ -39,30 +39,30 @@ use rayon::prelude::*;
 
 /// A scene: every face that matters, with its current positions.
 pub(crate) struct Scene<'a> {
-    pub positions: Vec<DVec3>,
+    pub(crate) positions: Vec<DVec3>,
     /// Index used for adjacency (an unmoved vertex aliases the input vertex it sits on).
-    pub alias: Vec<u32>,
-    pub faces: Vec<[u32; 3]>,
+    pub(crate) alias: Vec<u32>,
+    pub(crate) faces: Vec<[u32; 3]>,
     /// The swept box of every face: every position it can take while the movers move.
-    pub swept: Vec<Aabb>,
+    pub(crate) swept: Vec<Aabb>,
     /// Over `swept[fixed.1..]` (item `i` is face `fixed.1 + i`), or over the faces
     /// `only` names (item `i` is face `only[i]`).
-    pub bvh: Bvh,
+    pub(crate) bvh: Bvh,
     /// The faces in `bvh` when not all of them ([`Scene::around`]), increasing.
-    pub only: Option<Vec<u32>>,
+    pub(crate) only: Option<Vec<u32>>,
     /// A tree over the first `fixed.1` faces, which never move, built by the caller with
     /// their boxes (their swept boxes: see [`Scene::with_fixed`]).
-    pub fixed: Option<(&'a Bvh, u32)>,
+    pub(crate) fixed: Option<(&'a Bvh, u32)>,
     /// Pairs `(star face, other face)` never tested.
-    pub exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
+    pub(crate) exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
     /// The box of every face at its current positions, kept up to date by [`commit`] (a
     /// mover's star holds every face with one of its vertices, so only those change).
-    pub boxes: Vec<Aabb>,
+    pub(crate) boxes: Vec<Aabb>,
 }
 
 impl<'a> Scene<'a> {
     /// A scene over `faces` at `positions`, with the swept box of every face.
-    pub fn new(
+    pub(crate) fn new(
         positions: Vec<DVec3>,
         alias: Vec<u32>,
         faces: Vec<[u32; 3]>,
@@ -76,7 +76,7 @@ impl<'a> Scene<'a> {
     /// Some((tree, n))`, item `i` of `tree` face `i`): faces that no mover touches, whose
     /// swept boxes are their boxes, each inside the tree's box of it. Only the other faces
     /// get a tree of their own; the candidates are the same.
-    pub fn with_fixed(
+    pub(crate) fn with_fixed(
         positions: Vec<DVec3>,
         alias: Vec<u32>,
         faces: Vec<[u32; 3]>,
@@ -105,7 +105,7 @@ impl<'a> Scene<'a> {
     /// [`Scene::new`] whose tree holds only the faces whose swept box overlaps one of
     /// `reaches` (each mover's, see [`reach`]): the candidates of those movers are the same,
     /// and a tree over a few faces is built for a few movers instead of one over all.
-    pub fn around(
+    pub(crate) fn around(
         positions: Vec<DVec3>,
         alias: Vec<u32>,
         faces: Vec<[u32; 3]>,
@@ -149,29 +149,29 @@ impl<'a> Scene<'a> {
 /// Step-size policy.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct StepPolicy {
-    pub k: u32,
-    pub max_halvings: u32,
+    pub(crate) k: u32,
+    pub(crate) max_halvings: u32,
     /// Factor applied to the step after every accepted step (1 = the paper's fixed step).
-    pub growth: f64,
+    pub(crate) growth: f64,
 }
 
 /// Vertices moving together with one parameter.
 #[derive(Clone, Debug)]
 pub(crate) struct Mover {
-    pub verts: Vec<u32>,
-    pub base: Vec<DVec3>,
-    pub dirs: Vec<DVec3>,
-    pub star: Vec<u32>,
-    pub group: u32,
-    pub target: f64,
-    pub t: f64,
-    pub step: f64,
-    pub steps: u32,
-    pub halvings: u32,
-    pub done: bool,
+    pub(crate) verts: Vec<u32>,
+    pub(crate) base: Vec<DVec3>,
+    pub(crate) dirs: Vec<DVec3>,
+    pub(crate) star: Vec<u32>,
+    pub(crate) group: u32,
+    pub(crate) target: f64,
+    pub(crate) t: f64,
+    pub(crate) step: f64,
+    pub(crate) steps: u32,
+    pub(crate) halvings: u32,
+    pub(crate) done: bool,
     /// Scene faces whose swept box overlaps the swept box of the star (filled by [`grow`],
     /// freed when the mover is done): a superset of every face the star can meet.
-    pub cands: Vec<u32>,
+    pub(crate) cands: Vec<u32>,
 }
 
 impl Mover {

@@ -128,14 +128,7 @@ pub enum EpsilonFileError {
 }
 
 /// Parses per-vertex epsilon text (see the module docs for the format).
-///
-/// ```
-/// use envelope_offset::{parse_epsilon_values, EpsilonSpec};
-/// let v = parse_epsilon_values("# eps per vertex\n0.1\n1/64%  # nose\n\n2e-2\n", 3).unwrap();
-/// assert_eq!(v[1], EpsilonSpec::PercentOfDiagonal(1.0 / 64.0));
-/// assert!(parse_epsilon_values("0.1\n", 2).is_err());
-/// ```
-pub fn parse_epsilon_values(
+pub(crate) fn parse_epsilon_values(
     text: &str,
     expected: usize,
 ) -> Result<Vec<EpsilonSpec>, EpsilonFileError> {
@@ -206,7 +199,7 @@ impl EpsilonField {
     ///
     /// The range rule every envelope builder shares: a value above the bounding-box diagonal
     /// of `positions` acts as the diagonal (envelopes that far out add nothing, and huge
-    /// offsets only slow the growth down); a value below [`crate::EPSILON_FLOOR`] times the
+    /// offsets only slow the growth down); a value below 2^-40 times the
     /// largest coordinate magnitude is refused (the offset would vanish in the rounding), and
     /// so are coordinates whose envelopes would leave the predicates' range.
     ///
@@ -236,7 +229,7 @@ impl EpsilonField {
                 *e = e.min(diagonal);
             }
         }
-        let floor = crate::EPSILON_FLOOR * magnitude;
+        let floor = crate::options::EPSILON_FLOOR * magnitude;
         if let Some(i) = values.iter().position(|&e| e < floor) {
             return Err(crate::EnvelopeError::EpsilonTooSmall {
                 vertex: (!matches!(self, EpsilonField::Constant(_)))
@@ -278,5 +271,18 @@ impl EpsilonField {
             });
         }
         Ok(values)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Comments, blank lines and both kinds of value; a count mismatch is an error.
+    #[test]
+    fn epsilon_values_parse_with_comments() {
+        let v = parse_epsilon_values("# eps per vertex\n0.1\n1/64%  # nose\n\n2e-2\n", 3).unwrap();
+        assert_eq!(v[1], EpsilonSpec::PercentOfDiagonal(1.0 / 64.0));
+        assert!(parse_epsilon_values("0.1\n", 2).is_err());
     }
 }

@@ -72,26 +72,26 @@ impl Proof {
 pub(crate) struct Known<'a> {
     /// The input is proved free of self-intersections (the caller checked it, see
     /// [`crate::EnvelopeOptions::input_free_of_intersections`]): input-input pairs are skipped.
-    pub input_free: bool,
+    pub(crate) input_free: bool,
     /// Which envelope faces have the positions and vertex indices they had in an earlier
     /// configuration whose proof found the contacts `previous`. A pair of unchanged faces
     /// (the input's never change) is then the same pair as in that proof, with the same
     /// answer: a contact when it is in `previous`, else apart. Only the pairs with a changed
     /// face are tested.
-    pub unchanged: Option<Unchanged<'a>>,
+    pub(crate) unchanged: Option<Unchanged<'a>>,
     /// The contacts of that earlier configuration (see `unchanged`).
-    pub previous: &'a [Contact],
+    pub(crate) previous: &'a [Contact],
 }
 
 /// The envelope faces of an earlier configuration that did not change (see [`Known`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Unchanged<'a> {
     /// `faces[k][f]` (`k` = 0 outer, 1 inner): envelope face `f` is as it was.
-    pub faces: [&'a [bool]; 2],
+    pub(crate) faces: [&'a [bool]; 2],
     /// That configuration's tree over the outer and the inner faces, as [`prove_envelopes`]
     /// returned it: the new one is this tree with the changed faces' boxes
     /// ([`Bvh::refit_items`]; an unchanged face has the box it had).
-    pub tree: &'a Bvh,
+    pub(crate) tree: &'a Bvh,
 }
 
 /// Exact contacts among input, outer and inner (same connectivity `faces`), each envelope

@@ -19,7 +19,7 @@
 //!   target, halved while they still meet something) and grow with the numerical engine
 //!   ([`crate::engine`]), each ring one mover. At small epsilons that is one proof and no
 //!   growth; the result is that of starting every ring narrow whenever the growth would have
-//!   reached every target anyway (mech-holes-shark at seven epsilons: the same outputs).
+//!   reached every target anyway.
 //!
 //! "Until it would intersect the surface": a tube necessarily crosses the surface and the
 //! envelopes at its own border, so a tube face between rings `i` and `i+1` is exempt against
@@ -83,17 +83,17 @@ pub(crate) fn frames(pts: &[DVec3], closed: bool) -> Vec<[DVec3; 3]> {
 
 /// Everything the tube stage needs from the envelope stage.
 pub(crate) struct TubeInput<'a> {
-    pub soup: &'a TriangleSoup,
-    pub faces: &'a [[u32; 3]],
-    pub outer: &'a [DVec3],
-    pub inner: &'a [DVec3],
-    pub requested: &'a [f64],
-    pub diagonal: f64,
+    pub(crate) soup: &'a TriangleSoup,
+    pub(crate) faces: &'a [[u32; 3]],
+    pub(crate) outer: &'a [DVec3],
+    pub(crate) inner: &'a [DVec3],
+    pub(crate) requested: &'a [f64],
+    pub(crate) diagonal: f64,
     /// Trees over the boxes of the input, outer and inner faces (face `f` of the three in
     /// that order, at these positions), when the envelope proof left them: part
     /// `(tree, first)` holds face `first + i` as item `i`, the parts in order, each face in
     /// one.
-    pub surfaces: Option<&'a [(&'a Bvh, u32)]>,
+    pub(crate) surfaces: Option<&'a [(&'a Bvh, u32)]>,
 }
 
 struct Layout {
@@ -524,7 +524,7 @@ mod tests {
     /// the same contacts, on random tube triangles around a bumpy grid and its envelopes.
     #[test]
     fn tube_contacts_are_those_of_one_tree_over_everything() {
-        let mut next = crate::xorshift(0x0DDB_1A5E_5BAD_5EED);
+        let mut next = crate::tests::xorshift(0x0DDB_1A5E_5BAD_5EED);
         let mut unit = || (next() >> 11) as f64 / (1u64 << 53) as f64;
         // A 4 x 4 vertex grid, z bumpy; envelopes 0.1 above and below.
         let mut positions = Vec::new();

@@ -1,13 +1,13 @@
 //! Property tests of the envelope guarantee on generated meshes (Cohen et al. 4, 6.2).
 use envelope_mesh::{TriangleSoup, generate};
 use envelope_offset::{
-    EnvelopeError, EnvelopeOptions, Envelopes, EpsilonField, Method, build_envelopes,
+    EnvelopeError, EnvelopeMethod, EnvelopeOptions, Envelopes, EpsilonField, build_envelopes,
 };
 use envelope_predicates::{Sign, cmp_point_triangle, self_intersections, square_rounded_up};
 use glam::DVec3;
 use proptest::prelude::*;
 
-fn build(soup: &TriangleSoup, eps: f64, method: Method) -> Envelopes {
+fn build(soup: &TriangleSoup, eps: f64, method: EnvelopeMethod) -> Envelopes {
     let mut o = EnvelopeOptions::new(EpsilonField::Constant(eps));
     o.method = method;
     build_envelopes(soup, &o).expect("acceptable input")
@@ -66,7 +66,7 @@ fn check(soup: &TriangleSoup, env: &Envelopes) {
 fn sphere_both_methods_reach_full_epsilon() {
     for sub in [1, 2, 3] {
         let s = generate::icosphere(sub, 1.0);
-        for m in [Method::Numerical, Method::Analytical] {
+        for m in [EnvelopeMethod::Numerical, EnvelopeMethod::Analytical] {
             let env = build(&s, 0.02, m);
             check(&s, &env);
             let f = env.achieved_fractions();
@@ -78,7 +78,7 @@ fn sphere_both_methods_reach_full_epsilon() {
 #[test]
 fn thin_plate_inner_envelopes_stop_in_the_middle() {
     let s = generate::box_mesh(DVec3::new(1.0, 1.0, 0.02), 4);
-    for m in [Method::Numerical, Method::Analytical] {
+    for m in [EnvelopeMethod::Numerical, EnvelopeMethod::Analytical] {
         let env = build(&s, 0.05, m);
         check(&s, &env);
         // Vertices with a vertical normal cannot reach the opposite face (0.02); top and
@@ -107,7 +107,7 @@ fn thin_plate_inner_envelopes_stop_in_the_middle() {
 fn torus_with_small_tube_and_sharp_box() {
     let t = generate::torus(1.0, 0.05, 24, 8);
     let b = generate::box_mesh(DVec3::ONE, 2);
-    for m in [Method::Numerical, Method::Analytical] {
+    for m in [EnvelopeMethod::Numerical, EnvelopeMethod::Analytical] {
         let env = build(&t, 0.1, m);
         check(&t, &env);
         let env = build(&b, 0.05, m);
@@ -120,7 +120,7 @@ fn bordered_meshes_get_tubes() {
     let c = generate::open_cylinder(1.0, 1.0, 16, 4);
     let d = generate::disk_with_holes(2);
     for s in [c, d] {
-        for m in [Method::Numerical, Method::Analytical] {
+        for m in [EnvelopeMethod::Numerical, EnvelopeMethod::Analytical] {
             let env = build(&s, 0.05, m);
             check(&s, &env);
             assert!(!env.tubes.is_empty());
@@ -179,12 +179,12 @@ fn unacceptable_input_is_a_typed_error() {
 #[test]
 fn output_is_deterministic() {
     let s = generate::torus(1.0, 0.3, 32, 12);
-    let a = build(&s, 0.2, Method::Numerical);
+    let a = build(&s, 0.2, EnvelopeMethod::Numerical);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .unwrap();
-    let b = pool.install(|| build(&s, 0.2, Method::Numerical));
+    let b = pool.install(|| build(&s, 0.2, EnvelopeMethod::Numerical));
     assert_eq!(a.eps_plus, b.eps_plus);
     assert_eq!(a.eps_minus, b.eps_minus);
 }
@@ -200,13 +200,13 @@ proptest! {
             let r = 0.8 + 0.4 * ((x >> 11) as f64 / (1u64 << 53) as f64);
             *p *= r;
         }
-        let m = if analytical { Method::Analytical } else { Method::Numerical };
+        let m = if analytical { EnvelopeMethod::Analytical } else { EnvelopeMethod::Numerical };
         let env = build(&s, eps, m);
         check(&s, &env);
     }
 }
 
-/// `Method::Auto` keeps the analytical offsets when they reach epsilon everywhere, and
+/// `EnvelopeMethod::Auto` keeps the analytical offsets when they reach epsilon everywhere, and
 /// otherwise grows the short ones numerically from the proved analytical envelopes: every
 /// offset at least the analytical one, the proof holding; its envelopes pass the same
 /// independent check.
@@ -214,9 +214,9 @@ proptest! {
 fn auto_keeps_the_better_method() {
     // Small epsilon on a sphere: analytical reaches it everywhere.
     let sphere = generate::icosphere(2, 1.0);
-    let auto = build(&sphere, 0.01, Method::Auto);
+    let auto = build(&sphere, 0.01, EnvelopeMethod::Auto);
     check(&sphere, &auto);
-    assert_eq!(auto.method, Method::Analytical);
+    assert_eq!(auto.method, EnvelopeMethod::Analytical);
     assert!(auto.eps_plus.iter().all(|&e| e == 0.01));
     // Epsilon larger than a torus's tube radius or a tunnel's half-width: offsets get cut.
     let mut numerical_kept = 0;
@@ -226,19 +226,19 @@ fn auto_keeps_the_better_method() {
         (generate::box_with_tunnel(), 0.4),
         (generate::box_with_tunnel(), 1.5),
     ] {
-        let auto = build(&mesh, eps, Method::Auto);
+        let auto = build(&mesh, eps, EnvelopeMethod::Auto);
         check(&mesh, &auto);
         assert!(auto.proof.holds());
-        let a = build(&mesh, eps, Method::Analytical);
+        let a = build(&mesh, eps, EnvelopeMethod::Analytical);
         let full = |e: &Envelopes| e.eps_plus.iter().chain(&e.eps_minus).all(|&x| x == eps);
         match auto.method {
-            Method::Analytical => {
+            EnvelopeMethod::Analytical => {
                 assert_eq!(
                     (&auto.eps_plus, &auto.eps_minus),
                     (&a.eps_plus, &a.eps_minus)
                 );
             }
-            Method::Numerical => {
+            EnvelopeMethod::Numerical => {
                 assert!(
                     a.proof.holds() && !full(&a),
                     "numerical only where analytical fell short"
@@ -256,10 +256,10 @@ fn auto_keeps_the_better_method() {
                     grown += x.iter().zip(y).filter(|(x, y)| x > y).count();
                 }
             }
-            Method::Auto => panic!("auto names the method it kept"),
+            EnvelopeMethod::Auto => panic!("auto names the method it kept"),
         }
         if a.proof.holds() && full(&a) {
-            assert_eq!(auto.method, Method::Analytical);
+            assert_eq!(auto.method, EnvelopeMethod::Analytical);
         }
     }
     assert!(
@@ -280,7 +280,11 @@ fn folded_vertex_is_pinned_and_the_proof_holds() {
         envelope_offset::vertex_normals(&s).invalid,
         vec![envelope_mesh::VertexId(4)]
     );
-    for m in [Method::Numerical, Method::Analytical, Method::Auto] {
+    for m in [
+        EnvelopeMethod::Numerical,
+        EnvelopeMethod::Analytical,
+        EnvelopeMethod::Auto,
+    ] {
         let env = build(&s, 0.05 * s.diagonal(), m);
         assert!(env.proof.holds(), "{m:?}: {:?}", env.proof.contacts);
         assert_eq!(env.pinned, vec![envelope_mesh::VertexId(4)], "{m:?}");
@@ -330,10 +334,10 @@ fn tube_rings_at_their_target_unless_blocked() {
             .filter(|&(v, &r)| r < env.requested[v.index()])
             .count()
     };
-    let env = build(&d, 0.01, Method::Numerical);
+    let env = build(&d, 0.01, EnvelopeMethod::Numerical);
     check(&d, &env);
     assert_eq!(below(&env), 0);
-    let env = build(&d, 0.7, Method::Numerical);
+    let env = build(&d, 0.7, EnvelopeMethod::Numerical);
     check(&d, &env);
     assert!(env.proof.tube_contacts.is_empty());
     assert!(below(&env) > 0, "every ring at its target at 0.7");

@@ -13,8 +13,12 @@
 //!   crate README) and [`Patch::intersects_segment`].
 //! * [`PolyhedralPrism`] / [`Split`]: section 8.1, sides split into triangles.
 //! * [`details`]: kernel-generic variants (run them on `Checked<Filtered, Exact>` in tests).
+//! * [`clip`]: the one inexact part, section 4.1's clipping of a triangle against the prism
+//!   in f64 (the analytical epsilon of `envelope-offset`, which follows it with its exact
+//!   proof).
 #![forbid(unsafe_code)]
 
+pub mod clip;
 mod num;
 mod patch;
 mod poly;

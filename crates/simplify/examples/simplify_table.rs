@@ -3,7 +3,7 @@
 //!
 //! `cargo run --release -p envelope-simplify --example simplify_table -- MESH.off [auto|analytical|numerical] [verify] [PERCENT...]`
 
-use envelope_offset::{EpsilonField, Method};
+use envelope_offset::{EnvelopeMethod, EpsilonField};
 use envelope_simplify::{SimplifyOptions, simplify};
 
 fn main() {
@@ -13,9 +13,9 @@ fn main() {
         .expect("usage: simplify_table MESH [method] [verify] [percent...]");
     let (soup, _) = envelope_io::read_path(std::path::Path::new(path)).expect("readable mesh");
     let method = match args.get(1).map(String::as_str) {
-        Some("numerical") => Method::Numerical,
-        Some("analytical") => Method::Analytical,
-        _ => Method::Auto,
+        Some("numerical") => EnvelopeMethod::Numerical,
+        Some("analytical") => EnvelopeMethod::Analytical,
+        _ => EnvelopeMethod::Auto,
     };
     let verify = args.iter().any(|a| a == "verify");
     let mut percents: Vec<f64> = args.iter().skip(2).filter_map(|a| a.parse().ok()).collect();

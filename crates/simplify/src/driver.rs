@@ -25,8 +25,8 @@ use envelope_check::{
 };
 use envelope_mesh::{BuildError, HalfEdgeMesh, Topology, TriangleSoup, VertexId, analyze};
 use envelope_offset::{
-    EnvelopeError, EnvelopeOptions, EpsilonField, Method, build_envelopes, build_envelopes_with,
-    face_tree,
+    EnvelopeError, EnvelopeMethod, EnvelopeOptions, EpsilonField, build_envelopes,
+    build_envelopes_with, face_tree,
 };
 use envelope_predicates::bvh::Bvh;
 use envelope_verify::{Certificate, Verdict};
@@ -49,10 +49,10 @@ pub struct SimplifyOptions {
     /// The requested epsilon (absolute lengths; resolve percentages with the input's diagonal
     /// first, `envelope_offset::EpsilonSpec::resolve`).
     pub epsilon: EpsilonField,
-    /// How the envelopes find their per-vertex offsets. Default [`Method::Auto`]: the
+    /// How the envelopes find their per-vertex offsets. Default [`EnvelopeMethod::Auto`]: the
     /// analytical method (fast), and the numerical one too where the analytical one falls
     /// short of epsilon (large epsilons; see the crate README).
-    pub method: Method,
+    pub method: EnvelopeMethod,
     /// Hole filling (default: greedy with look-ahead).
     pub hole_filling: HoleFilling,
     /// Queue order (default: the paper's first in, first out).
@@ -80,7 +80,7 @@ impl SimplifyOptions {
     pub fn new(epsilon: EpsilonField) -> Self {
         SimplifyOptions {
             epsilon,
-            method: Method::Auto,
+            method: EnvelopeMethod::Auto,
             hole_filling: HoleFilling::default(),
             order: Order::default(),
             placement: Placement::default(),
@@ -628,10 +628,10 @@ pub fn simplify_with(
     let fractions = env.achieved_fractions();
     let envelope = EnvelopeReport {
         method: match options.method {
-            Method::Analytical => "analytical",
-            Method::Numerical => "numerical",
-            Method::Auto => match env.method {
-                Method::Numerical => "auto: numerical",
+            EnvelopeMethod::Analytical => "analytical",
+            EnvelopeMethod::Numerical => "numerical",
+            EnvelopeMethod::Auto => match env.method {
+                EnvelopeMethod::Numerical => "auto: numerical",
                 _ => "auto: analytical",
             },
         },

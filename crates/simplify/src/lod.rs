@@ -23,7 +23,7 @@
 //! Closer than `d_1` the original (level 0) is shown.
 
 use envelope_mesh::TriangleSoup;
-use envelope_offset::{EpsilonField, Method};
+use envelope_offset::{EnvelopeMethod, EpsilonField};
 use serde_json::{Value, json};
 
 use crate::driver::simplify;
@@ -79,7 +79,7 @@ pub struct LodOptions {
     /// How steps and bounds follow from them.
     pub rule: LodRule,
     /// Envelope method of every step.
-    pub method: Method,
+    pub method: EnvelopeMethod,
     /// Hole filling of every step.
     pub hole_filling: HoleFilling,
     /// Border tubes (`None`: border vertices are kept).
@@ -97,7 +97,7 @@ impl LodOptions {
         LodOptions {
             epsilons,
             rule: LodRule::default(),
-            method: Method::Auto,
+            method: EnvelopeMethod::Auto,
             hole_filling: HoleFilling::default(),
             tube_segments: Some(8),
             verify: true,

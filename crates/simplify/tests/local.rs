@@ -550,7 +550,7 @@ fn closures_are_filters() {
 /// queue order) gives the same mesh for 1 and 3 threads, and keeps every guarantee.
 #[test]
 fn batched_runs_do_not_depend_on_the_thread_count() {
-    use envelope_offset::{EnvelopeOptions, EpsilonField, Method, build_envelopes};
+    use envelope_offset::{EnvelopeMethod, EnvelopeOptions, EpsilonField, build_envelopes};
     // A bumpy sphere: curvature everywhere, so many removals fail and the queue churns.
     let mut s = generate::icosphere(3, 1.0);
     for p in &mut s.positions {
@@ -558,7 +558,7 @@ fn batched_runs_do_not_depend_on_the_thread_count() {
         *p *= bump;
     }
     let mut eo = EnvelopeOptions::new(EpsilonField::Constant(0.02));
-    eo.method = Method::Analytical;
+    eo.method = EnvelopeMethod::Analytical;
     let env = build_envelopes(&s, &eo).unwrap();
     assert!(env.proof.holds());
     let barriers = Barriers::new(vec![env.outer, env.inner], vec![]).unwrap();

@@ -1,0 +1,67 @@
+//! Why the envelopes could not be built.
+use envelope_mesh::VertexId;
+
+use crate::options::MAX_TUBE_SEGMENTS;
+
+/// Why the envelopes could not be built.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum EnvelopeError {
+    /// No faces.
+    #[error("the mesh has no faces")]
+    Empty,
+    /// A face names a vertex that does not exist.
+    #[error("a face index is out of range")]
+    IndexOutOfRange,
+    /// Non-manifold edges or vertices.
+    #[error("the mesh is not manifold")]
+    NotManifold,
+    /// Faces are not consistently oriented.
+    #[error("the mesh is not consistently oriented")]
+    NotOriented,
+    /// Per-vertex epsilon count differs from the vertex count.
+    #[error("{got} epsilon values for {expected} vertices")]
+    EpsilonCount {
+        /// Vertices.
+        expected: usize,
+        /// Values.
+        got: usize,
+    },
+    /// A non-finite or non-positive epsilon.
+    #[error("epsilon of vertex {} is not finite and positive", .vertex.0)]
+    BadEpsilon {
+        /// The first such vertex.
+        vertex: VertexId,
+    },
+    /// An epsilon too small to be represented as an offset beside the mesh's coordinates
+    /// (below 2^-40 times the largest coordinate magnitude).
+    #[error(
+        "epsilon {epsilon:e}{} is below 2^-40 times the largest coordinate magnitude \
+         {magnitude:e} (at least {floor:e} is needed): offsets that small are lost in the \
+         rounding of the coordinates; use a larger epsilon or move the mesh toward the origin",
+        .vertex.map(|v| format!(" (vertex {})", v.0)).unwrap_or_default()
+    )]
+    EpsilonTooSmall {
+        /// The first such vertex (`None` for a constant epsilon).
+        vertex: Option<VertexId>,
+        /// Its epsilon.
+        epsilon: f64,
+        /// The smallest accepted epsilon.
+        floor: f64,
+        /// The largest coordinate magnitude of the mesh.
+        magnitude: f64,
+    },
+    /// Coordinates so large that envelopes around them leave the exact predicates' range.
+    #[error(
+        "coordinates up to {magnitude:e} with epsilon {epsilon:e} would put envelope points \
+         beyond 2^119, outside the exact predicates' range; scale the mesh down"
+    )]
+    CoordinatesTooLarge {
+        /// The largest coordinate magnitude of the mesh.
+        magnitude: f64,
+        /// The largest epsilon (after clamping to the diagonal).
+        epsilon: f64,
+    },
+    /// A tube ring with too few or too many vertices.
+    #[error("{0} tube segments: a tube ring needs 3 to {MAX_TUBE_SEGMENTS} vertices")]
+    TubeSegments(u32),
+}
