@@ -6,8 +6,9 @@ use glam::DVec3;
 
 use crate::engine::StepPolicy;
 use crate::error::EnvelopeError;
+use crate::error::MAX_TUBE_SEGMENTS;
 use crate::numerical::numerical_eps;
-use crate::options::{EnvelopeMethod, EnvelopeOptions, MAX_TUBE_SEGMENTS};
+use crate::options::{EnvelopeMethod, EnvelopeOptions};
 use crate::proof::Proof;
 use crate::repair::{Proved, prove_and_repair};
 use crate::tubes::Tube;

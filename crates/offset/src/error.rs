@@ -1,7 +1,5 @@
-//! Why the envelopes could not be built.
+//! Why the envelopes could not be built, and the limits on the input past which they are not.
 use envelope_mesh::VertexId;
-
-use crate::options::MAX_TUBE_SEGMENTS;
 
 /// Why the envelopes could not be built.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -65,3 +63,11 @@ pub enum EnvelopeError {
     #[error("{0} tube segments: a tube ring needs 3 to {MAX_TUBE_SEGMENTS} vertices")]
     TubeSegments(u32),
 }
+
+/// The smallest epsilon, as a fraction of the largest coordinate magnitude, that
+/// [`crate::EpsilonField::evaluate`] accepts: 2^-40 leaves an offset about 4,000 units in the last
+/// place of the coordinates it is added to.
+pub(crate) const EPSILON_FLOOR: f64 = 9.094_947_017_729_282e-13;
+
+/// The most vertices a tube ring may have.
+pub(crate) const MAX_TUBE_SEGMENTS: u32 = 64;

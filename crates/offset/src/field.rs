@@ -229,7 +229,7 @@ impl EpsilonField {
                 *e = e.min(diagonal);
             }
         }
-        let floor = crate::options::EPSILON_FLOOR * magnitude;
+        let floor = crate::error::EPSILON_FLOOR * magnitude;
         if let Some(i) = values.iter().position(|&e| e < floor) {
             return Err(crate::EnvelopeError::EpsilonTooSmall {
                 vertex: (!matches!(self, EpsilonField::Constant(_)))

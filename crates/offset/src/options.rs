@@ -87,11 +87,3 @@ impl EnvelopeOptions {
         }
     }
 }
-
-/// The smallest epsilon, as a fraction of the largest coordinate magnitude, that
-/// [`EpsilonField::evaluate`] accepts: 2^-40 leaves an offset about 4,000 units in the last
-/// place of the coordinates it is added to.
-pub(crate) const EPSILON_FLOOR: f64 = 9.094_947_017_729_282e-13;
-
-/// The most vertices a tube ring may have.
-pub(crate) const MAX_TUBE_SEGMENTS: u32 = 64;

@@ -235,12 +235,14 @@ pub struct VerifyReport {
     pub violations: Vec<&'static str>,
     /// Seconds to certify.
     pub seconds: f64,
+    /// The whole certificate (witnesses, every self-intersecting pair, topology).
+    pub certificate: Certificate,
 }
 
 impl VerifyReport {
-    /// The short form of a certificate.
+    /// The short form of a certificate, which keeps the certificate.
     #[must_use]
-    pub fn from_certificate(c: &Certificate, seconds: f64) -> Self {
+    pub fn from_certificate(c: Certificate, seconds: f64) -> Self {
         VerifyReport {
             verdict: c.verdict,
             epsilon: c.epsilon,
@@ -251,6 +253,7 @@ impl VerifyReport {
             topology_matches: c.topology.is_none_or(|t| t.matches()),
             violations: c.violations(),
             seconds,
+            certificate: c,
         }
     }
 
@@ -720,10 +723,7 @@ pub fn simplify_with(
         go_on(progress)?;
         let t = Instant::now();
         let c = envelope_verify::certify(soup, &out, &envelope_verify::Options::new(epsilon_abs));
-        Some(VerifyReport::from_certificate(
-            &c,
-            t.elapsed().as_secs_f64(),
-        ))
+        Some(VerifyReport::from_certificate(c, t.elapsed().as_secs_f64()))
     } else {
         None
     };

@@ -195,7 +195,7 @@ pub fn lod_chain(
                 &mesh,
                 &envelope_verify::Options::new(cumulative),
             );
-            VerifyReport::from_certificate(&c, t.elapsed().as_secs_f64())
+            VerifyReport::from_certificate(c, t.elapsed().as_secs_f64())
         });
         let level = Level {
             index: i + 1,

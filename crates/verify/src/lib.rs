@@ -257,6 +257,12 @@ impl OneSided {
 }
 
 impl Certificate {
+    /// Every checked property is proved ([`Verdict::Holds`]).
+    #[must_use]
+    pub fn holds(&self) -> bool {
+        self.verdict == Verdict::Holds
+    }
+
     /// Whether `approx` lies inside the epsilon-envelope of `orig`, `{p : dist(p, orig) <=
     /// epsilon}` (the Minkowski sum of `orig` with the closed epsilon-ball): exactly the
     /// `approx -> orig` decision. CGAL's `Polyhedral_envelope` (and fast-envelope) test a union

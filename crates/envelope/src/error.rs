@@ -1,0 +1,61 @@
+//! The one error type of the front door.
+
+use std::path::PathBuf;
+
+use envelope_genus::GenusError;
+use envelope_io::{ReadError, WriteError};
+use envelope_simplify::DriverError;
+
+use crate::{MeshError, Simplified};
+
+/// Why a call produced no (trustworthy) result. Messages name the file, element or argument
+/// as the user wrote it; the command line prints them as they are.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A mesh file could not be read (the message names the file and the line or element).
+    #[error(transparent)]
+    Read(#[from] ReadError),
+    /// A mesh file could not be written (nothing was put in its place).
+    #[error(transparent)]
+    Write(#[from] WriteError),
+    /// `save` was given a path whose extension names no mesh format.
+    #[error("{}: unknown mesh format (expected .obj, .off, .ply or .stl)", .0.display())]
+    UnknownFormat(PathBuf),
+    /// `Mesh::new` was given a non-finite coordinate or an index out of range.
+    #[error("invalid mesh: {0}")]
+    InvalidMesh(#[from] MeshError),
+    /// An epsilon (or alpha) that is not a positive finite length, or that cannot be
+    /// parsed.
+    #[error("invalid epsilon: {0}")]
+    InvalidEpsilon(String),
+    /// An argument out of its range (the message names it).
+    #[error("invalid argument: {0}")]
+    InvalidArgument(String),
+    /// The simplifier refused its input or could not prove its envelopes (no output is made
+    /// from unproved envelopes).
+    #[error(transparent)]
+    Simplify(DriverError),
+    /// The genus reduction refused its input.
+    #[error(transparent)]
+    Genus(#[from] GenusError),
+    /// The progress callback asked to stop.
+    #[error("cancelled")]
+    Cancelled,
+    /// The output was made but its certificate found a violation: it is handed back for
+    /// inspection and must not be used as a simplification within epsilon.
+    #[error("the output FAILED its certificate ({})", .0.violations().join(", "))]
+    CertificateViolated(Box<Simplified>),
+    /// The thread pool could not be built.
+    #[error("threads: {0}")]
+    Threads(String),
+}
+
+impl From<DriverError> for Error {
+    fn from(e: DriverError) -> Self {
+        match e {
+            DriverError::Cancelled => Error::Cancelled,
+            e => Error::Simplify(e),
+        }
+    }
+}

@@ -1,0 +1,96 @@
+#![doc = include_str!("../../../README.md")]
+//!
+//! # The front door
+//!
+//! * [`Mesh`], [`load`], [`save`]: a triangle mesh and its files (OBJ, OFF, PLY, STL).
+//! * [`Epsilon`]: the tolerance, absolute or a part of the bounding-box diagonal.
+//! * [`Simplifier`]: simplification within epsilon, certified ([`Simplified`]).
+//! * [`Lod`]: levels of detail with nested vertex sets and switching distances.
+//! * [`verify`]: the certificate of any simplifier's output; [`check`]: is a mesh acceptable
+//!   input.
+//! * [`Genus`]: fill holes and tunnels smaller than alpha (El-Sana and Varshney 1997).
+//! * [`Error`]: one error type; [`Event`]: what a progress callback is told.
+//!
+//! The defaults of every setting are in [`defaults`], shared with the command line. The
+//! engine's crates, for people who write their own policies, are under [`advanced`].
+#![forbid(unsafe_code)]
+
+mod epsilon;
+mod error;
+mod files;
+mod genus;
+mod lod;
+mod mesh;
+mod oracle;
+mod progress;
+mod simplified;
+mod simplifier;
+mod threads;
+
+pub use envelope_check::CheckReport;
+pub use envelope_genus::{GenusReport, TessellationSource};
+pub use envelope_global::Method;
+pub use envelope_offset::EnvelopeMethod;
+pub use envelope_simplify::{
+    HoleFilling, Level, LodRule, Placement, Screen, SimplifyReport, VerifyReport,
+};
+pub use envelope_verify::{Certificate, OneSided, Verdict, Witness};
+
+pub use epsilon::Epsilon;
+pub use error::Error;
+pub use files::{load, load_with_report, save};
+pub use genus::Genus;
+pub use lod::Lod;
+pub use mesh::{Mesh, MeshError};
+pub use oracle::{check, verify};
+pub use progress::{Event, Stage};
+pub use simplified::Simplified;
+pub use simplifier::Simplifier;
+
+/// The default of every setting, defined once: the builders here and the command line take
+/// them from this module.
+pub mod defaults {
+    use super::{EnvelopeMethod, HoleFilling, Method, Placement};
+
+    /// The local algorithm (5.2).
+    pub const METHOD: Method = Method::Local;
+    /// The analytical offsets (4.1), grown numerically (4.2) where they fall short.
+    pub const ENVELOPE_METHOD: EnvelopeMethod = EnvelopeMethod::Auto;
+    /// Input vertices, then moved ones only when the subset run left few vertices.
+    pub const PLACEMENT: Placement = Placement::Auto;
+    /// Vertices per border-tube ring (6.2).
+    pub const TUBE_SEGMENTS: u32 = 8;
+    /// The valid tube rings: fewer than 3 vertices make no ring around a border edge, more
+    /// than 64 only cost memory (each ring vertex is a tube vertex per border vertex).
+    pub const TUBE_SEGMENTS_RANGE: std::ops::RangeInclusive<u32> = 3..=64;
+    /// Every output is certified.
+    pub const CERTIFY: bool = true;
+    /// The paper's bunny epsilons (Table 1, Figure 11), for level-of-detail chains.
+    pub const LOD_EPSILONS: &str = "1/64%,1/32%,1/16%,1/8%,1/4%,1/2%,1%";
+    /// The genus reduction's sharp-edge angle between face normals, in degrees (the paper's).
+    pub const GENUS_BETA_DEGREES: f64 = 70.0;
+
+    /// The paper's greedy hole filling, with a look-ahead for forced triangles.
+    #[must_use]
+    pub fn hole_filling() -> HoleFilling {
+        HoleFilling::default()
+    }
+}
+
+/// The engine's crates, for people who write their own policies (queue orders, hole fillers,
+/// filters, simplification steps) or need a single stage (envelopes alone, the exact
+/// predicates). Their interfaces change more often than the front door's.
+pub mod advanced {
+    pub use envelope_check as check;
+    pub use envelope_genus as genus;
+    pub use envelope_global as global;
+    pub use envelope_io as io;
+    pub use envelope_mesh as mesh;
+    pub use envelope_offset as offset;
+    pub use envelope_predicates as predicates;
+    pub use envelope_prism as prism;
+    pub use envelope_simplify as simplify;
+    pub use envelope_verify as verify;
+
+    pub use crate::threads::run as in_pool;
+}
