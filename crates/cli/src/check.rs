@@ -4,8 +4,10 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::process::ExitCode;
 
-use envelope_check::{CheckOptions, CheckReport, DegeneracyClass, Element, Severity, check};
-use envelope_io::{ReadReport, read_path};
+use envelope::advanced::check::{
+    CheckOptions, CheckReport, DegeneracyClass, Element, Severity, check,
+};
+use envelope::advanced::io::{ReadReport, read_path};
 
 pub(crate) fn run_check(input: &Path, json: bool, examples: usize) -> Result<ExitCode, String> {
     let (soup, read_report) = read_path(input).map_err(|e| e.to_string())?;

@@ -10,8 +10,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use envelope_io::{Format, PlyEncoding, read_path};
-use envelope_offset::{
+use envelope::advanced::io::{Format, PlyEncoding, read_path};
+use envelope::advanced::offset::{
     EnvelopeMethod, EnvelopeOptions, EpsilonField, build_envelopes, read_epsilon_file,
 };
 
@@ -126,12 +126,13 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     let mut staging = Staging::new();
     staging.dir(&args.out_dir)?;
     let mut written = Vec::new();
-    let mut write = |name: String, mesh: &envelope_mesh::TriangleSoup| -> Result<(), String> {
-        let p = args.out_dir.join(name);
-        staging.mesh(&p, mesh, format)?;
-        written.push(p.display().to_string());
-        Ok(())
-    };
+    let mut write =
+        |name: String, mesh: &envelope::advanced::mesh::TriangleSoup| -> Result<(), String> {
+            let p = args.out_dir.join(name);
+            staging.mesh(&p, mesh, format)?;
+            written.push(p.display().to_string());
+            Ok(())
+        };
     write(format!("outer.{ext}"), &env.outer)?;
     write(format!("inner.{ext}"), &env.inner)?;
     for (i, t) in env.tubes.iter().enumerate() {

@@ -1,14 +1,12 @@
 //! `envelope genus IN OUT --alpha A [--beta DEG] [--union] [--report R.json]`: controlled
-//! genus reduction (El-Sana and Varshney 1997) with `envelope_genus::reduce_genus_with`;
+//! genus reduction (El-Sana and Varshney 1997) with `envelope::advanced::genus::reduce_genus_with`;
 //! `--union` adds the rims from the union of alpha-prisms (the paper's option, sections 3.3
 //! and 4), which fill narrow passages through smooth surfaces.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use envelope_genus::{GenusOptions, GenusReport, TessellationSource, reduce_genus_with};
-use envelope_io::read_path;
-use envelope_mesh::TriangleSoup;
+use envelope::{Epsilon, Genus, GenusReport, Mesh, TessellationSource, defaults};
 
 use crate::outputs::{Plan, Staging};
 use crate::ranges::{self, Length, show, show_genus};
@@ -26,7 +24,7 @@ pub struct Args {
     #[arg(long, value_parser = ranges::length, allow_hyphen_values = true)]
     pub alpha: Length,
     /// Sharp-edge threshold in degrees (angle between face normals): (0, 180).
-    #[arg(long, default_value_t = 70.0, value_parser = ranges::beta, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = defaults::GENUS_BETA_DEGREES, value_parser = ranges::beta, allow_hyphen_values = true)]
     pub beta: f64,
     /// Also take rims from the union of alpha-prisms (fills narrow tunnels and holes through
     /// smooth, non-sharp surfaces; slower: every face's prism is paired).
@@ -39,21 +37,21 @@ pub struct Args {
 
 /// Runs the genus reduction on a mesh already read (shared with `envelope pipeline`).
 pub(crate) fn reduce(
-    soup: &TriangleSoup,
+    mesh: &Mesh,
     alpha: f64,
     beta: f64,
     union: bool,
-) -> Result<(TriangleSoup, GenusReport), String> {
-    let options = GenusOptions {
-        alpha,
-        beta_degrees: beta,
-    };
+) -> Result<(Mesh, GenusReport), String> {
     let source = if union {
         TessellationSource::PrismUnion
     } else {
         TessellationSource::SharpEdges
     };
-    reduce_genus_with(soup, &options, source).map_err(|e| e.to_string())
+    Genus::new(Epsilon::absolute(alpha))
+        .beta_degrees(beta)
+        .source(source)
+        .run(mesh)
+        .map_err(|e| e.to_string())
 }
 
 /// Runs `envelope genus`.
@@ -63,14 +61,14 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
     if let Some(path) = &args.report {
         plan.file("--report", path)?;
     }
-    let (soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
+    let mesh = envelope::load(&args.input).map_err(|e| e.to_string())?;
     let alpha = args
         .alpha
-        .resolve("--alpha", &args.input.display().to_string(), &soup)?;
-    let (out, report) = reduce(&soup, alpha, args.beta, args.union)
+        .resolve("--alpha", &args.input.display().to_string(), mesh.soup())?;
+    let (out, report) = reduce(&mesh, alpha, args.beta, args.union)
         .map_err(|e| format!("{}: {e}", args.input.display()))?;
     let mut staging = Staging::new();
-    staging.mesh(&args.output, &out, format)?;
+    staging.mesh(&args.output, out.soup(), format)?;
     if let Some(path) = &args.report {
         let mut json = report.to_json();
         json["alpha"] = serde_json::json!(alpha);

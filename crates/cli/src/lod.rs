@@ -3,7 +3,7 @@
 //!
 //! Writes `OUTDIR/level-0.off` (the input), `level-1.off` ... and `summary.json`. The rule
 //! for the cumulative bound and the switching-distance formula
-//! `d = eps * W / (2 * P * tan(fov / 2))` are documented in `envelope_simplify::lod`.
+//! `d = eps * W / (2 * P * tan(fov / 2))` are documented in `envelope::advanced::simplify::lod`.
 //!
 //! Exit codes: 0 every level certified (or certification skipped), 1 a level violates its
 //! bound, 2 bad input or arguments, 3 a certificate is undecided. Every file is checked
@@ -14,10 +14,13 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use envelope_io::{Format, read_path};
-use envelope_mesh::TriangleSoup;
-use envelope_simplify::{DriverError, Level, LodOptions, LodRule, Screen, lod_chain};
-use envelope_verify::Verdict;
+use envelope::advanced::io::Format;
+use envelope::advanced::mesh::TriangleSoup;
+use envelope::advanced::simplify::DriverError;
+use envelope::{
+    EnvelopeMethod, Epsilon, Error, HoleFilling, Level, Lod, LodRule, Mesh, Screen, Verdict,
+    defaults,
+};
 use serde_json::json;
 
 use crate::outputs::{Plan, Staging};
@@ -25,7 +28,7 @@ use crate::ranges::{self, Length, Lengths};
 use crate::simplify::{Bar, FillArg, MethodArg};
 
 /// The paper's bunny epsilons (Table 1, Figure 11): 1/64 % ... 1 % of the diagonal.
-pub(crate) const DEFAULT_EPSILONS: &str = "1/64%,1/32%,1/16%,1/8%,1/4%,1/2%,1%";
+pub(crate) const DEFAULT_EPSILONS: &str = defaults::LOD_EPSILONS;
 
 /// How the requested epsilons become bounds.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -60,10 +63,10 @@ pub(crate) struct Args {
     #[arg(long, default_value_t = 60.0, value_parser = ranges::fov, allow_hyphen_values = true)]
     fov: f64,
     /// Envelope method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
+    #[arg(long, value_enum, default_value_t = MethodArg::default_())]
     envelope: MethodArg,
     /// Hole filling.
-    #[arg(long, value_enum, default_value_t = FillArg::Greedy)]
+    #[arg(long, value_enum, default_value_t = FillArg::default_())]
     hole_filling: FillArg,
     /// Skip the certificates against the original.
     #[arg(long)]
@@ -78,8 +81,30 @@ pub(crate) struct Chain<'a> {
     pub(crate) input_label: String,
     pub(crate) out_dir: &'a Path,
     pub(crate) epsilons: &'a [Length],
-    pub(crate) options: LodOptions,
+    pub(crate) settings: Settings,
     pub(crate) quiet: bool,
+}
+
+/// How a chain is built, besides its epsilons.
+pub(crate) struct Settings {
+    pub(crate) rule: LodRule,
+    pub(crate) envelope: EnvelopeMethod,
+    pub(crate) hole_filling: HoleFilling,
+    pub(crate) certify: bool,
+    pub(crate) screen: Screen,
+}
+
+impl Default for Settings {
+    /// The library's defaults.
+    fn default() -> Self {
+        Settings {
+            rule: LodRule::default(),
+            envelope: defaults::ENVELOPE_METHOD,
+            hole_filling: defaults::hole_filling(),
+            certify: defaults::CERTIFY,
+            screen: Screen::default(),
+        }
+    }
 }
 
 /// Checks OUTDIR and the files a chain of `levels` levels writes there.
@@ -92,48 +117,50 @@ pub(crate) fn plan_chain(plan: &mut Plan, out_dir: &Path, levels: usize) -> Resu
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     let mut plan = Plan::new(&[("IN", &args.input)]);
     plan_chain(&mut plan, &args.out_dir, args.epsilons.0.len())?;
-    let (soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
-    let mut options = LodOptions::new(Vec::new());
-    options.rule = match args.rule {
-        RuleArg::Cumulative => LodRule::Cumulative,
-        RuleArg::Sum => LodRule::Sum,
-    };
-    options.method = args.envelope.method();
-    options.hole_filling = args.hole_filling.hole_filling();
-    options.verify = !args.no_verify;
-    options.screen = Screen {
-        pixels: args.pixels,
-        resolution: args.resolution,
-        fov_degrees: args.fov,
+    let mesh = envelope::load(&args.input).map_err(|e| e.to_string())?;
+    let settings = Settings {
+        rule: match args.rule {
+            RuleArg::Cumulative => LodRule::Cumulative,
+            RuleArg::Sum => LodRule::Sum,
+        },
+        envelope: args.envelope.method(),
+        hole_filling: args.hole_filling.hole_filling(),
+        certify: !args.no_verify,
+        screen: Screen {
+            pixels: args.pixels,
+            resolution: args.resolution,
+            fov_degrees: args.fov,
+        },
     };
     run_chain(
-        &soup,
+        &mesh,
         Chain {
             input_label: args.input.display().to_string(),
             out_dir: &args.out_dir,
             epsilons: &args.epsilons.0,
-            options,
+            settings,
             quiet: args.quiet,
         },
     )
 }
 
 /// Runs a chain on `original` and writes its files, table and summary.
-pub(crate) fn run_chain(original: &TriangleSoup, mut chain: Chain<'_>) -> Result<ExitCode, String> {
+pub(crate) fn run_chain(mesh: &Mesh, chain: Chain<'_>) -> Result<ExitCode, String> {
+    let original = mesh.soup();
     let diagonal = original.diagonal();
-    chain.options.epsilons = chain
+    let epsilons: Vec<f64> = chain
         .epsilons
         .iter()
         .map(|l| {
             let e = l.resolve("--epsilons", &chain.input_label, original)?;
             let flag = format!("--epsilons item {}", l.text);
-            let field = envelope_offset::EpsilonField::Constant(e);
+            let field = envelope::advanced::offset::EpsilonField::Constant(e);
             ranges::epsilon_in_range(&flag, &chain.input_label, &field, original)?;
             Ok(e)
         })
         .collect::<Result<_, String>>()?;
-    if chain.options.rule == LodRule::Cumulative {
-        let e = &chain.options.epsilons;
+    if chain.settings.rule == LodRule::Cumulative {
+        let e = &epsilons;
         if let Some(i) = (1..e.len()).find(|&i| e[i] <= e[i - 1]) {
             return Err(format!(
                 "--epsilons: cumulative bounds must be strictly increasing, but item {} {:?} ({}) is not larger than item {} {:?} ({}) on {}; give them in increasing order, or use --rule sum for steps",
@@ -154,44 +181,27 @@ pub(crate) fn run_chain(original: &TriangleSoup, mut chain: Chain<'_>) -> Result
     staging.mesh(&level_path(0), original, Format::Off)?;
 
     let start = std::time::Instant::now();
-    let mut bar = Bar::new(chain.quiet, "");
-    let n = chain.options.epsilons.len();
+    let bar = Bar::new(chain.quiet, "");
     let mut write_error = None;
     let mut on_level = |l: &Level| {
         if let Err(e) = staging.mesh(&level_path(l.index), &l.mesh, Format::Off) {
             write_error.get_or_insert(e);
         }
     };
-    // The bar's prefix names the level being built.
-    struct Prefixed<'b> {
-        bar: &'b mut Bar,
-        level: usize,
-        n: usize,
-    }
-    impl envelope_simplify::Progress for Prefixed<'_> {
-        fn stage(&mut self, stage: envelope_simplify::Stage) {
-            if stage == envelope_simplify::Stage::Check {
-                self.level += 1;
-                let p = format!("level {}/{}: ", self.level, self.n);
-                self.bar.set_prefix(&p);
-            }
-            self.bar.stage(stage);
-        }
-        fn step(&mut self, attempts: usize, removed: usize) {
-            self.bar.step(attempts, removed);
-        }
-    }
-    let mut prefixed = Prefixed {
-        bar: &mut bar,
-        level: 0,
-        n,
-    };
-    let result = lod_chain(original, &chain.options, &mut prefixed, &mut on_level);
+    let s = &chain.settings;
+    let result = Lod::new(epsilons.iter().map(|&e| Epsilon::absolute(e)).collect())
+        .rule(s.rule)
+        .envelope_method(s.envelope)
+        .hole_filling(s.hole_filling)
+        .certify(s.certify)
+        .screen(s.screen)
+        .progress(|e| bar.tell(e))
+        .run_with(mesh, &mut on_level);
     bar.finish();
     let levels = match result {
         Ok(levels) => levels,
         // Not bad input: a property (the envelopes' proof) does not hold, exit 1.
-        Err(e @ DriverError::UnprovedEnvelopes { .. }) => {
+        Err(e @ Error::Simplify(DriverError::UnprovedEnvelopes { .. })) => {
             eprintln!("envelope: error: {}: {e}", chain.input_label);
             return Ok(ExitCode::from(1));
         }
@@ -202,16 +212,16 @@ pub(crate) fn run_chain(original: &TriangleSoup, mut chain: Chain<'_>) -> Result
     }
     let seconds = start.elapsed().as_secs_f64();
 
-    let rule = match chain.options.rule {
+    let rule = match chain.settings.rule {
         LodRule::Cumulative => "cumulative",
         LodRule::Sum => "sum",
     };
-    let s = chain.options.screen;
+    let s = chain.settings.screen;
     let summary = json!({
         "input": chain.input_label,
         "diagonal": diagonal,
         "rule": rule,
-        "rule_doc": match chain.options.rule {
+        "rule_doc": match chain.settings.rule {
             LodRule::Cumulative => "level i is simplified from level i-1 with step eps_i - eps_(i-1); its bound to the original is eps_i (triangle inequality, both directions)",
             LodRule::Sum => "level i is simplified from level i-1 with step eps_i; its bound to the original is eps_1 + ... + eps_i (triangle inequality, both directions)",
         },

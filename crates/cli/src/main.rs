@@ -27,7 +27,6 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use envelope_mesh::generate;
 
 use check::run_check;
 
@@ -37,6 +36,10 @@ use check::run_check;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Worker threads, 1..=1024 (default: one per core, or RAYON_NUM_THREADS). Outputs are
+    /// the same for any number.
+    #[arg(long, global = true, value_parser = ranges::threads, allow_hyphen_values = true)]
+    threads: Option<usize>,
 }
 
 #[derive(Subcommand)]
@@ -91,10 +94,9 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    // The command runs on a thread of rayon's pool: the local simplifier plans each batch of
-    // removals in parallel, and from outside the pool every batch would wake a worker and
-    // put this thread to sleep until it is done.
-    let result = rayon::scope(move |_| match cli.command {
+    // The command runs on a worker of the pool (`in_pool`): from outside the pool every
+    // parallel batch of the local simplifier would put this thread to sleep and wake it.
+    let result = envelope::advanced::in_pool(cli.threads, move || match cli.command {
         Command::Check {
             input,
             json,
@@ -107,7 +109,9 @@ fn main() -> ExitCode {
         Command::Genus(args) => genus::run(&args),
         Command::Pipeline(args) => pipeline::run(&args),
         Command::Demo { out_dir } => run_demo(&out_dir),
-    });
+    })
+    .map_err(|e| e.to_string())
+    .and_then(|r| r);
     match result {
         Ok(code) => code,
         Err(message) => {
@@ -118,11 +122,11 @@ fn main() -> ExitCode {
 }
 
 /// The built-in model: a cup with curvature, a sharp crease and a border
-/// (`envelope_mesh::generate::demo_model`).
+/// (`envelope::Mesh::demo`).
 fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
     let epsilons = ranges::lengths(lod::DEFAULT_EPSILONS)?.0;
     lod::plan_chain(&mut outputs::Plan::new(&[]), out_dir, epsilons.len())?;
-    let model = generate::demo_model();
+    let model = envelope::Mesh::demo();
     println!(
         "built-in model: a cup, {} faces, {} vertices (curved fluted wall, sharp bottom crease, open rim)",
         model.num_faces(),
@@ -134,7 +138,7 @@ fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
             input_label: "built-in cup (generate::demo_model)".into(),
             out_dir,
             epsilons: &epsilons,
-            options: envelope_simplify::LodOptions::new(Vec::new()),
+            settings: lod::Settings::default(),
             quiet: false,
         },
     )

@@ -23,8 +23,8 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use envelope_io::Format;
-use envelope_mesh::TriangleSoup;
+use envelope::advanced::io::Format;
+use envelope::advanced::mesh::TriangleSoup;
 
 /// The directory holding `path` ("." for a bare file name).
 fn parent_of(path: &Path) -> &Path {
@@ -303,7 +303,7 @@ impl Staging {
         format: Format,
     ) -> Result<(), String> {
         let (_, file) = self.create(path)?;
-        envelope_io::write(&file, soup, format)
+        envelope::advanced::io::write(&file, soup, format)
             .map_err(|e| format!("{}: {}", path.display(), e.kind))?;
         file.sync_all()
             .map_err(|e| format!("{}: {e}", path.display()))

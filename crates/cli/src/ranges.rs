@@ -5,15 +5,16 @@
 //! Each range is stated in the flag's `--help` text; the constants here are the one place it
 //! is defined.
 
-use envelope_mesh::TriangleSoup;
-use envelope_offset::{EpsilonField, EpsilonParseError, EpsilonSpec, parse_epsilon};
+use envelope::advanced::mesh::TriangleSoup;
+use envelope::advanced::offset::{EpsilonField, EpsilonParseError, EpsilonSpec, parse_epsilon};
 
 /// `check --examples`: listing more than this per class is a wall of text, not a report.
 pub(crate) const MAX_EXAMPLES: usize = 10_000;
-/// `envelopes --tube-segments`: fewer than 3 vertices do not make a ring around a border
-/// edge, and more than 64 only cost memory (each ring vertex is a tube vertex per border
-/// vertex).
-pub(crate) const TUBE_SEGMENTS: std::ops::RangeInclusive<u32> = 3..=64;
+/// `envelopes --tube-segments`: the library's range.
+pub(crate) const TUBE_SEGMENTS: std::ops::RangeInclusive<u32> =
+    envelope::defaults::TUBE_SEGMENTS_RANGE;
+/// `--threads`: more workers than this only cost memory on any machine this runs on.
+pub(crate) const MAX_THREADS: usize = 1024;
 /// `lod --pixels` and `--resolution`: a screen wider than this is not a screen.
 pub(crate) const MAX_PIXELS: f64 = 1e6;
 
@@ -27,6 +28,14 @@ pub(crate) fn examples(s: &str) -> Result<usize, String> {
     match number::<usize>(s, "a whole number") {
         Ok(n) if n <= MAX_EXAMPLES => Ok(n),
         _ => Err(format!("must be a whole number in 0..={MAX_EXAMPLES}")),
+    }
+}
+
+/// `--threads`: 1..=1024.
+pub(crate) fn threads(s: &str) -> Result<usize, String> {
+    match number::<usize>(s, "a whole number") {
+        Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
+        _ => Err(format!("must be a whole number in 1..={MAX_THREADS}")),
     }
 }
 
@@ -93,7 +102,7 @@ pub(crate) struct Length {
 
 const LENGTH_SYNTAX: &str = "expected a positive length: absolute (0.01) or a percentage of the bounding-box diagonal (2%, 1/64%)";
 
-/// `--epsilon`, `--epsilon-far`, `--alpha`: the syntax of `envelope_offset::parse_epsilon`,
+/// `--epsilon`, `--epsilon-far`, `--alpha`: the syntax of `envelope::advanced::offset::parse_epsilon`,
 /// finite and positive.
 pub(crate) fn length(s: &str) -> Result<Length, String> {
     let spec = parse_epsilon(s).map_err(|e| {

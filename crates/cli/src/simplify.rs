@@ -9,17 +9,18 @@
 //! files renamed at the end), so a failing step leaves OUT and the report as they were.
 
 use std::io::IsTerminal;
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Mutex;
 
-use envelope_io::read_path;
-use envelope_mesh::TriangleSoup;
-use envelope_offset::{EnvelopeMethod, EpsilonField, read_epsilon_file};
-use envelope_simplify::{
-    DriverError, HoleFilling, Placement, Progress, SimplifyOptions, SimplifyReport, Stage,
-    simplify_with,
+use envelope::advanced::mesh::TriangleSoup;
+use envelope::advanced::offset::{EpsilonField, read_epsilon_file};
+use envelope::advanced::simplify::{DriverError, SimplifyReport};
+use envelope::{
+    EnvelopeMethod, Epsilon, Error, Event, HoleFilling, Method, Placement, Simplifier, Stage,
+    Verdict, defaults,
 };
-use envelope_verify::Verdict;
 use glam::DVec3;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -45,6 +46,15 @@ impl MethodArg {
             MethodArg::Auto => EnvelopeMethod::Auto,
         }
     }
+
+    /// The flag for the library's default.
+    pub(crate) fn default_() -> Self {
+        match defaults::ENVELOPE_METHOD {
+            EnvelopeMethod::Analytical => MethodArg::Analytical,
+            EnvelopeMethod::Numerical => MethodArg::Numerical,
+            EnvelopeMethod::Auto => MethodArg::Auto,
+        }
+    }
 }
 
 /// Which simplification algorithm.
@@ -60,11 +70,20 @@ pub(crate) enum AlgorithmArg {
 }
 
 impl AlgorithmArg {
-    fn method(self) -> envelope_global::Method {
+    fn method(self) -> Method {
         match self {
-            AlgorithmArg::Local => envelope_global::Method::Local,
-            AlgorithmArg::Global => envelope_global::Method::Global,
-            AlgorithmArg::Hybrid => envelope_global::Method::Hybrid,
+            AlgorithmArg::Local => Method::Local,
+            AlgorithmArg::Global => Method::Global,
+            AlgorithmArg::Hybrid => Method::Hybrid,
+        }
+    }
+
+    /// The flag for the library's default.
+    fn default_() -> Self {
+        match defaults::METHOD {
+            Method::Local => AlgorithmArg::Local,
+            Method::Global => AlgorithmArg::Global,
+            Method::Hybrid => AlgorithmArg::Hybrid,
         }
     }
 }
@@ -85,6 +104,14 @@ impl FillArg {
             FillArg::Exhaustive => HoleFilling::Exhaustive { max_vertices: 10 },
         }
     }
+
+    /// The flag for the library's default.
+    pub(crate) fn default_() -> Self {
+        match defaults::hole_filling() {
+            HoleFilling::Greedy { .. } => FillArg::Greedy,
+            HoleFilling::Exhaustive { .. } => FillArg::Exhaustive,
+        }
+    }
 }
 
 /// Where output vertices may lie.
@@ -102,6 +129,27 @@ pub(crate) enum PlacementArg {
     /// tenth of the vertices (large epsilons, where it is cheap); the report's placement says
     /// which ran (default).
     Auto,
+}
+
+impl PlacementArg {
+    fn placement(self) -> Placement {
+        match self {
+            PlacementArg::Subset => Placement::Subset,
+            PlacementArg::Slide => Placement::Slide,
+            PlacementArg::Collapse => Placement::Collapse,
+            PlacementArg::Auto => Placement::Auto,
+        }
+    }
+
+    /// The flag for the library's default.
+    fn default_() -> Self {
+        match defaults::PLACEMENT {
+            Placement::Subset => PlacementArg::Subset,
+            Placement::Slide => PlacementArg::Slide,
+            Placement::Collapse => PlacementArg::Collapse,
+            Placement::Auto => PlacementArg::Auto,
+        }
+    }
 }
 
 /// Arguments of `envelope simplify`.
@@ -128,19 +176,19 @@ pub(crate) struct Args {
     #[arg(long, requires = "viewpoint", value_parser = ranges::length, allow_hyphen_values = true)]
     epsilon_far: Option<Length>,
     /// Envelope method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
+    #[arg(long, value_enum, default_value_t = MethodArg::default_())]
     envelope: MethodArg,
     /// Hole filling of the local algorithm and of the hybrid's local stages (the global
     /// method fills the sub-holes around its placed candidates greedily).
-    #[arg(long, value_enum, default_value_t = FillArg::Greedy)]
+    #[arg(long, value_enum, default_value_t = FillArg::default_())]
     hole_filling: FillArg,
     /// Simplification algorithm (the report's `method` and `method_details` say what ran and
     /// the candidate counts).
-    #[arg(long, value_enum, default_value_t = AlgorithmArg::Local)]
+    #[arg(long, value_enum, default_value_t = AlgorithmArg::default_())]
     method: AlgorithmArg,
     /// Where output vertices may lie (the report's `placement`; `slide` and `collapse` move
     /// vertices, so the output's vertices are no longer a subset of the input's).
-    #[arg(long, value_enum, default_value_t = PlacementArg::Auto)]
+    #[arg(long, value_enum, default_value_t = PlacementArg::default_())]
     placement: PlacementArg,
     /// Write the report as JSON to this file (its directory must exist).
     #[arg(long)]
@@ -218,10 +266,11 @@ fn field_unchecked(args: &Args, soup: &TriangleSoup) -> Result<EpsilonField, Str
     ))
 }
 
-/// A progress bar on stderr (hidden when stderr is not a terminal or when quiet).
+/// A progress bar on stderr (hidden when stderr is not a terminal or when quiet), told
+/// through the library's progress callback ([`Bar::tell`]).
 pub(crate) struct Bar {
     bar: ProgressBar,
-    prefix: String,
+    prefix: Mutex<String>,
 }
 
 impl Bar {
@@ -233,22 +282,31 @@ impl Bar {
         };
         Bar {
             bar,
-            prefix: prefix.to_string(),
+            prefix: Mutex::new(prefix.to_string()),
         }
-    }
-
-    pub(crate) fn set_prefix(&mut self, prefix: &str) {
-        prefix.clone_into(&mut self.prefix);
     }
 
     pub(crate) fn finish(&self) {
         self.bar.finish_and_clear();
     }
-}
 
-impl Progress for Bar {
-    fn stage(&mut self, stage: Stage) {
-        let p = &self.prefix;
+    /// The progress callback: shows the event, never cancels (Ctrl-C ends the process).
+    pub(crate) fn tell(&self, event: Event) -> ControlFlow<()> {
+        match event {
+            Event::Level { index, count } => {
+                if let Ok(mut p) = self.prefix.lock() {
+                    *p = format!("level {index}/{count}: ");
+                }
+            }
+            Event::Stage(stage) => self.stage(stage),
+            Event::Removed { removed, .. } => self.bar.set_position(removed as u64),
+            _ => {}
+        }
+        ControlFlow::Continue(())
+    }
+
+    fn stage(&self, stage: Stage) {
+        let p = self.prefix.lock().map(|p| p.clone()).unwrap_or_default();
         match stage {
             Stage::Check => self.spin(format!("{p}checking the input")),
             Stage::Envelopes => self.spin(format!("{p}building envelopes")),
@@ -268,12 +326,6 @@ impl Progress for Bar {
         }
     }
 
-    fn step(&mut self, _attempts: usize, removed: usize) {
-        self.bar.set_position(removed as u64);
-    }
-}
-
-impl Bar {
     fn spin(&self, msg: String) {
         self.bar.set_style(
             ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
@@ -282,6 +334,17 @@ impl Bar {
         self.bar.set_message(msg);
         self.bar
             .enable_steady_tick(std::time::Duration::from_millis(120));
+    }
+}
+
+/// A simplifier for an epsilon field of absolute lengths (constant or per vertex).
+pub(crate) fn simplifier<'a>(field: EpsilonField) -> Result<Simplifier<'a>, String> {
+    match field {
+        EpsilonField::Constant(e) => Ok(Simplifier::new(Epsilon::absolute(e))),
+        EpsilonField::PerVertex(v) => Ok(Simplifier::per_vertex(
+            v.into_iter().map(Epsilon::absolute).collect(),
+        )),
+        EpsilonField::Function(_) => Err("an epsilon function is not a command-line field".into()),
     }
 }
 
@@ -367,32 +430,28 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     if let Some(path) = &args.report {
         plan.file("--report", path)?;
     }
-    let (soup, _) = read_path(&args.input).map_err(|e| e.to_string())?;
-    let options = SimplifyOptions {
-        method: args.envelope.method(),
-        hole_filling: args.hole_filling.hole_filling(),
-        placement: match args.placement {
-            PlacementArg::Subset => Placement::Subset,
-            PlacementArg::Slide => Placement::Slide,
-            PlacementArg::Collapse => Placement::Collapse,
-            PlacementArg::Auto => Placement::Auto,
-        },
-        verify: !args.no_verify,
-        ..SimplifyOptions::new(field(args, &soup)?)
-    };
-    let mut bar = Bar::new(args.quiet, "");
-    let step = args.method.method().step();
-    let result = simplify_with(&soup, &options, step.as_ref(), &mut bar);
+    let mesh = envelope::load(&args.input).map_err(|e| e.to_string())?;
+    let bar = Bar::new(args.quiet, "");
+    let result = simplifier(field(args, mesh.soup())?)?
+        .method(args.method.method())
+        .envelope_method(args.envelope.method())
+        .hole_filling(args.hole_filling.hole_filling())
+        .placement(args.placement.placement())
+        .certify(!args.no_verify)
+        .progress(|e| bar.tell(e))
+        .run(&mesh);
     bar.finish();
-    let (out, report) = match result {
+    let done = match result {
         Ok(done) => done,
+        Err(Error::CertificateViolated(done)) => *done,
         // Not bad input: a property (the envelopes' proof) does not hold, exit 1.
-        Err(e @ DriverError::UnprovedEnvelopes { .. }) => {
+        Err(e @ Error::Simplify(DriverError::UnprovedEnvelopes { .. })) => {
             eprintln!("envelope: error: {}: {e}", args.input.display());
             return Ok(ExitCode::from(1));
         }
         Err(e) => return Err(format!("{}: {e}", args.input.display())),
     };
+    let report = done.report();
     let verdict = report.verify.as_ref().map(|v| v.verdict);
     let target = if verdict == Some(Verdict::Violated) {
         failed
@@ -400,7 +459,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         args.output.clone()
     };
     let mut staging = Staging::new();
-    staging.mesh(&target, &out, format)?;
+    staging.mesh(&target, done.mesh().soup(), format)?;
     if let Some(path) = &args.report {
         let mut v = report.to_json();
         v["input"] = args.input.display().to_string().into();
@@ -410,17 +469,13 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     }
     staging.commit()?;
     if !args.quiet {
-        print_summary(args, &report);
+        print_summary(args, report);
     }
     Ok(match verdict {
         Some(Verdict::Violated) => {
             eprintln!(
                 "envelope: the output FAILED its certificate ({}); written to {}, {} left as it was",
-                report
-                    .verify
-                    .as_ref()
-                    .map(|v| v.violations.join(", "))
-                    .unwrap_or_default(),
+                done.violations().join(", "),
                 target.display(),
                 args.output.display()
             );

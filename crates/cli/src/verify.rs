@@ -7,8 +7,10 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use envelope_io::read_path;
-use envelope_verify::{Certificate, OneSided, Options, TopologySummary, Verdict, certify};
+use envelope::advanced::io::read_path;
+use envelope::advanced::verify::{
+    Certificate, OneSided, Options, TopologySummary, Verdict, certify,
+};
 
 use crate::ranges::{self, Length};
 

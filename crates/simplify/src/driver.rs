@@ -75,7 +75,9 @@ pub struct SimplifyOptions {
 }
 
 impl SimplifyOptions {
-    /// Defaults (analytical, greedy, FIFO, 8-gon tubes, no verification) for a field.
+    /// The engine's defaults for a field: auto envelopes, greedy filling, FIFO, input
+    /// vertices only, 8-gon tubes, no certificate. The front door (`envelope::Simplifier`)
+    /// has the command line's defaults instead (moving placement when it pays, certified).
     #[must_use]
     pub fn new(epsilon: EpsilonField) -> Self {
         SimplifyOptions {
