@@ -5,9 +5,9 @@
 //! values (`v ± alpha` is never rounded).
 
 use envelope_predicates::arith::rational;
+use envelope_predicates::exact_num::Rational;
 use envelope_predicates::{Filtered, Kernel, Sign};
 use glam::DVec3;
-use rug::Rational;
 
 /// Exactly collinear (or coincident) points.
 pub(crate) fn collinear(a: DVec3, b: DVec3, c: DVec3) -> bool {

@@ -1,6 +1,6 @@
 //! Generic polynomial evaluation: every non-orientation primitive is written once over [`Num`]
 //! and evaluated either with a rigorous running error bound ([`ErrF64`], the filter) or exactly
-//! ([`rug::Rational`], the fallback).
+//! ([`Dyadic`], the fallback; any [`ExactNum`]).
 //!
 //! Public for crates that write their own exact predicates on the same pattern (the prism
 //! crate's bilinear-patch tests): evaluate the polynomial on [`ErrF64`], take
@@ -8,9 +8,9 @@
 //! [`rational_sign`].
 
 use glam::DVec3;
-use rug::Rational;
 
 use crate::Sign;
+pub use crate::exact_num::{Dyadic, Rational};
 
 /// A ring in which the predicate polynomials are evaluated.
 pub trait Num: Sized + Clone {
@@ -104,24 +104,82 @@ pub fn rational(x: f64) -> Rational {
     })
 }
 
+impl Num for Dyadic {
+    fn lit(x: f64) -> Self {
+        Dyadic::from_f64(x)
+    }
+    fn add(&self, o: &Self) -> Self {
+        Dyadic::add(self, o)
+    }
+    fn sub(&self, o: &Self) -> Self {
+        Dyadic::sub(self, o)
+    }
+    fn mul(&self, o: &Self) -> Self {
+        Dyadic::mul(self, o)
+    }
+}
+
 impl Num for Rational {
     fn lit(x: f64) -> Self {
         rational(x)
     }
     fn add(&self, o: &Self) -> Self {
-        Rational::from(self + o)
+        self + o
     }
     fn sub(&self, o: &Self) -> Self {
-        Rational::from(self - o)
+        self - o
     }
     fn mul(&self, o: &Self) -> Self {
-        Rational::from(self * o)
+        self * o
+    }
+}
+
+/// A number whose sign is exact: what the exact path evaluates a polynomial on.
+pub trait ExactNum: Num {
+    /// The exact sign.
+    fn exact_sign(&self) -> Sign;
+}
+
+impl ExactNum for Dyadic {
+    fn exact_sign(&self) -> Sign {
+        self.sign()
+    }
+}
+
+impl ExactNum for Rational {
+    fn exact_sign(&self) -> Sign {
+        rational_sign(self)
     }
 }
 
 /// Exact sign of a rational.
 pub fn rational_sign(r: &Rational) -> Sign {
     Sign::from_ordering(r.cmp0())
+}
+
+#[cfg(feature = "gmp")]
+impl Num for rug::Rational {
+    fn lit(x: f64) -> Self {
+        rug::Rational::from_f64(x).unwrap_or_else(|| {
+            panic!("envelope-predicates: non-finite coordinate {x:?}; validate inputs (envelope_mesh::check_coordinate)")
+        })
+    }
+    fn add(&self, o: &Self) -> Self {
+        rug::Rational::from(self + o)
+    }
+    fn sub(&self, o: &Self) -> Self {
+        rug::Rational::from(self - o)
+    }
+    fn mul(&self, o: &Self) -> Self {
+        rug::Rational::from(self * o)
+    }
+}
+
+#[cfg(feature = "gmp")]
+impl ExactNum for rug::Rational {
+    fn exact_sign(&self) -> Sign {
+        Sign::from_ordering(self.cmp0())
+    }
 }
 
 /// A 3-vector over `N`.

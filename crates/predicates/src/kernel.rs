@@ -4,7 +4,9 @@
 //!   insphere tests, a floating-point filter with a rigorous running error bound for the other
 //!   primitives, and [`Exact`] as the fallback (always when a coordinate is outside
 //!   [`in_exact_range`](crate::in_exact_range)).
-//! * [`Exact`]: every f64 converted exactly to a GMP rational; slow, the reference.
+//! * [`Exact`]: every f64 converted exactly to a binary fraction with a big-integer mantissa
+//!   ([`Dyadic`](crate::exact_num::Dyadic), pure Rust); slow, the reference. With the feature
+//!   `gmp`, `ExactGmp` answers the same on GMP rationals, for the cross-check of the two.
 //! * [`Checked<A, B>`]: runs both and panics with a pasteable reproduction on disagreement.
 //!
 //! All kernels answer the same exact question: the sign of a polynomial in the f64 inputs,
@@ -15,9 +17,9 @@
 use std::marker::PhantomData;
 
 use glam::{DVec2, DVec3};
-use rug::Rational;
 
-use crate::arith::{self, ErrF64, rational_sign};
+use crate::arith::{self, ErrF64, ExactNum};
+use crate::exact_num::Dyadic;
 use crate::range::{all_in_range, in_exact_range};
 use crate::{Orientation, Sign};
 
@@ -63,14 +65,14 @@ macro_rules! filtered {
     ($f:ident ( $($arg:expr),* )) => {{
         match arith::$f::<ErrF64>($($arg),*).sign() {
             Some(s) => s,
-            None => rational_sign(&arith::$f::<Rational>($($arg),*)),
+            None => arith::$f::<Dyadic>($($arg),*).exact_sign(),
         }
     }};
 }
 
 macro_rules! exact {
-    ($f:ident ( $($arg:expr),* )) => {
-        rational_sign(&arith::$f::<Rational>($($arg),*))
+    ($n:ty, $f:ident ( $($arg:expr),* )) => {
+        arith::$f::<$n>($($arg),*).exact_sign()
     };
 }
 
@@ -98,7 +100,7 @@ fn closest_interior_from(signs: [Sign; 4]) -> bool {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Filtered;
 
-/// The reference kernel: GMP rationals, every f64 converted exactly.
+/// The reference kernel: every f64 converted exactly, polynomials evaluated exactly.
 ///
 /// ```
 /// use envelope_predicates::{Exact, Kernel, Sign};
@@ -110,40 +112,65 @@ pub struct Filtered;
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Exact;
 
-impl Kernel for Exact {
-    fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Orientation {
-        Orientation::from_sign(exact!(orient2d(a.to_array(), b.to_array(), c.to_array())))
-    }
-    fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Orientation {
-        Orientation::from_sign(exact!(orient3d(a, b, c, d)))
-    }
-    fn insphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) -> Sign {
-        exact!(insphere(a, b, c, d, e))
-    }
-    fn dot(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
-        exact!(dot(a, b, c, d))
-    }
-    fn cmp_sq_dist(p: DVec3, q: DVec3, eps2: f64) -> Sign {
-        exact!(sq_dist(p, q, eps2))
-    }
-    fn cmp_sq_dist_point_line(p: DVec3, a: DVec3, b: DVec3, eps2: f64) -> Sign {
-        exact!(point_line(p, a, b, eps2))
-    }
-    fn cmp_sq_dist_point_plane(p: DVec3, a: DVec3, b: DVec3, c: DVec3, eps2: f64) -> Sign {
-        exact!(point_plane(p, a, b, c, eps2))
-    }
-    fn cmp_sq_dist_line_line(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3, eps2: f64) -> Sign {
-        exact!(line_line(p0, p1, q0, q1, eps2))
-    }
-    fn edge_side(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> Sign {
-        exact!(edge_side(a, b, c, p))
-    }
-    fn closest_points_interior(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> bool {
-        closest_interior_from(
-            arith::closest_params::<Rational>(p0, p1, q0, q1).map(|r| rational_sign(&r)),
-        )
-    }
+/// The exact kernel on the number type `$n`.
+macro_rules! exact_kernel {
+    ($kernel:ty, $n:ty) => {
+        impl Kernel for $kernel {
+            fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Orientation {
+                Orientation::from_sign(exact!(
+                    $n,
+                    orient2d(a.to_array(), b.to_array(), c.to_array())
+                ))
+            }
+            fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Orientation {
+                Orientation::from_sign(exact!($n, orient3d(a, b, c, d)))
+            }
+            fn insphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) -> Sign {
+                exact!($n, insphere(a, b, c, d, e))
+            }
+            fn dot(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
+                exact!($n, dot(a, b, c, d))
+            }
+            fn cmp_sq_dist(p: DVec3, q: DVec3, eps2: f64) -> Sign {
+                exact!($n, sq_dist(p, q, eps2))
+            }
+            fn cmp_sq_dist_point_line(p: DVec3, a: DVec3, b: DVec3, eps2: f64) -> Sign {
+                exact!($n, point_line(p, a, b, eps2))
+            }
+            fn cmp_sq_dist_point_plane(p: DVec3, a: DVec3, b: DVec3, c: DVec3, eps2: f64) -> Sign {
+                exact!($n, point_plane(p, a, b, c, eps2))
+            }
+            fn cmp_sq_dist_line_line(
+                p0: DVec3,
+                p1: DVec3,
+                q0: DVec3,
+                q1: DVec3,
+                eps2: f64,
+            ) -> Sign {
+                exact!($n, line_line(p0, p1, q0, q1, eps2))
+            }
+            fn edge_side(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> Sign {
+                exact!($n, edge_side(a, b, c, p))
+            }
+            fn closest_points_interior(p0: DVec3, p1: DVec3, q0: DVec3, q1: DVec3) -> bool {
+                closest_interior_from(
+                    arith::closest_params::<$n>(p0, p1, q0, q1).map(|r| r.exact_sign()),
+                )
+            }
+        }
+    };
 }
+
+exact_kernel!(Exact, Dyadic);
+
+/// [`Exact`] on GMP rationals (`rug`): the same signs, for the cross-check of the two exact
+/// kernels (feature `gmp`).
+#[cfg(feature = "gmp")]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ExactGmp;
+
+#[cfg(feature = "gmp")]
+exact_kernel!(ExactGmp, rug::Rational);
 
 impl Kernel for Filtered {
     #[inline]

@@ -25,6 +25,7 @@
 pub mod apart;
 pub mod arith;
 pub mod bvh;
+pub mod exact_num;
 pub mod generic;
 mod kernel;
 pub mod polygon;
@@ -34,6 +35,8 @@ mod sign;
 use glam::DVec3;
 
 pub use generic::{Containment, SegmentTriangle, Shared, TriangleLocation};
+#[cfg(feature = "gmp")]
+pub use kernel::ExactGmp;
 pub use kernel::{Checked, Exact, Filtered, Kernel};
 pub use range::{MAX_ALLOWED_MAGNITUDE, MIN_ALLOWED_MAGNITUDE, in_exact_range, next_down, next_up};
 pub use sign::{Orientation, Sign};

@@ -6,7 +6,11 @@ use envelope_predicates::{
 };
 use glam::{DVec2, DVec3};
 
+#[cfg(not(feature = "gmp"))]
 type K = Checked<Filtered, Exact>;
+/// With the feature `gmp` the two exact kernels are checked against each other too.
+#[cfg(feature = "gmp")]
+type K = Checked<Filtered, Checked<Exact, envelope_predicates::ExactGmp>>;
 
 fn d3(x: f64, y: f64, z: f64) -> DVec3 {
     DVec3::new(x, y, z)

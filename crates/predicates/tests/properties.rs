@@ -6,7 +6,11 @@ use envelope_predicates::{Checked, Exact, Filtered, Kernel, Orientation, Sign};
 use glam::DVec3;
 use proptest::prelude::*;
 
+#[cfg(not(feature = "gmp"))]
 type K = Checked<Filtered, Exact>;
+/// With the feature `gmp` the two exact kernels are checked against each other too.
+#[cfg(feature = "gmp")]
+type K = Checked<Filtered, Checked<Exact, envelope_predicates::ExactGmp>>;
 
 fn coord() -> impl Strategy<Value = f64> {
     prop_oneof![

@@ -4,7 +4,7 @@
 //! used to place the roots of a quadratic.
 
 use envelope_predicates::Sign;
-use rug::Rational;
+use envelope_predicates::exact_num::Rational;
 
 pub(crate) use envelope_predicates::arith::{ErrF64, Num, V, rational_sign};
 

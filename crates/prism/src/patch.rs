@@ -32,9 +32,9 @@
 //! (the two corner triangles on the outer side of the patch): `min` of their two orientations,
 //! a convex wedge that continues the patch across its four boundary edges.
 
+use envelope_predicates::exact_num::Rational;
 use envelope_predicates::{Filtered, Kernel, Orientation, Sign, generic};
 use glam::DVec3;
-use rug::Rational;
 use std::rc::Rc;
 
 use crate::num::{ErrF64, Num, QSqrt, V, orient3d, rational_sign};

@@ -1,9 +1,9 @@
 //! The fundamental prism (Cohen et al. 1996, section 3, Fig. 3): top and bottom triangles and
 //! three bilinear-patch sides; exact point, segment and triangle tests.
 
+use envelope_predicates::exact_num::Rational;
 use envelope_predicates::{Filtered, Kernel, Orientation, Sign, generic};
 use glam::DVec3;
-use rug::Rational;
 
 use crate::num::{ErrF64, Num, V, rational_sign};
 use crate::patch::{self, Patch, boxes_overlap};

@@ -40,10 +40,10 @@
 
 use envelope_mesh::FaceId;
 use envelope_predicates::bvh::{Aabb, Bvh, NodeId, NodeKind};
+use envelope_predicates::exact_num::Rational;
 use envelope_predicates::{Orientation, Sign, cmp_point_triangle, collinear, next_up, orient3d};
 use glam::DVec3;
 use rayon::prelude::*;
-use rug::Rational;
 
 use crate::numeric::{
     RPoint, add_up, approx_sq_dist, barycentric_point, cross, crossing_with_bound, dot,

@@ -4,9 +4,9 @@
 //! Nothing in this module decides a verdict on its own: f64 distances are estimates; the
 //! rational distance is exact; the directed-rounding helpers are proved bounds.
 
+use envelope_predicates::exact_num::Rational;
 use envelope_predicates::{next_down, next_up};
 use glam::DVec3;
-use rug::Rational;
 
 /// The largest double `<= x * x` (x >= 0).
 pub(crate) fn square_down(x: f64) -> f64 {
@@ -208,12 +208,12 @@ pub(crate) fn sq_dist_exact(p: &RPoint, t: &[DVec3; 3]) -> Rational {
 
 /// `(b0 a + b1 b + b2 c) / 2^level`, exactly.
 pub(crate) fn barycentric_point(t: &[DVec3; 3], bary: [u64; 3], level: u32) -> RPoint {
-    let den = Rational::from(rug::Integer::from(1) << level);
+    let den = Rational::from(envelope_predicates::exact_num::Integer::from(1) << level);
     let v = t.map(rpoint);
     std::array::from_fn(|k| {
-        let s = Rational::from(&v[0][k] * rug::Integer::from(bary[0]))
-            + Rational::from(&v[1][k] * rug::Integer::from(bary[1]))
-            + Rational::from(&v[2][k] * rug::Integer::from(bary[2]));
+        let s = Rational::from(&v[0][k] * envelope_predicates::exact_num::Integer::from(bary[0]))
+            + Rational::from(&v[1][k] * envelope_predicates::exact_num::Integer::from(bary[1]))
+            + Rational::from(&v[2][k] * envelope_predicates::exact_num::Integer::from(bary[2]));
         s / &den
     })
 }
