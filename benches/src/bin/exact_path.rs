@@ -83,12 +83,24 @@ fn time<K: Kernel>(x: &Inputs) -> [f64; 3] {
     [orient, tri, sphere]
 }
 
+/// A kernel's name and its timing.
+type Timed = (&'static str, fn(&Inputs) -> [f64; 3]);
+
+/// The GMP kernel, when built in.
+#[cfg(feature = "gmp")]
+fn gmp() -> Option<Timed> {
+    Some(("ExactGmp (rug)", time::<envelope_predicates::ExactGmp>))
+}
+
+#[cfg(not(feature = "gmp"))]
+fn gmp() -> Option<Timed> {
+    None
+}
+
 fn main() {
     let x = inputs();
-    let mut kernels: Vec<(&str, fn(&Inputs) -> [f64; 3])> =
-        vec![("Exact (pure Rust)", time::<Exact>)];
-    #[cfg(feature = "gmp")]
-    kernels.push(("ExactGmp (rug)", time::<envelope_predicates::ExactGmp>));
+    let mut kernels: Vec<Timed> = vec![("Exact (pure Rust)", time::<Exact>)];
+    kernels.extend(gmp());
     let mut best = vec![[f64::INFINITY; 3]; kernels.len()];
     for _round in 0..7 {
         for (k, (_, f)) in kernels.iter().enumerate() {

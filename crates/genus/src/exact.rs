@@ -67,8 +67,8 @@ pub fn covered_by_corner_cubes(t: [DVec3; 3], alpha: f64) -> bool {
     for axis in 0..3 {
         let mut cuts: Vec<Rational> = Vec::new();
         for c in &corners {
-            cuts.push(Rational::from(&c[axis] - &al));
-            cuts.push(Rational::from(&c[axis] + &al));
+            cuts.push(&c[axis] - &al);
+            cuts.push(&c[axis] + &al);
         }
         cuts.sort();
         cuts.dedup();
@@ -94,7 +94,7 @@ pub fn covered_by_corner_cubes(t: [DVec3; 3], alpha: f64) -> bool {
         });
         corners
             .iter()
-            .any(|c| (0..3).all(|a| Rational::from(&centroid[a] - &c[a]).abs() <= al))
+            .any(|c| (0..3).all(|a| (&centroid[a] - &c[a]).abs() <= al))
     })
 }
 
@@ -128,12 +128,12 @@ fn split(
         }
         if (side[i] == Less && side[j] == Greater) || (side[i] == Greater && side[j] == Less) {
             // p + s (q - p) with s = (cut - p_a) / (q_a - p_a).
-            let s = Rational::from(cut - &p[axis]) / Rational::from(&q[axis] - &p[axis]);
+            let s = (cut - &p[axis]) / (&q[axis] - &p[axis]);
             let x: [Rational; 3] = std::array::from_fn(|a| {
                 if a == axis {
                     cut.clone()
                 } else {
-                    Rational::from(&q[a] - &p[a]) * &s + &p[a]
+                    (&q[a] - &p[a]) * &s + &p[a]
                 }
             });
             below.push(x.clone());

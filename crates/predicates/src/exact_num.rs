@@ -377,7 +377,7 @@ mod tests {
     #[test]
     fn rationals_follow_rugs_interface() {
         let half = Rational::from((1, 2));
-        assert_eq!(Rational::from(&half * &half), Rational::from((1, 4)));
+        assert_eq!((&half * &half), Rational::from((1, 4)));
         assert_eq!((&half * 4u32).cmp0(), Ordering::Greater);
         assert_eq!((-&half).cmp0(), Ordering::Less);
         assert_eq!(Rational::new().cmp0(), Ordering::Equal);

@@ -42,8 +42,8 @@ impl QSqrt {
             return sb;
         }
         // Opposite signs: |a| vs |b|√d, i.e. the sign of a² - b²d, carried by a.
-        let a2 = Rational::from(&self.a * &self.a);
-        let b2d = Rational::from(&self.b * &self.b) * &*self.d;
+        let a2 = &self.a * &self.a;
+        let b2d = (&self.b * &self.b) * &*self.d;
         sa * rational_sign(&(a2 - b2d))
     }
 }
@@ -53,22 +53,14 @@ impl Num for QSqrt {
         unreachable!("QSqrt literals are made with QSqrt::new (they need the shared radicand)")
     }
     fn add(&self, o: &Self) -> Self {
-        QSqrt::new(
-            Rational::from(&self.a + &o.a),
-            Rational::from(&self.b + &o.b),
-            self.d.clone(),
-        )
+        QSqrt::new(&self.a + &o.a, &self.b + &o.b, self.d.clone())
     }
     fn sub(&self, o: &Self) -> Self {
-        QSqrt::new(
-            Rational::from(&self.a - &o.a),
-            Rational::from(&self.b - &o.b),
-            self.d.clone(),
-        )
+        QSqrt::new(&self.a - &o.a, &self.b - &o.b, self.d.clone())
     }
     fn mul(&self, o: &Self) -> Self {
-        let a = Rational::from(&self.a * &o.a) + Rational::from(&self.b * &o.b) * &*self.d;
-        let b = Rational::from(&self.a * &o.b) + Rational::from(&self.b * &o.a);
+        let a = (&self.a * &o.a) + (&self.b * &o.b) * &*self.d;
+        let b = (&self.a * &o.b) + (&self.b * &o.a);
         QSqrt::new(a, b, self.d.clone())
     }
 }

@@ -402,18 +402,16 @@ fn quadratic_roots(
                 Some(vec![])
             };
         }
-        return Some(vec![rat(Rational::from(-f0) / f1)]);
+        return Some(vec![rat((-f0) / f1)]);
     }
-    let disc = Rational::from(f1 * f1) - Rational::from(f2 * f0) * 4u32;
+    let disc = (f1 * f1) - (f2 * f0) * 4u32;
     match disc.cmp0() {
         std::cmp::Ordering::Less => Some(vec![]),
-        std::cmp::Ordering::Equal => {
-            Some(vec![rat(Rational::from(-f1) / Rational::from(f2 * 2u32))])
-        }
+        std::cmp::Ordering::Equal => Some(vec![rat((-f1) / (f2 * 2u32))]),
         std::cmp::Ordering::Greater => {
             let d = Rc::new(disc);
-            let two_a = Rational::from(f2 * 2u32);
-            let a = Rational::from(-f1) / &two_a;
+            let two_a = f2 * 2u32;
+            let a = (-f1) / &two_a;
             let b = Rational::from(1) / &two_a;
             Some(vec![
                 (QSqrt::new(a.clone(), b.clone(), d.clone()), d.clone()),

@@ -296,7 +296,7 @@ impl Tolerance {
             eps,
             e2lo: square_down(eps),
             e2hi: square_up(eps),
-            e2: Rational::from(&e * &e),
+            e2: (&e * &e),
             resolution,
         }
     }
@@ -1133,10 +1133,10 @@ fn clip_by_sign(poly: &[RPoint], side: &[Rational]) -> (Vec<RPoint>, Vec<RPoint>
             hi.push(poly[i].clone());
         }
         if (*si < 0 && *sj > 0) || (*si > 0 && *sj < 0) {
-            let t = si / Rational::from(si - sj);
+            let t = si / (si - sj);
             let x: RPoint = std::array::from_fn(|k| {
-                let dk = Rational::from(&poly[j][k] - &poly[i][k]);
-                &poly[i][k] + Rational::from(&dk * &t)
+                let dk = &poly[j][k] - &poly[i][k];
+                &poly[i][k] + (&dk * &t)
             });
             lo.push(x.clone());
             hi.push(x);

@@ -136,22 +136,18 @@ pub(crate) fn rational(x: f64) -> Rational {
 }
 
 pub(crate) fn sub(a: &RPoint, b: &RPoint) -> RPoint {
-    [
-        Rational::from(&a[0] - &b[0]),
-        Rational::from(&a[1] - &b[1]),
-        Rational::from(&a[2] - &b[2]),
-    ]
+    [(&a[0] - &b[0]), (&a[1] - &b[1]), (&a[2] - &b[2])]
 }
 
 pub(crate) fn dot(a: &RPoint, b: &RPoint) -> Rational {
-    Rational::from(&a[0] * &b[0]) + Rational::from(&a[1] * &b[1]) + Rational::from(&a[2] * &b[2])
+    (&a[0] * &b[0]) + (&a[1] * &b[1]) + (&a[2] * &b[2])
 }
 
 pub(crate) fn cross(a: &RPoint, b: &RPoint) -> RPoint {
     [
-        Rational::from(&a[1] * &b[2]) - Rational::from(&a[2] * &b[1]),
-        Rational::from(&a[2] * &b[0]) - Rational::from(&a[0] * &b[2]),
-        Rational::from(&a[0] * &b[1]) - Rational::from(&a[1] * &b[0]),
+        (&a[1] * &b[2]) - (&a[2] * &b[1]),
+        (&a[2] * &b[0]) - (&a[0] * &b[2]),
+        (&a[0] * &b[1]) - (&a[1] * &b[0]),
     ]
 }
 
@@ -173,7 +169,7 @@ fn sq_dist_segment_exact(p: &RPoint, a: &RPoint, b: &RPoint) -> Rational {
         return dot(&bp, &bp);
     }
     // |ap|^2 - s^2 / |ab|^2 (Pythagoras, exact in rationals).
-    ap2 - Rational::from(&s * &s) / l2
+    ap2 - (&s * &s) / l2
 }
 
 /// Exact squared distance from the rational point `p` to the closed triangle `t`.
@@ -200,7 +196,7 @@ pub(crate) fn sq_dist_exact(p: &RPoint, t: &[DVec3; 3]) -> Rational {
     });
     if inside {
         let h = dot(&n, &sub(p, &a));
-        Rational::from(&h * &h) / n2
+        (&h * &h) / n2
     } else {
         edges()
     }
@@ -211,9 +207,9 @@ pub(crate) fn barycentric_point(t: &[DVec3; 3], bary: [u64; 3], level: u32) -> R
     let den = Rational::from(envelope_predicates::exact_num::Integer::from(1) << level);
     let v = t.map(rpoint);
     std::array::from_fn(|k| {
-        let s = Rational::from(&v[0][k] * envelope_predicates::exact_num::Integer::from(bary[0]))
-            + Rational::from(&v[1][k] * envelope_predicates::exact_num::Integer::from(bary[1]))
-            + Rational::from(&v[2][k] * envelope_predicates::exact_num::Integer::from(bary[2]));
+        let s = (&v[0][k] * envelope_predicates::exact_num::Integer::from(bary[0]))
+            + (&v[1][k] * envelope_predicates::exact_num::Integer::from(bary[1]))
+            + (&v[2][k] * envelope_predicates::exact_num::Integer::from(bary[2]));
         s / &den
     })
 }
@@ -228,9 +224,9 @@ mod tests {
             assert!(rational(square_down(x)) <= rational(x) * rational(x));
             assert!(rational(square_up(x)) >= rational(x) * rational(x));
             let r = rational(sqrt_up(x));
-            assert!(Rational::from(&r * &r) >= rational(x));
+            assert!((&r * &r) >= rational(x));
             let r = rational(sqrt_down(x));
-            assert!(Rational::from(&r * &r) <= rational(x));
+            assert!((&r * &r) <= rational(x));
         }
     }
 
@@ -374,16 +370,16 @@ mod crossing_tests {
             if (sx.is_positive() && sy.is_negative()) || (sx.is_negative() && sy.is_positive()) {
                 let (p, err) = crossing_with_bound(
                     x, y, orient3d_with_bound(a, b, c, x), orient3d_with_bound(a, b, c, y));
-                let t = &sx / Rational::from(&sx - &sy);
+                let t = &sx / (&sx - &sy);
                 let (rx, ry) = (rpoint(x), rpoint(y));
                 let star: RPoint = std::array::from_fn(|k| {
-                    let dk = Rational::from(&ry[k] - &rx[k]);
-                    &rx[k] + Rational::from(&dk * &t)
+                    let dk = &ry[k] - &rx[k];
+                    &rx[k] + (&dk * &t)
                 });
                 let d = sub(&rpoint(p), &star);
                 let d2 = dot(&d, &d);
                 let e = rational(err);
-                prop_assert!(d2 <= Rational::from(&e * &e), "crossing off by more than {err}");
+                prop_assert!(d2 <= (&e * &e), "crossing off by more than {err}");
             }
         }
     }
