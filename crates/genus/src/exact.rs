@@ -1,4 +1,4 @@
-//! Exact tests on GMP rationals used by the genus reduction (sections 3.4 and 4.2): L-infinity
+//! Exact tests on rationals used by the genus reduction (sections 3.4 and 4.2): L-infinity
 //! closeness of two vertices and coverage of a triangle by the alpha-cubes of its corners.
 //!
 //! Inputs are f64 and `alpha` is f64; every comparison here is made on the exact rational

@@ -5,7 +5,7 @@
 //! enum ([`Sign`], [`Orientation`], [`TriangleLocation`], ...). Nothing here constructs points.
 //!
 //! * Kernels ([`Kernel`]): [`Filtered`] (Shewchuk's adaptive predicates via `robust`, plus
-//!   rigorously filtered floating point, falling back to [`Exact`] GMP rationals), [`Exact`], and
+//!   rigorously filtered floating point, falling back to [`Exact`]), [`Exact`] (exact binary fractions, pure Rust), and
 //!   [`Checked`] which runs two kernels and panics with a reproduction when they disagree.
 //! * Derived predicates in [`generic`] (any kernel) and re-exported here on [`Filtered`]:
 //!   segment/triangle and triangle/triangle intersection (also for adjacent mesh faces),

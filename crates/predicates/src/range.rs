@@ -6,7 +6,7 @@
 //! <= 2^615`, far below overflow. No intermediate product of the expansion arithmetic can
 //! underflow or overflow, which is the only condition under which Shewchuk's predicates are exact.
 //! Inputs outside the range are still answered exactly by the filtered kernel: it falls back to
-//! GMP rationals. The same two constants bound input coordinates in `envelope-mesh`.
+//! the exact kernel. The same two constants bound input coordinates in `envelope-mesh`.
 
 /// Largest coordinate magnitude for which the fast adaptive path is used: `2^120` (about 1.3e36).
 pub const MAX_ALLOWED_MAGNITUDE: f64 = 1.329_227_995_784_916e36;

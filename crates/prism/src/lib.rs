@@ -4,7 +4,7 @@
 //! *Exact predicates, inexact constructions*: the six prism corners `v_i ± ε_i n_i` are f64
 //! constructions ([`Prism::from_offsets`] says so); every decision on them is exact
 //! (`envelope-predicates` for orientations, and for the curved sides a quadratic side
-//! function evaluated with a rigorous f64 filter and a GMP-rational fallback).
+//! function evaluated with a rigorous f64 filter and an exact-rational fallback).
 //!
 //! * [`Prism`]: constructors, [`Prism::check`] / [`Prism::sanity_check`],
 //!   [`Prism::classify`] ([`Location`]), [`Prism::intersects_segment`],

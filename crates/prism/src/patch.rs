@@ -23,7 +23,7 @@
 //! `N = (p10 − p00)×(p01 − p00)` the patch normal, so **`side(q) = sign(F(q))·sign(T)`** is
 //! positive on the side `N` points to. When `T = 0` the patch is planar and `side` is the plain
 //! `orient3d(p00, p10, p01, q)` (same orientation). `F` is evaluated with a rigorous f64 error
-//! bound and, when that cannot decide, exactly in GMP rationals: the sign is exact.
+//! bound and, when that cannot decide, exactly in rationals: the sign is exact.
 //!
 //! The zero set of `F` is the whole quadric, whose other parts can pass within a patch width of
 //! the patch when it is nearly planar. So `F` is used only inside the hull tetrahedron `H` of the
@@ -154,7 +154,7 @@ pub mod details {
     }
 
     /// The sign of `F(q)` (the unoriented quadric polynomial of the module docs), through the
-    /// f64 filter with a GMP fallback.
+    /// f64 filter with an exact-rational fallback.
     #[must_use]
     pub fn quadric_sign_filtered(patch: &Patch, q: DVec3) -> Sign {
         let c = patch.corners.map(V::<ErrF64>::pt);
@@ -164,7 +164,7 @@ pub mod details {
         }
     }
 
-    /// The sign of `F(q)`, always in GMP rationals.
+    /// The sign of `F(q)`, always in exact rationals.
     #[must_use]
     pub fn quadric_sign_exact(patch: &Patch, q: DVec3) -> Sign {
         let c = patch.corners.map(V::<Rational>::pt);
