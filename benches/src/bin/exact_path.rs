@@ -9,22 +9,10 @@
 use std::hint::black_box;
 use std::time::Instant;
 
+use envelope_benches::Rng;
 use envelope_predicates::generic::triangles_intersect;
 use envelope_predicates::{Exact, Kernel};
 use glam::DVec3;
-
-struct Rng(u64);
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn point(&mut self) -> DVec3 {
-        DVec3::new(self.unit(), self.unit(), self.unit())
-    }
-}
 
 const N: usize = 2000;
 
