@@ -214,12 +214,6 @@ impl From<Integer> for Rational {
     }
 }
 
-impl From<&Rational> for Rational {
-    fn from(x: &Rational) -> Self {
-        x.clone()
-    }
-}
-
 macro_rules! integer_from {
     ($($t:ty),*) => {$(
         impl From<$t> for Integer {
@@ -290,19 +284,12 @@ macro_rules! scalar {
     };
 }
 scalar!(Mul, mul, u32, BigInt::from);
-scalar!(Mul, mul, i32, BigInt::from);
 scalar!(Div, div, u32, BigInt::from);
 scalar!(Mul, mul, Integer, |i: Integer| i.0);
 scalar!(Mul, mul, &Integer, |i: &Integer| i.0.clone());
 
 impl<'a> std::iter::Sum<&'a Rational> for Rational {
     fn sum<I: Iterator<Item = &'a Rational>>(iter: I) -> Rational {
-        iter.fold(Rational::new(), |acc, x| acc + x)
-    }
-}
-
-impl std::iter::Sum<Rational> for Rational {
-    fn sum<I: Iterator<Item = Rational>>(iter: I) -> Rational {
         iter.fold(Rational::new(), |acc, x| acc + x)
     }
 }
