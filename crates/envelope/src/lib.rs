@@ -60,9 +60,8 @@ pub mod defaults {
     pub const PLACEMENT: Placement = Placement::Auto;
     /// Vertices per border-tube ring (6.2).
     pub const TUBE_SEGMENTS: u32 = 8;
-    /// The valid tube rings: fewer than 3 vertices make no ring around a border edge, more
-    /// than 64 only cost memory (each ring vertex is a tube vertex per border vertex).
-    pub const TUBE_SEGMENTS_RANGE: std::ops::RangeInclusive<u32> = 3..=64;
+    /// The valid tube rings (the envelope builder's range).
+    pub const TUBE_SEGMENTS_RANGE: std::ops::RangeInclusive<u32> = envelope_offset::TUBE_SEGMENTS;
     /// Every output is certified.
     pub const CERTIFY: bool = true;
     /// The paper's bunny epsilons (Table 1, Figure 11), for level-of-detail chains.

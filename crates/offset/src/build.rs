@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use crate::engine::StepPolicy;
 use crate::error::EnvelopeError;
-use crate::error::MAX_TUBE_SEGMENTS;
+use crate::error::TUBE_SEGMENTS;
 use crate::numerical::numerical_eps;
 use crate::options::{EnvelopeMethod, EnvelopeOptions};
 use crate::proof::Proof;
@@ -128,7 +128,7 @@ pub fn build_envelopes_with(
 ) -> Result<Envelopes, EnvelopeError> {
     let topo = accept_input(soup, topology)?;
     if let Some(k) = options.tube_segments
-        && !(3..=MAX_TUBE_SEGMENTS).contains(&k)
+        && !TUBE_SEGMENTS.contains(&k)
     {
         return Err(EnvelopeError::TubeSegments(k));
     }

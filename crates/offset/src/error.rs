@@ -60,7 +60,11 @@ pub enum EnvelopeError {
         epsilon: f64,
     },
     /// A tube ring with too few or too many vertices.
-    #[error("{0} tube segments: a tube ring needs 3 to {MAX_TUBE_SEGMENTS} vertices")]
+    #[error(
+        "{0} tube segments: a tube ring needs {lo} to {hi} vertices",
+        lo = TUBE_SEGMENTS.start(),
+        hi = TUBE_SEGMENTS.end()
+    )]
     TubeSegments(u32),
 }
 
@@ -69,5 +73,6 @@ pub enum EnvelopeError {
 /// place of the coordinates it is added to.
 pub(crate) const EPSILON_FLOOR: f64 = 9.094_947_017_729_282e-13;
 
-/// The most vertices a tube ring may have.
-pub(crate) const MAX_TUBE_SEGMENTS: u32 = 64;
+/// The vertices a tube ring may have: fewer than 3 make no ring around a border edge, more
+/// than 64 only cost memory (each ring vertex is a tube vertex per border vertex).
+pub const TUBE_SEGMENTS: std::ops::RangeInclusive<u32> = 3..=64;

@@ -53,9 +53,9 @@ mod tubes;
 mod tests;
 
 pub use build::{Envelopes, build_envelopes, build_envelopes_with, face_tree};
-pub use error::EnvelopeError;
+pub use error::{EnvelopeError, TUBE_SEGMENTS};
 pub use field::{
-    EpsilonField, EpsilonFileError, EpsilonParseError, EpsilonSpec, parse_epsilon,
+    EPSILON_SYNTAX, EpsilonField, EpsilonFileError, EpsilonParseError, EpsilonSpec, parse_epsilon,
     read_epsilon_file,
 };
 pub use normals::{VertexNormals, vertex_normals};
