@@ -6,7 +6,7 @@
 //! is defined.
 
 use envelope::advanced::mesh::TriangleSoup;
-use envelope::advanced::offset::{EpsilonField, EpsilonParseError, EpsilonSpec, parse_epsilon};
+use envelope::advanced::offset::{EPSILON_SYNTAX, EpsilonField, EpsilonSpec, parse_epsilon};
 
 /// `check --examples`: listing more than this per class is a wall of text, not a report.
 pub(crate) const MAX_EXAMPLES: usize = 10_000;
@@ -100,20 +100,10 @@ pub(crate) struct Length {
     pub(crate) spec: EpsilonSpec,
 }
 
-const LENGTH_SYNTAX: &str = "expected a positive length: absolute (0.01) or a percentage of the bounding-box diagonal (2%, 1/64%)";
-
 /// `--epsilon`, `--epsilon-far`, `--alpha`: the syntax of `envelope::advanced::offset::parse_epsilon`,
 /// finite and positive.
 pub(crate) fn length(s: &str) -> Result<Length, String> {
-    let spec = parse_epsilon(s).map_err(|e| {
-        let why = match e {
-            EpsilonParseError::Empty => "empty",
-            EpsilonParseError::NotANumber => "not a number",
-            EpsilonParseError::NotFinite => "not finite",
-            EpsilonParseError::NotPositive => "zero or negative",
-        };
-        format!("{why}; {LENGTH_SYNTAX}")
-    })?;
+    let spec = parse_epsilon(s).map_err(|e| format!("{}; {EPSILON_SYNTAX}", e.reason()))?;
     Ok(Length {
         text: s.trim().to_string(),
         spec,
@@ -169,13 +159,13 @@ impl Length {
         }
         if !v.is_finite() {
             return Err(format!(
-                "{flag} {text}: is not a finite length on {input} (diagonal {}); {LENGTH_SYNTAX}",
+                "{flag} {text}: is not a finite length on {input} (diagonal {}); {EPSILON_SYNTAX}",
                 show(diagonal)
             ));
         }
         if v <= 0.0 {
             return Err(format!(
-                "{flag} {text}: is zero on {input} (diagonal {}); {LENGTH_SYNTAX}",
+                "{flag} {text}: is zero on {input} (diagonal {}); {EPSILON_SYNTAX}",
                 show(diagonal)
             ));
         }

@@ -3,7 +3,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use envelope_offset::{EpsilonParseError, EpsilonSpec, parse_epsilon};
+use envelope_offset::{EPSILON_SYNTAX, EpsilonSpec, parse_epsilon};
 
 use crate::{Error, Mesh};
 
@@ -98,19 +98,9 @@ impl FromStr for Epsilon {
     type Err = Error;
 
     fn from_str(s: &str) -> Result<Self, Error> {
-        parse_epsilon(s).map(Epsilon::from).map_err(|e| {
-            let why = match e {
-                EpsilonParseError::Empty => "empty",
-                EpsilonParseError::NotANumber => "not a number",
-                EpsilonParseError::NotFinite => "not finite",
-                EpsilonParseError::NotPositive => "zero or negative",
-            };
-            Error::InvalidEpsilon(format!(
-                "{s:?}: {why}; {}",
-                "expected a positive length: absolute (0.01) or a percentage of the \
-                 bounding-box diagonal (2%, 1/64%)"
-            ))
-        })
+        parse_epsilon(s)
+            .map(Epsilon::from)
+            .map_err(|e| Error::InvalidEpsilon(format!("{s:?}: {}; {EPSILON_SYNTAX}", e.reason())))
     }
 }
 

@@ -56,6 +56,22 @@ pub enum EpsilonParseError {
     NotPositive,
 }
 
+impl EpsilonParseError {
+    /// The reason in a few words, for a message that goes on with [`EPSILON_SYNTAX`].
+    #[must_use]
+    pub fn reason(self) -> &'static str {
+        match self {
+            EpsilonParseError::Empty => "empty",
+            EpsilonParseError::NotANumber => "not a number",
+            EpsilonParseError::NotFinite => "not finite",
+            EpsilonParseError::NotPositive => "zero or negative",
+        }
+    }
+}
+
+/// What [`parse_epsilon`] accepts, in the words of an error message.
+pub const EPSILON_SYNTAX: &str = "expected a positive length: absolute (0.01) or a percentage of the bounding-box diagonal (2%, 1/64%)";
+
 /// Parses `0.01` (absolute), `0.5%` or `1/64%` (percent of the bounding-box diagonal); a
 /// fraction `a/b` is accepted with or without `%`.
 ///
