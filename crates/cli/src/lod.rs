@@ -181,7 +181,7 @@ pub(crate) fn run_chain(mesh: &Mesh, chain: Chain<'_>) -> Result<ExitCode, Strin
     staging.mesh(&level_path(0), original, Format::Off)?;
 
     let start = std::time::Instant::now();
-    let bar = Bar::new(chain.quiet, "");
+    let bar = Bar::new(chain.quiet);
     let mut write_error = None;
     let mut on_level = |l: &Level| {
         if let Err(e) = staging.mesh(&level_path(l.index), &l.mesh, Format::Off) {

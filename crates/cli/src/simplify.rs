@@ -274,7 +274,7 @@ pub(crate) struct Bar {
 }
 
 impl Bar {
-    pub(crate) fn new(quiet: bool, prefix: &str) -> Bar {
+    pub(crate) fn new(quiet: bool) -> Bar {
         let bar = if quiet || !std::io::stderr().is_terminal() {
             ProgressBar::hidden()
         } else {
@@ -282,7 +282,7 @@ impl Bar {
         };
         Bar {
             bar,
-            prefix: Mutex::new(prefix.to_string()),
+            prefix: Mutex::new(String::new()),
         }
     }
 
@@ -431,7 +431,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         plan.file("--report", path)?;
     }
     let mesh = envelope::load(&args.input).map_err(|e| e.to_string())?;
-    let bar = Bar::new(args.quiet, "");
+    let bar = Bar::new(args.quiet);
     let result = simplifier(field(args, mesh.soup())?)?
         .method(args.method.method())
         .envelope_method(args.envelope.method())
