@@ -13,6 +13,7 @@
 //! nothing) and `ranges` (the valid range of each numeric argument, checked by clap).
 #![forbid(unsafe_code)]
 
+mod batch;
 mod check;
 mod envelopes;
 mod genus;
@@ -82,6 +83,12 @@ enum Command {
     /// alpha-prisms) steps; writes
     /// OUTDIR/stage-0.off (the input), stage-1.off, ... and summary.json.
     Pipeline(pipeline::Args),
+    /// Simplify every item of a JSON Lines manifest into OUTDIR/<id>/, resumably (a rerun
+    /// does no work for finished items), with OUTDIR/summary.jsonl.
+    ///
+    /// Exit 0 every item is ok, 1 some item is not (see the summary), 2 the manifest or the
+    /// arguments are wrong.
+    Batch(batch::Args),
     /// Run the main job on a built-in model (a cup: curved wall, sharp bottom crease, open
     /// rim): its chain of levels of detail at 1/64% ... 1%, certified, into ./envelope-demo/.
     Demo {
@@ -108,6 +115,7 @@ fn main() -> ExitCode {
         Command::Lod(args) => lod::run(&args),
         Command::Genus(args) => genus::run(&args),
         Command::Pipeline(args) => pipeline::run(&args),
+        Command::Batch(args) => batch::run(&args),
         Command::Demo { out_dir } => run_demo(&out_dir),
     })
     .map_err(|e| e.to_string())

@@ -17,6 +17,7 @@ fn threads_is_accepted_by_every_command_and_checked() {
         "lod",
         "genus",
         "pipeline",
+        "batch",
         "demo",
     ] {
         let out = envelope().args([command, "--help"]).output().unwrap();

@@ -49,6 +49,26 @@ pub enum Error {
     /// The thread pool could not be built.
     #[error("threads: {0}")]
     Threads(String),
+    /// A batch manifest line that cannot be run.
+    #[error(transparent)]
+    Manifest(#[from] crate::batch::ManifestError),
+    /// A file or folder other than a mesh could not be read or written.
+    #[error("{}: {source}", .path.display())]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    pub(crate) fn io(path: &std::path::Path, e: &std::io::Error) -> Error {
+        Error::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::new(e.kind(), e.to_string()),
+        }
+    }
 }
 
 impl From<DriverError> for Error {

@@ -9,12 +9,14 @@
 //! * [`verify`]: the certificate of any simplifier's output; [`check`]: is a mesh acceptable
 //!   input.
 //! * [`Genus`]: fill holes and tunnels smaller than alpha (El-Sana and Varshney 1997).
+//! * [`batch`]: many meshes from a JSON Lines manifest, resumable, in shards.
 //! * [`Error`]: one error type; [`Event`]: what a progress callback is told.
 //!
 //! The defaults of every setting are in [`defaults`], shared with the command line. The
 //! engine's crates, for people who write their own policies, are under [`advanced`].
 #![forbid(unsafe_code)]
 
+pub mod batch;
 mod epsilon;
 mod error;
 mod files;

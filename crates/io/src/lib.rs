@@ -267,13 +267,38 @@ pub fn read_path(path: impl AsRef<Path>) -> Result<(TriangleSoup, ReadReport), R
         return Err(fail(ReadErrorKind::IsADirectory));
     }
     let file = fs::File::open(path).map_err(|e| fail(e.kind().into()))?;
-    let mut input = Input::new(file, Some(meta.len()));
+    read_named(Input::new(file, Some(meta.len())), path, Some(meta.len()))
+}
+
+/// Reads a mesh file's bytes, already in memory (for callers that also hash them), as
+/// [`read_path`] reads the file: the format from `path`'s extension or the content, and
+/// errors naming `path`.
+///
+/// ```
+/// let bytes = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n";
+/// let err = envelope_io::read_bytes(bytes, "tri.obj".as_ref()).unwrap_err();
+/// assert!(err.to_string().starts_with("tri.obj: line 4"), "{err}");
+/// ```
+///
+/// # Errors
+/// As [`read_path`], for the content.
+pub fn read_bytes(bytes: &[u8], path: &Path) -> Result<(TriangleSoup, ReadReport), ReadError> {
+    let len = Some(bytes.len() as u64);
+    read_named(Input::new(bytes, len), path, len)
+}
+
+/// The format from `path` or the content, then the reader; errors name `path`.
+fn read_named<R: Read>(
+    mut input: Input<R>,
+    path: &Path,
+    len: Option<u64>,
+) -> Result<(TriangleSoup, ReadReport), ReadError> {
+    let fail = |kind: ReadErrorKind| ReadError::new(Location::None, kind).with_path(path);
     let format = match Format::from_path(path) {
         Some(f) => f,
         None => {
             let head = input.peek(512).map_err(|e| fail(e.kind().into()))?;
-            Format::sniff(head, Some(meta.len()))
-                .ok_or_else(|| fail(ReadErrorKind::UnknownFormat))?
+            Format::sniff(head, len).ok_or_else(|| fail(ReadErrorKind::UnknownFormat))?
         }
     };
     read_input(input, format).map_err(|e| e.with_path(path))

@@ -215,6 +215,39 @@ pub enum Placement {
     Auto,
 }
 
+impl Placement {
+    /// Every placement, in the order of [`Placement::as_str`]'s names.
+    pub const ALL: [Placement; 4] = [
+        Placement::Subset,
+        Placement::Slide,
+        Placement::Collapse,
+        Placement::Auto,
+    ];
+
+    /// `"subset"`, `"slide"`, `"collapse"` or `"auto"` (the command line's names).
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Placement::Subset => "subset",
+            Placement::Slide => "slide",
+            Placement::Collapse => "collapse",
+            Placement::Auto => "auto",
+        }
+    }
+
+    /// Parses [`Placement::as_str`].
+    ///
+    /// ```
+    /// use envelope_simplify::Placement;
+    /// assert_eq!(Placement::parse("collapse"), Some(Placement::Collapse));
+    /// assert_eq!(Placement::parse("move"), None);
+    /// ```
+    #[must_use]
+    pub fn parse(s: &str) -> Option<Placement> {
+        Placement::ALL.into_iter().find(|p| p.as_str() == s)
+    }
+}
+
 /// The policies of [`simplify_local_with`].
 pub struct Policies<'p> {
     /// The validity test (usually an [`EnvelopeFilter`]).
