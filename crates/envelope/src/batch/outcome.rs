@@ -108,6 +108,17 @@ impl Outcome {
         }
     }
 
+    /// The outcome of an item whose run was lost for good outside the library (an engine's
+    /// worker that died every time): `failed`, not final, so the next run tries again.
+    #[must_use]
+    pub fn lost(item: &super::Item, message: String) -> Outcome {
+        let mut o = Outcome::new(&item.id, String::new(), &item.input_as_written);
+        o.status = Status::Failed;
+        o.message = Some(message);
+        o.transient = true;
+        o
+    }
+
     /// One line of JSON (no newline).
     #[must_use]
     pub fn to_json_line(&self) -> String {
