@@ -74,7 +74,9 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         }
         ControlFlow::Continue(())
     };
-    let outcomes = batch.run(args.shard, &on_item).map_err(|e| e.to_string())?;
+    let outcomes = batch
+        .run(args.shard, None, &on_item)
+        .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
     let n = |s: Status| outcomes.iter().filter(|o| o.status == s).count();
     let reused = outcomes.iter().filter(|o| !o.ran).count();

@@ -12,14 +12,22 @@ use crate::Error;
 pub fn run<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + Send) -> Result<T, Error> {
     match threads {
         Some(0) => Err(Error::InvalidArgument("threads must be at least 1".into())),
-        Some(n) => {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .map_err(|e| Error::Threads(e.to_string()))?;
-            Ok(pool.install(work))
-        }
+        Some(n) => Ok(pool(n)?.install(work)),
         None if rayon::current_thread_index().is_some() => Ok(work()),
         None => Ok(rayon::scope(|_| work())),
     }
+}
+
+/// A pool of `threads` workers.
+///
+/// # Errors
+/// As [`run`].
+pub(crate) fn pool(threads: usize) -> Result<rayon::ThreadPool, Error> {
+    if threads == 0 {
+        return Err(Error::InvalidArgument("threads must be at least 1".into()));
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::Threads(e.to_string()))
 }

@@ -19,8 +19,8 @@
 //!   in manifest order, plus this run's transient failures. It is rebuilt from the result
 //!   files at the end of every run, so a rerun with no work left rewrites the summary of
 //!   every shard.
-//! * **Parallelism.** Items run side by side on the worker pool, and each item's own parallel
-//!   work shares it; every output is the same for any number of threads.
+//! * **Parallelism.** As many items run at a time as the pool has threads, and each item's
+//!   own parallel work shares the pool; every output is the same for any number of threads.
 //!
 //! ```
 //! # let dir = tempfile::tempdir()?;
@@ -30,11 +30,11 @@
 //!     "{\"id\": \"cup\", \"input\": \"cup.obj\", \"epsilon\": \"1%\", \"placement\": \"subset\"}\n",
 //! )?;
 //! let batch = envelope::batch::Batch::open(dir.path().join("manifest.jsonl"), dir.path().join("out"))?;
-//! let outcomes = batch.run(None, &|_| std::ops::ControlFlow::Continue(()))?;
+//! let outcomes = batch.run(None, None, &|_| std::ops::ControlFlow::Continue(()))?;
 //! assert_eq!(outcomes[0].status, envelope::batch::Status::Ok);
 //! assert!(dir.path().join("out/cup/simplified.obj").exists());
 //! // A second run reuses the result.
-//! assert!(!batch.run(None, &|_| std::ops::ControlFlow::Continue(()))?[0].ran);
+//! assert!(!batch.run(None, None, &|_| std::ops::ControlFlow::Continue(()))?[0].ran);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -45,14 +45,13 @@ mod run;
 use std::fs;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-
-use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Mutex, PoisonError};
 
 pub use manifest::{Item, Job, ManifestError};
 pub use outcome::{Outcome, Status};
 
-use crate::{Epsilon, Error};
+use crate::{Epsilon, Error, threads};
 
 /// The summary's file name in the output folder.
 pub const SUMMARY: &str = "summary.jsonl";
@@ -167,34 +166,47 @@ impl Batch {
         run::run_item(&self.outdir, item, &AtomicBool::new(false))
     }
 
-    /// Runs the items of `shard` side by side on the current worker pool (see
-    /// [`advanced::in_pool`](crate::advanced::in_pool)), then writes the summary. `on_item`
-    /// hears each outcome as it comes; returning `Break` cancels the run (running items stop
-    /// at their next check and are retried by the next run).
+    /// Runs the items of `shard`, as many at a time as the pool has `threads` (default: one
+    /// per core), each item's own parallel work on the same pool, then writes the summary.
+    /// `on_item` hears each outcome as it comes (from several threads); returning `Break`
+    /// cancels the run (running items stop at their next check and are retried by the next
+    /// run).
     ///
     /// # Errors
     /// [`Error::Io`] when the summary cannot be written; [`Error::Cancelled`] when `on_item`
-    /// asked to stop (finished items are kept).
+    /// asked to stop (finished items are kept); [`Error::InvalidArgument`] for 0 threads.
     pub fn run(
         &self,
         shard: Option<Shard>,
+        threads: Option<usize>,
         on_item: &(dyn Fn(&Outcome) -> ControlFlow<()> + Sync),
     ) -> Result<Vec<Outcome>, Error> {
+        let pool = threads::pool(threads.unwrap_or_else(rayon::current_num_threads))?;
         let stop = AtomicBool::new(false);
         let items: Vec<&Item> = self.shard(shard).collect();
-        let outcomes: Vec<Outcome> = items
-            .par_iter()
-            .with_max_len(1)
-            .filter_map(|item| {
-                if stop.load(Ordering::Relaxed) {
-                    return None;
-                }
-                let outcome = run::run_item(&self.outdir, item, &stop);
-                if on_item(&outcome).is_break() {
-                    stop.store(true, Ordering::Relaxed);
-                }
-                Some(outcome)
-            })
+        let next = AtomicUsize::new(0);
+        let slots: Vec<Mutex<Option<Outcome>>> = items.iter().map(|_| Mutex::new(None)).collect();
+        // One thread per worker hands items to the pool and waits for each outside it: an
+        // item's time is then its own, where items run as tasks inside the pool, a worker
+        // that waits on an item's parallel step would steal another item and time both.
+        std::thread::scope(|scope| {
+            for _ in 0..pool.current_num_threads().min(items.len()) {
+                scope.spawn(|| {
+                    while !stop.load(Ordering::Relaxed) {
+                        let k = next.fetch_add(1, Ordering::Relaxed);
+                        let Some(item) = items.get(k) else { break };
+                        let outcome = pool.install(|| run::run_item(&self.outdir, item, &stop));
+                        if on_item(&outcome).is_break() {
+                            stop.store(true, Ordering::Relaxed);
+                        }
+                        *slots[k].lock().unwrap_or_else(PoisonError::into_inner) = Some(outcome);
+                    }
+                });
+            }
+        });
+        let outcomes: Vec<Outcome> = slots
+            .into_iter()
+            .filter_map(|s| s.into_inner().unwrap_or_else(PoisonError::into_inner))
             .collect();
         let transient: Vec<Outcome> = outcomes.iter().filter(|o| !o.is_final()).cloned().collect();
         self.write_summary(&transient)?;
