@@ -8,6 +8,7 @@
 //! * [`Lod`]: levels of detail with nested vertex sets and switching distances.
 //! * [`verify`]: the certificate of any simplifier's output; [`check`]: is a mesh acceptable
 //!   input.
+//! * [`repair`]: repair that never moves the surface ([`Repaired`], [`RepairReport`]).
 //! * [`Genus`]: fill holes and tunnels smaller than alpha (El-Sana and Varshney 1997).
 //! * [`Error`]: one error type; [`Event`]: what a progress callback is told.
 //!
@@ -23,6 +24,7 @@ mod lod;
 mod mesh;
 mod oracle;
 mod progress;
+mod repair;
 mod simplified;
 mod simplifier;
 mod threads;
@@ -31,6 +33,7 @@ pub use envelope_check::CheckReport;
 pub use envelope_genus::{GenusReport, TessellationSource};
 pub use envelope_global::Method;
 pub use envelope_offset::EnvelopeMethod;
+pub use envelope_repair::{RepairError, RepairReport, Step as RepairStep};
 pub use envelope_simplify::{
     HoleFilling, Level, LodRule, Placement, Screen, SimplifyReport, VerifyReport,
 };
@@ -44,6 +47,7 @@ pub use lod::Lod;
 pub use mesh::{Mesh, MeshError};
 pub use oracle::{check, verify};
 pub use progress::{Event, Stage};
+pub use repair::{Repaired, repair};
 pub use simplified::Simplified;
 pub use simplifier::Simplifier;
 
@@ -88,6 +92,7 @@ pub mod advanced {
     pub use envelope_offset as offset;
     pub use envelope_predicates as predicates;
     pub use envelope_prism as prism;
+    pub use envelope_repair as repair;
     pub use envelope_simplify as simplify;
     pub use envelope_verify as verify;
 
