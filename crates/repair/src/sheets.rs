@@ -10,8 +10,9 @@
 //! afterwards has at most two faces, and every vertex one fan.
 //!
 //! The point set is unchanged: every triangle keeps its corner positions. The sheets still
-//! touch where they were joined (a point, an edge); `envelope check` reports that contact as
-//! intersecting faces, which this repair does not move apart. Pairing the faces around a
+//! touch where they were joined (a point, an edge); `envelope check` reports that contact
+//! (the copies as duplicate vertices, the faces as intersecting), which this repair cannot
+//! move apart without moving the surface. Pairing the faces around a
 //! non-manifold edge by their angular order, to keep two of them as one sheet, is not done:
 //! any pairing leaves the same contact.
 

@@ -18,7 +18,7 @@ use envelope_predicates::bvh::{Aabb, Bvh};
 use envelope_predicates::point_strictly_inside_segment;
 
 use crate::report::{Change, RepairReport, Step};
-use crate::work::{Edges, Side, Work};
+use crate::work::{Edges, Side, Work, sort_along};
 
 pub(crate) fn split_t_junctions(work: &mut Work, report: &mut RepairReport) {
     let edges = Edges::build(work);
@@ -92,20 +92,6 @@ pub(crate) fn split_t_junctions(work: &mut Work, report: &mut RepairReport) {
     }
     work.faces = faces;
     work.face_origin = origin;
-}
-
-/// Orders vertices lying inside segment `ab` from `a` to `b`: along the axis where `a` and
-/// `b` differ most the coordinate is strictly monotone on the segment (exact comparisons).
-fn sort_along(work: &Work, a: u32, b: u32, points: &mut [u32]) {
-    let d = work.pos(b) - work.pos(a);
-    let axis = (0..3)
-        .max_by(|&i, &j| d[i].abs().total_cmp(&d[j].abs()))
-        .unwrap_or(0);
-    let rising = d[axis] > 0.0;
-    points.sort_by(|&x, &y| {
-        let o = work.pos(x)[axis].total_cmp(&work.pos(y)[axis]);
-        if rising { o } else { o.reverse() }
-    });
 }
 
 /// Splits triangle `t` at the vertices inside its sides (`sides[i]`: inside the side from

@@ -71,6 +71,20 @@ impl Work {
     }
 }
 
+/// Orders vertices lying inside segment `ab` from `a` to `b`: along the axis where `a` and
+/// `b` differ most the coordinate is strictly monotone on the segment (exact comparisons).
+pub(crate) fn sort_along(work: &Work, a: u32, b: u32, points: &mut [u32]) {
+    let d = work.pos(b) - work.pos(a);
+    let axis = (0..3)
+        .max_by(|&i, &j| d[i].abs().total_cmp(&d[j].abs()))
+        .unwrap_or(0);
+    let rising = d[axis] > 0.0;
+    points.sort_by(|&x, &y| {
+        let o = work.pos(x)[axis].total_cmp(&work.pos(y)[axis]);
+        if rising { o } else { o.reverse() }
+    });
+}
+
 /// One side of an undirected edge: triangle `face` runs it from corner `corner` to the next.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) struct Side {
