@@ -31,7 +31,9 @@
 //! the T-junction); the T-junction splits close cracks before fans are counted; orientation
 //! needs at most two faces per edge. Geometric decisions are exact predicates of
 //! `envelope-predicates`, and each geometric search goes through a bounding-volume
-//! hierarchy, so time and memory stay O(n log n) plus the exact tests near each element.
+//! hierarchy, so time and memory stay O(n log n) plus the exact tests near each element;
+//! faces stacked so densely that those tests would take quadratic time leave steps 3 and 4
+//! undecided (the `density` module).
 //!
 //! What repair does not touch, because it cannot without moving the surface: faces that
 //! cross or touch away from shared vertices (sheets split at a non-manifold vertex or edge
@@ -59,6 +61,7 @@
 #![forbid(unsafe_code)]
 
 mod degenerate;
+mod density;
 mod duplicates;
 mod error;
 mod orient;
@@ -105,8 +108,13 @@ pub fn repair(
     let mut work = work::Work::new(soup);
     weld::weld(&mut work, &mut report);
     duplicates::drop_duplicates(&mut work, &mut report);
-    degenerate::drop_covered(&mut work, &mut report)?;
-    tjunction::split_t_junctions(&mut work, &mut report);
+    if density::too_dense(&work) {
+        report.undecided(Step::DegenerateFaces);
+        report.undecided(Step::TJunctions);
+    } else {
+        degenerate::drop_covered(&mut work, &mut report)?;
+        tjunction::split_t_junctions(&mut work, &mut report);
+    }
     sheets::split_sheets(&mut work, &mut report);
     orient::orient(&mut work, &mut report)?;
     unreferenced::drop_unreferenced(&mut work, &mut report);

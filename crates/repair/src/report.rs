@@ -237,6 +237,9 @@ pub struct StepReport {
     pub count: usize,
     /// The first [`crate::RepairOptions::max_examples`] changes.
     pub examples: Vec<Change>,
+    /// The step was not run: the faces are stacked too densely to search them within the
+    /// pair budget the input checker shares (its elements are left as they were).
+    pub undecided: bool,
 }
 
 /// What [`crate::repair`] did, step by step.
@@ -295,6 +298,11 @@ impl RepairReport {
         }
     }
 
+    /// Marks `step` as not run (see [`StepReport::undecided`]).
+    pub(crate) fn undecided(&mut self, step: Step) {
+        self.steps.entry(step).or_default().undecided = true;
+    }
+
     /// One step's changes.
     #[must_use]
     pub fn step(&self, step: Step) -> &StepReport {
@@ -314,7 +322,7 @@ impl RepairReport {
 
     /// The report as one JSON object with stable field names: `input` and `output`
     /// (`vertices`, `faces`), `changed`, `indices` (what the indices name), and `steps`, an
-    /// array in run order of `{ "step", "counts", "count", "examples" }`.
+    /// array in run order of `{ "step", "counts", "count", "undecided", "examples" }`.
     #[must_use]
     pub fn to_json(&self) -> Value {
         json!({
@@ -326,6 +334,7 @@ impl RepairReport {
                 "step": step.key(),
                 "counts": step.counts(),
                 "count": r.count,
+                "undecided": r.undecided,
                 "examples": r.examples.iter().map(Change::to_json).collect::<Vec<_>>(),
             })).collect::<Vec<_>>(),
         })
@@ -341,6 +350,14 @@ impl fmt::Display for RepairReport {
             self.input_vertices, self.output_vertices, self.input_faces, self.output_faces
         )?;
         for (step, r) in self.steps() {
+            if r.undecided {
+                write!(
+                    f,
+                    "\n  {:<22} {:>8}  undecided: faces stacked too densely to search",
+                    step.key(),
+                    "?"
+                )?;
+            }
             if r.count == 0 {
                 continue;
             }

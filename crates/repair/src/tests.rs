@@ -121,3 +121,83 @@ fn t_junction_on_two_sides_of_one_face() {
     let t = envelope_mesh::analyze(&out);
     assert_eq!((t.border_loops.len(), t.manifold), (1, true));
 }
+
+/// A xorshift generator (seeded, reproducible).
+fn xorshift(mut state: u64) -> impl FnMut(usize) -> usize {
+    move |n| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state % n as u64) as usize
+    }
+}
+
+#[test]
+fn random_damage_to_a_clean_mesh_is_undone_exactly() {
+    for seed in 1..40u64 {
+        let clean = if seed % 2 == 0 {
+            generate::icosphere(2, 1.0)
+        } else {
+            generate::torus(1.0, 0.3, 16, 8)
+        };
+        let mut rand = xorshift(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let mut s = clean.clone();
+        let n = s.num_faces();
+        // Unwelded corners: a copy of the vertex at the end.
+        let mut corners: Vec<(usize, usize)> = (0..rand(20)).map(|_| (rand(n), rand(3))).collect();
+        corners.sort_unstable();
+        corners.dedup();
+        let copies = corners.len();
+        for (f, i) in corners {
+            s.faces[f][i] = envelope_mesh::VertexId::from_index(s.positions.len());
+            s.positions.push(s.position(clean.faces[f][i]));
+        }
+        // Flipped faces, fewer than half of the component.
+        let mut flipped: Vec<usize> = (0..rand(10)).map(|_| rand(n)).collect();
+        flipped.sort_unstable();
+        flipped.dedup();
+        for &f in &flipped {
+            s.faces[f].swap(1, 2);
+        }
+        // Duplicates, rotated or reversed, at the end.
+        let duplicates = rand(6);
+        for _ in 0..duplicates {
+            let mut t = s.faces[rand(n)];
+            t.rotate_left(rand(3));
+            if rand(2) == 1 {
+                t.swap(0, 1);
+            }
+            s.faces.push(t);
+        }
+        // Vertices no face uses.
+        let extra = rand(4);
+        for k in 0..extra {
+            s.positions
+                .push(glam::DVec3::new(10.0 + k as f64, 0.0, 0.0));
+        }
+        let (out, report) = repair(&s, &RepairOptions::default()).unwrap();
+        assert_eq!(out, clean, "seed {seed}");
+        let counts: Vec<usize> = Step::ALL.iter().map(|&st| report.step(st).count).collect();
+        assert_eq!(
+            counts,
+            [copies, duplicates, 0, 0, 0, 0, flipped.len(), extra],
+            "seed {seed}: {report}"
+        );
+    }
+}
+
+#[test]
+fn a_dense_stack_leaves_the_geometric_steps_undecided() {
+    // 3,000 distinct triangles over one edge, all boxes overlapping: about 4.5 million pairs.
+    let mut p = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
+    let mut f = Vec::new();
+    for i in 0..3000u32 {
+        p.push([0.5, 1.0, f64::from(i) / 3000.0]);
+        f.push([0, 1, i + 2]);
+    }
+    let (_, report) = run(&p, &f);
+    assert!(report.step(Step::DegenerateFaces).undecided);
+    assert!(report.step(Step::TJunctions).undecided);
+    assert!(!report.step(Step::Weld).undecided);
+    assert_eq!(report.to_json()["steps"][3]["undecided"], true);
+}
