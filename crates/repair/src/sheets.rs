@@ -73,6 +73,11 @@ pub(crate) fn split_sheets(work: &mut Work, report: &mut RepairReport) {
     let mut taken = vec![false; work.positions.len()];
     let mut sheets = vec![0usize; work.positions.len()];
     for f in 0..work.faces.len() {
+        let [a, b, c] = work.faces[f];
+        if a == b || b == c || a == c {
+            // Left by an undecided zero-area step: joins no fan, keeps its vertices.
+            continue;
+        }
         for i in 0..3 {
             let slot = (3 * f + i) as u32;
             let root = fans.find(slot) as usize;

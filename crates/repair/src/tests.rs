@@ -190,12 +190,14 @@ fn random_damage_to_a_clean_mesh_is_undone_exactly() {
 fn a_dense_stack_leaves_the_geometric_steps_undecided() {
     // 3,000 distinct triangles over one edge, all boxes overlapping: about 4.5 million pairs.
     let mut p = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
-    let mut f = Vec::new();
+    let mut f = vec![[0, 0, 1]]; // a zero-area face, left as it is
     for i in 0..3000u32 {
         p.push([0.5, 1.0, f64::from(i) / 3000.0]);
         f.push([0, 1, i + 2]);
+        f.last_mut().unwrap().swap(0, (i % 2) as usize);
     }
-    let (_, report) = run(&p, &f);
+    let (out, report) = run(&p, &f);
+    assert_eq!(out.faces[0], [0, 0, 1].map(envelope_mesh::VertexId));
     assert!(report.step(Step::DegenerateFaces).undecided);
     assert!(report.step(Step::TJunctions).undecided);
     assert!(!report.step(Step::Weld).undecided);
