@@ -40,7 +40,14 @@ fn summary(label: &str, r: &Repaired) -> String {
         let left: Vec<String> = r
             .left()
             .into_iter()
-            .map(|c| format!("{} ({})", c.key(), r.check().finding(c).count))
+            .map(|c| {
+                let f = r.check().finding(c);
+                if f.undecided {
+                    format!("{} (undecided: faces stacked too densely)", c.key())
+                } else {
+                    format!("{} ({})", c.key(), f.count)
+                }
+            })
             .collect();
         s.push_str(&format!(
             "\nrepaired mesh: still not acceptable, left: {} (not repairable without moving the surface)",

@@ -220,8 +220,14 @@ impl fmt::Display for Change {
                 write!(f, "{vertex} inside {}-{} of {face}", edge[0], edge[1])
             }
             Change::NonManifoldEdge { edge, faces } => {
-                let fs: Vec<String> = faces.iter().map(ToString::to_string).collect();
-                write!(f, "{}-{} in {}", edge[0], edge[1], fs.join(" "))
+                // The first few: a dense stack puts thousands of faces on one edge.
+                let fs: Vec<String> = faces.iter().take(8).map(ToString::to_string).collect();
+                let more = if faces.len() > 8 {
+                    format!(" ... ({} faces)", faces.len())
+                } else {
+                    String::new()
+                };
+                write!(f, "{}-{} in {}{more}", edge[0], edge[1], fs.join(" "))
             }
             Change::VertexSplit { vertex, sheets } => write!(f, "{vertex} into {sheets}"),
             Change::FaceFlipped { face } => write!(f, "{face}"),
