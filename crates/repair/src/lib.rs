@@ -4,8 +4,13 @@
 //! exactly as it was, so a simplification within epsilon of the repaired mesh is within
 //! epsilon of the original, and a certificate against the repaired mesh is one against the
 //! original file. What cannot be repaired that way is refused with the element named
-//! ([`RepairError`]); nothing but an exact duplicate, or a zero-area face proved to lie on
-//! other faces, is ever dropped.
+//! ([`RepairError`]). No face is dropped but an exact duplicate or a zero-area face proved to
+//! lie on other faces; no vertex but one no face uses.
+//!
+//! A crate of its own rather than a module of a neighbour: `envelope-check` is the read-only
+//! oracle that decides whether input is acceptable (and judges this crate's output), and
+//! `envelope-mesh` makes no geometric decision (an architecture invariant), while three of
+//! these steps are geometric.
 //!
 //! The steps run in this fixed order ([`Step::ALL`]), each its own module, each recording
 //! into the [`RepairReport`]:
