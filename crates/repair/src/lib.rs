@@ -100,6 +100,19 @@ impl Default for RepairOptions {
 /// then the copies made by splitting non-manifold vertices; its faces come in input order,
 /// the pieces of a split face in its place.
 ///
+/// ```
+/// use envelope_mesh::{generate, FaceId};
+/// use envelope_repair::{repair, RepairError, RepairOptions, Step};
+/// // Two triangles sharing only a vertex: one vertex per sheet afterwards.
+/// let (out, report) = repair(&generate::bow_tie(), &RepairOptions::default())?;
+/// assert_eq!(out.num_vertices(), 6);
+/// assert_eq!(report.step(Step::NonManifoldVertices).count, 1);
+/// // A Möbius band has no consistent orientation: refused, named.
+/// let err = repair(&generate::moebius_strip(5), &RepairOptions::default()).unwrap_err();
+/// assert!(matches!(err, RepairError::NonOrientable { first: FaceId(0), .. }));
+/// # Ok::<(), RepairError>(())
+/// ```
+///
 /// # Errors
 /// A [`RepairError`] naming the input element: a coordinate that is not finite, an index
 /// out of range, a zero-area face whose points are not proved to lie on other faces, a

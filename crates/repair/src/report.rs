@@ -14,6 +14,12 @@ use glam::DVec3;
 use serde_json::{Value, json};
 
 /// The steps of [`crate::repair`], in the order they run ([`Step::ALL`]).
+///
+/// ```
+/// use envelope_repair::Step;
+/// assert_eq!(Step::ALL[0].key(), "weld");
+/// assert_eq!(Step::ALL.last(), Some(&Step::UnreferencedVertices));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Step {
     /// Referenced vertices at bitwise-equal positions (`-0.0` as `0.0`) become one.
