@@ -68,6 +68,10 @@ pub(crate) struct Args {
     /// Hole filling.
     #[arg(long, value_enum, default_value_t = FillArg::default_())]
     hole_filling: FillArg,
+    /// Repair IN in memory first, without moving its surface (`envelope repair`); level 0 is
+    /// the repaired IN (the same point set) and summary.json's `repair` lists the changes.
+    #[arg(long)]
+    repair: bool,
     /// Skip the certificates against the original.
     #[arg(long)]
     no_verify: bool,
@@ -83,6 +87,8 @@ pub(crate) struct Chain<'a> {
     pub(crate) epsilons: &'a [Length],
     pub(crate) settings: Settings,
     pub(crate) quiet: bool,
+    /// The repair report (`--repair`), for summary.json.
+    pub(crate) repair: Option<serde_json::Value>,
 }
 
 /// How a chain is built, besides its epsilons.
@@ -118,6 +124,8 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     let mut plan = Plan::new(&[("IN", &args.input)]);
     plan_chain(&mut plan, &args.out_dir, args.epsilons.0.len())?;
     let mesh = envelope::load(&args.input).map_err(|e| e.to_string())?;
+    let label = args.input.display().to_string();
+    let (mesh, repair) = crate::repair::maybe(mesh, args.repair, &label, args.quiet)?;
     let settings = Settings {
         rule: match args.rule {
             RuleArg::Cumulative => LodRule::Cumulative,
@@ -140,6 +148,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
             epsilons: &args.epsilons.0,
             settings,
             quiet: args.quiet,
+            repair,
         },
     )
 }
@@ -235,6 +244,10 @@ pub(crate) fn run_chain(mesh: &Mesh, chain: Chain<'_>) -> Result<ExitCode, Strin
             v
         }).collect::<Vec<_>>(),
     });
+    let mut summary = summary;
+    if let Some(r) = chain.repair {
+        summary["repair"] = r;
+    }
     let summary_path = dir.join("summary.json");
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     staging.text(&summary_path, &(text + "\n"))?;

@@ -21,6 +21,7 @@ mod lod;
 mod outputs;
 mod pipeline;
 mod ranges;
+mod repair;
 mod simplify;
 mod verify;
 
@@ -89,6 +90,13 @@ enum Command {
     /// Exit 0 every item is ok, 1 some item is not (see the summary), 2 the manifest or the
     /// arguments are wrong.
     Batch(batch::Args),
+    /// Repair IN without moving its surface (weld, duplicate and zero-area faces,
+    /// T-junctions, non-manifold sheets, orientation) and write OUT atomically.
+    ///
+    /// Exit 0 repaired and acceptable input, 1 repaired but still not acceptable (what is
+    /// left is printed; OUT is written), 2 unreadable, bad arguments, or refused (the element
+    /// that cannot be repaired without moving the surface is named; OUT untouched).
+    Repair(repair::Args),
     /// Run the main job on a built-in model (a cup: curved wall, sharp bottom crease, open
     /// rim): its chain of levels of detail at 1/64% ... 1%, certified, into ./envelope-demo/.
     Demo {
@@ -116,6 +124,7 @@ fn main() -> ExitCode {
         Command::Genus(args) => genus::run(&args),
         Command::Pipeline(args) => pipeline::run(&args),
         Command::Batch(args) => batch::run(&args),
+        Command::Repair(args) => repair::run(&args),
         Command::Demo { out_dir } => run_demo(&out_dir),
     })
     .map_err(|e| e.to_string())
@@ -148,6 +157,7 @@ fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
             epsilons: &epsilons,
             settings: lod::Settings::default(),
             quiet: false,
+            repair: None,
         },
     )
 }

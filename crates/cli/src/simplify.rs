@@ -193,6 +193,11 @@ pub(crate) struct Args {
     /// Write the report as JSON to this file (its directory must exist).
     #[arg(long)]
     report: Option<PathBuf>,
+    /// Repair IN in memory first, without moving its surface (`envelope repair`); the
+    /// certificate is then against the repaired IN, whose point set is IN's. The report's
+    /// `repair` lists the changes.
+    #[arg(long, conflicts_with = "epsilon_file")]
+    repair: bool,
     /// Skip the certificate of the output.
     #[arg(long)]
     no_verify: bool,
@@ -431,6 +436,8 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         plan.file("--report", path)?;
     }
     let mesh = envelope::load(&args.input).map_err(|e| e.to_string())?;
+    let label = args.input.display().to_string();
+    let (mesh, repair) = crate::repair::maybe(mesh, args.repair, &label, args.quiet)?;
     let bar = Bar::new(args.quiet);
     let result = simplifier(field(args, mesh.soup())?)?
         .method(args.method.method())
@@ -464,6 +471,9 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         let mut v = report.to_json();
         v["input"] = args.input.display().to_string().into();
         v["output"] = target.display().to_string().into();
+        if let Some(r) = repair {
+            v["repair"] = r;
+        }
         let text = serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?;
         staging.text(path, &(text + "\n"))?;
     }

@@ -7,6 +7,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use envelope::Mesh;
 use envelope::advanced::io::read_path;
 use envelope::advanced::verify::{
     Certificate, OneSided, Options, TopologySummary, Verdict, certify,
@@ -48,6 +49,11 @@ pub(crate) struct Args {
     /// report names one pair instead of all).
     #[arg(long)]
     stop_at_first: bool,
+    /// Repair ORIG in memory first, without moving its surface (`envelope repair`): distances
+    /// are the same, the topology compared is the repaired ORIG's. The JSON's `repair` lists
+    /// the changes.
+    #[arg(long)]
+    repair: bool,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -55,6 +61,10 @@ pub(crate) struct Args {
 
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     let (orig, _) = read_path(&args.orig).map_err(|e| e.to_string())?;
+    let label = args.orig.display().to_string();
+    let (orig, repair) =
+        crate::repair::maybe(Mesh::from_soup(orig), args.repair, &label, args.json)?;
+    let orig = orig.into_soup();
     let (approx, _) = read_path(&args.approx).map_err(|e| e.to_string())?;
     let scale = if args.relative { orig.diagonal() } else { 1.0 };
     let epsilon = args.epsilon.resolve_as(
@@ -76,6 +86,9 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         let mut v = cert.to_json();
         v["orig"] = args.orig.display().to_string().into();
         v["approx"] = args.approx.display().to_string().into();
+        if let Some(r) = repair {
+            v["repair"] = r;
+        }
         println!(
             "{}",
             serde_json::to_string_pretty(&v).map_err(|e| e.to_string())?

@@ -246,3 +246,40 @@ fn all_ok_exits_zero() {
     assert_eq!(run.status.code(), Some(0), "{}", stdout(&run));
     assert!(dir.path().join("out/s/simplified.stl").exists());
 }
+
+#[test]
+fn repair_lets_an_unwelded_mesh_through() {
+    let dir = tempfile::tempdir().unwrap();
+    // Every face with corners of its own, as an STL-like export leaves it: refused as is.
+    let sphere = generate::uv_sphere(16, 8, 1.0);
+    let positions = sphere
+        .faces
+        .iter()
+        .flat_map(|f| f.map(|v| sphere.positions[v.index()]))
+        .collect();
+    let faces = (0..sphere.faces.len() as u32)
+        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2].map(envelope_mesh::VertexId))
+        .collect();
+    let unwelded = envelope_mesh::TriangleSoup::new(positions, faces);
+    write_path(dir.path().join("u.off"), &unwelded, Format::Off).unwrap();
+    let manifest = dir.path().join("m.jsonl");
+    fs::write(
+        &manifest,
+        "{\"id\": \"as-is\", \"input\": \"u.off\", \"epsilon\": \"2%\"}\n\
+         {\"id\": \"repaired\", \"input\": \"u.off\", \"epsilon\": \"2%\", \"repair\": true}\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let run = batch(&manifest, &out, &[]);
+    assert_eq!(run.status.code(), Some(1));
+    assert_eq!(
+        statuses(&out),
+        [("as-is", "bad_input"), ("repaired", "ok")].map(|(a, b)| (a.to_string(), b.to_string()))
+    );
+    let lines = summary(&out);
+    assert_eq!(lines[1]["input_faces"], sphere.faces.len());
+    let repair: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(out.join("repaired/repair.json")).unwrap())
+            .unwrap();
+    assert_eq!(repair["acceptable"], true, "{repair}");
+}

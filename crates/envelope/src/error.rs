@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use envelope_genus::GenusError;
 use envelope_io::{ReadError, WriteError};
+use envelope_repair::RepairError;
 use envelope_simplify::DriverError;
 
 use crate::{MeshError, Simplified};
@@ -39,6 +40,9 @@ pub enum Error {
     /// The genus reduction refused its input.
     #[error(transparent)]
     Genus(#[from] GenusError),
+    /// The repair refused: the named element cannot be repaired without moving the surface.
+    #[error("cannot repair without moving the surface: {0}")]
+    Repair(#[from] RepairError),
     /// The progress callback asked to stop.
     #[error("cancelled")]
     Cancelled,

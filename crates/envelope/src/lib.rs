@@ -8,6 +8,7 @@
 //! * [`Lod`]: levels of detail with nested vertex sets and switching distances.
 //! * [`verify`]: the certificate of any simplifier's output; [`check`]: is a mesh acceptable
 //!   input.
+//! * [`repair`]: repair that never moves the surface ([`Repaired`], [`RepairReport`]).
 //! * [`Genus`]: fill holes and tunnels smaller than alpha (El-Sana and Varshney 1997).
 //! * [`batch`]: many meshes from a JSON Lines manifest, resumable, in shards.
 //! * [`Error`]: one error type; [`Event`]: what a progress callback is told.
@@ -25,6 +26,7 @@ mod lod;
 mod mesh;
 mod oracle;
 mod progress;
+mod repair;
 mod simplified;
 mod simplifier;
 mod threads;
@@ -33,6 +35,7 @@ pub use envelope_check::CheckReport;
 pub use envelope_genus::{GenusReport, TessellationSource};
 pub use envelope_global::Method;
 pub use envelope_offset::EnvelopeMethod;
+pub use envelope_repair::{RepairError, RepairReport, Step as RepairStep};
 pub use envelope_simplify::{
     HoleFilling, Level, LodRule, Placement, Screen, SimplifyReport, VerifyReport,
 };
@@ -46,6 +49,7 @@ pub use lod::Lod;
 pub use mesh::{Mesh, MeshError};
 pub use oracle::{check, verify};
 pub use progress::{Event, Stage};
+pub use repair::{Repaired, repair};
 pub use simplified::Simplified;
 pub use simplifier::Simplifier;
 
@@ -90,6 +94,7 @@ pub mod advanced {
     pub use envelope_offset as offset;
     pub use envelope_predicates as predicates;
     pub use envelope_prism as prism;
+    pub use envelope_repair as repair;
     pub use envelope_simplify as simplify;
     pub use envelope_verify as verify;
 

@@ -115,12 +115,15 @@ fn work(
     outcome: &mut Outcome,
 ) -> Result<(), Error> {
     let (soup, _) = read_bytes(bytes, &item.input)?;
-    let mesh = Mesh::from_soup(soup);
+    let mut mesh = Mesh::from_soup(soup);
+    fs::create_dir_all(staging).map_err(|e| write_error(staging, &e))?;
     if item.repair {
-        // REPAIR-MERGE: replaced by the repair step when it lands.
-        return Err(Error::InvalidArgument(
-            "`repair` is not available yet".into(),
-        ));
+        // The repaired mesh has the file's point set: the certificate against it holds
+        // against the file (`envelope::repair`).
+        let repaired = crate::repair(&mesh)?;
+        write_json(staging, "repair.json", &repaired.to_json())?;
+        outcome.outputs.push("repair.json".into());
+        mesh = repaired.into_mesh();
     }
     outcome.input_faces = Some(mesh.num_faces());
     // The manifest allows only the four extensions, and an input read has one of them
@@ -132,7 +135,6 @@ fn work(
     .or_else(|| Format::sniff(bytes, Some(bytes.len() as u64)))
     .ok_or_else(|| Error::InvalidArgument(format!("{}: no output format", item.id)))?;
     let ext = format.extension();
-    fs::create_dir_all(staging).map_err(|e| write_error(staging, &e))?;
     let cancel = |_| {
         if stop.load(Ordering::Relaxed) {
             std::ops::ControlFlow::Break(())
@@ -228,9 +230,11 @@ fn classify(outcome: &mut Outcome, e: &Error) {
     use envelope_simplify::DriverError;
     outcome.message = Some(e.to_string());
     (outcome.status, outcome.transient) = match e {
-        Error::Read(_) | Error::InvalidMesh(_) | Error::InvalidEpsilon(_) | Error::Genus(_) => {
-            (Status::BadInput, false)
-        }
+        Error::Read(_)
+        | Error::InvalidMesh(_)
+        | Error::InvalidEpsilon(_)
+        | Error::Genus(_)
+        | Error::Repair(_) => (Status::BadInput, false),
         Error::Simplify(
             DriverError::Unacceptable(_)
             | DriverError::Build(_)
