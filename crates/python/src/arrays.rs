@@ -9,8 +9,7 @@ use envelope::{Error, Mesh};
 use numpy::ndarray::Array2;
 use numpy::{
     Element, IntoPyArray, PyArray2, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods,
-    PyUntypedArray,
-    PyUntypedArrayMethods,
+    PyUntypedArray, PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -51,8 +50,8 @@ fn asarray<'py>(obj: &Bound<'py, PyAny>, dtype: Option<&str>) -> PyResult<Bound<
     numpy.getattr("asarray")?.call1((obj, dtype))
 }
 
-/// Checks an `(n, 3)` shape; `what` names the array.
-fn check_shape(array: &Bound<'_, PyUntypedArray>, what: &str) -> PyResult<()> {
+/// Checks a `(rows, 3)` shape; `what` names the array and `rows` its row count.
+fn check_shape(array: &Bound<'_, PyUntypedArray>, what: &str, rows: &str) -> PyResult<()> {
     let shape = array.shape();
     if shape.len() == 2 && shape[1] == 3 {
         return Ok(());
@@ -64,7 +63,7 @@ fn check_shape(array: &Bound<'_, PyUntypedArray>, what: &str) -> PyResult<()> {
         .join(", ");
     let comma = if array.ndim() == 1 { "," } else { "" };
     Err(invalid(format!(
-        "{what} must have shape (n, 3), got ({shape}{comma})"
+        "{what} must have shape ({rows}, 3), got ({shape}{comma})"
     )))
 }
 
@@ -76,7 +75,7 @@ fn positions(obj: &Bound<'_, PyAny>) -> PyResult<Vec<[f64; 3]>> {
         ))
     })?;
     let array = array.cast_into::<PyArrayDyn<f64>>()?;
-    check_shape(array.as_untyped(), "vertices")?;
+    check_shape(array.as_untyped(), "vertices", "n")?;
     let view = array.readonly();
     Ok(view
         .as_array()
@@ -137,7 +136,7 @@ fn rows<T: Element + Copy + Into<i128>>(
     array: &Bound<'_, PyUntypedArray>,
     dtype: &str,
 ) -> PyResult<Vec<[i128; 3]>> {
-    check_shape(array, "faces")?;
+    check_shape(array, "faces", "m")?;
     let cast = array.call_method1("astype", (dtype,))?;
     let cast = cast.cast_into::<PyArrayDyn<T>>()?;
     let view = cast.readonly();
@@ -198,4 +197,3 @@ pub(crate) fn json<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, P
 pub(crate) fn json_dict<'py>(py: Python<'py>, value: &Value) -> PyResult<Bound<'py, PyDict>> {
     Ok(json(py, value)?.cast_into::<PyDict>()?)
 }
-

@@ -72,7 +72,7 @@ pub(crate) struct OneSided {
 impl OneSided {
     fn __repr__(&self) -> String {
         format!(
-            "OneSided(verdict={:?}, lower={}, upper={})",
+            "OneSided(verdict='{}', lower={}, upper={})",
             self.verdict, self.lower, self.upper
         )
     }
@@ -169,8 +169,14 @@ impl Certificate {
 
     fn __repr__(&self) -> String {
         format!(
-            "Certificate(verdict={:?}, epsilon={}, violations={:?})",
-            self.verdict, self.epsilon, self.violations
+            "Certificate(verdict='{}', epsilon={}, violations=[{}])",
+            self.verdict,
+            self.epsilon,
+            self.violations
+                .iter()
+                .map(|v| format!("'{v}'"))
+                .collect::<Vec<_>>()
+                .join(", ")
         )
     }
 }

@@ -168,8 +168,8 @@ pub(crate) fn genus(
     source: Option<&str>,
     threads: Option<i64>,
 ) -> PyResult<GenusResult> {
-    let mut reduction = Genus::new(options::epsilon(alpha)?)
-        .source(options::tessellation_source(source)?);
+    let mut reduction =
+        Genus::new(options::epsilon(alpha)?).source(options::tessellation_source(source)?);
     if let Some(beta) = beta_degrees {
         reduction = reduction.beta_degrees(beta);
     }

@@ -44,7 +44,10 @@ pub(crate) fn epsilons(value: &Bound<'_, PyAny>) -> PyResult<Vec<Epsilon>> {
         .map_err(|_| {
             from_error(Error::InvalidEpsilon(format!(
                 "expected a list of epsilons or a comma-separated string, got {}",
-                value.get_type().name().map_or_else(|_| "?".into(), |n| n.to_string())
+                value
+                    .get_type()
+                    .name()
+                    .map_or_else(|_| "?".into(), |n| n.to_string())
             )))
         })?
         .map(|item| epsilon(&item?))
@@ -256,7 +259,10 @@ mod tests {
         assert_ne!(name_of(PLACEMENTS, &defaults::PLACEMENT), "?");
         assert_ne!(name_of(RULES, &LodRule::default()), "?");
         assert_ne!(name_of(SOURCES, &TessellationSource::default()), "?");
-        assert_eq!(name_of(METHODS, &defaults::METHOD), defaults::METHOD.as_str());
+        assert_eq!(
+            name_of(METHODS, &defaults::METHOD),
+            defaults::METHOD.as_str()
+        );
     }
 
     #[test]

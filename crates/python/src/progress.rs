@@ -61,10 +61,7 @@ impl Watch {
     }
 
     fn take_error(&self) -> Option<PyErr> {
-        self.error
-            .lock()
-            .unwrap_or_else(|p| p.into_inner())
-            .take()
+        self.error.lock().unwrap_or_else(|p| p.into_inner()).take()
     }
 }
 
