@@ -98,3 +98,9 @@ def test_ctrl_c_without_a_callback(cup):
         interrupted = True
     elapsed = time.monotonic() - start
     assert interrupted and not finished, f"not interrupted ({elapsed:.2f} s)"
+
+
+def test_progress_must_be_callable(sphere):
+    with pytest.raises(envelope.InvalidArgumentError) as err:
+        envelope.simplify(*sphere, "1%", progress=5)
+    assert str(err.value) == "invalid argument: progress must be callable or None, got int"

@@ -23,6 +23,8 @@ use envelope::{Event, Stage};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::errors::from_error;
+
 /// How often the waiting thread looks for signals.
 const POLL: Duration = Duration::from_millis(25);
 
@@ -116,6 +118,14 @@ pub(crate) fn run<T: Send>(
     callback: Option<Py<PyAny>>,
     work: impl FnOnce(&Watch) -> T + Send,
 ) -> PyResult<T> {
+    if let Some(callback) = &callback
+        && !callback.bind(py).is_callable()
+    {
+        return Err(from_error(envelope::Error::InvalidArgument(format!(
+            "progress must be callable or None, got {}",
+            callback.bind(py).get_type().name()?
+        ))));
+    }
     let watch = Watch {
         callback,
         stop: AtomicBool::new(false),
