@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde_json::Value;
 
-use crate::arrays::json;
+use crate::arrays::{json, json_dict};
 
 /// A point exactly on a face of one mesh, proved farther than epsilon from the other.
 #[pyclass(frozen, get_all, module = "envelope")]
@@ -164,7 +164,7 @@ impl Certificate {
     /// Everything, as the command line's JSON (stable keys; relative values over the
     /// original's diagonal; at most 100 intersecting pairs).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        crate::arrays::json_dict(py, &self.json)
+        json_dict(py, &self.json)
     }
 
     fn __repr__(&self) -> String {

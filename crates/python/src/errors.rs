@@ -182,7 +182,7 @@ fn kind_of(e: &Error) -> Kind {
 }
 
 /// The exception for a library error, its message the error's `Display`. A violated
-/// certificate carries no `result` here: [`crate::simplify`] attaches the output.
+/// certificate carries no `result` here: `simplify` attaches the output.
 pub(crate) fn from_error(e: Error) -> PyErr {
     kind_of(&e).err(e.to_string())
 }
