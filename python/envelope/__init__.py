@@ -85,7 +85,7 @@ __all__ = [
 ]
 
 Epsilon = Union[float, str]
-Progress = Callable[[dict], Optional[bool]]
+Progress = Callable[[dict[str, Any]], Optional[bool]]
 
 
 def simplify(
@@ -260,7 +260,7 @@ def genus(
     )
 
 
-def load(path: Union[str, PathLike]) -> tuple[Any, Any]:
+def load(path: Union[str, "PathLike[str]"]) -> tuple[Any, Any]:
     """Read a mesh file (OBJ, OFF, PLY, STL) into ``(vertices, faces)`` arrays.
 
     Polygons are triangulated; anything that could change the surface and cannot be read
@@ -276,7 +276,7 @@ def load(path: Union[str, PathLike]) -> tuple[Any, Any]:
     return _envelope.load(path)
 
 
-def save(path: Union[str, PathLike], vertices: Any, faces: Any) -> None:
+def save(path: Union[str, "PathLike[str]"], vertices: Any, faces: Any) -> None:
     """Write a mesh in the format its extension names (``.obj``, ``.off``, ``.ply``,
     ``.stl``), through a temporary file renamed into place only when complete.
 
