@@ -78,6 +78,7 @@ __all__ = [
     "genus",
     "load",
     "lod",
+    "repair",
     "save",
     "simplify",
     "simplify_trimesh",
@@ -274,6 +275,25 @@ def load(path: Union[str, "PathLike[str]"]) -> tuple[Any, Any]:
     (3, 3)
     """
     return _envelope.load(path)
+
+
+def repair(vertices: Any, faces: Any) -> tuple[Any, Any, dict[str, Any]]:
+    """Repair a mesh without moving its surface: weld vertices at bitwise-equal positions,
+    drop exact duplicate faces, zero-area faces proved to lie on others and unreferenced
+    vertices, split faces at T-junctions and non-manifold vertices and edges into manifold
+    sheets, orient each component consistently. Returns ``(vertices, faces, report)``; the
+    report lists every change by input index, ``acceptable`` (whether :func:`simplify`
+    takes the result) and what is ``left`` (such as intersecting faces). What cannot be
+    repaired without moving the surface raises :class:`NotAcceptableError` naming it.
+
+    >>> import envelope, numpy as np
+    >>> v, f = envelope.demo()
+    >>> apart = v[f.reshape(-1)]                      # every face with corners of its own
+    >>> v2, f2, report = envelope.repair(apart, np.arange(len(apart)).reshape(-1, 3))
+    >>> report["acceptable"], len(f2) == len(f)
+    (True, True)
+    """
+    return _envelope.repair(vertices, faces)
 
 
 def save(path: Union[str, "PathLike[str]"], vertices: Any, faces: Any) -> None:

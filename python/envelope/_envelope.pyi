@@ -209,3 +209,31 @@ def genus(
 def load(path: Union[str, PathLike[str]]) -> tuple[_Vertices, _Faces]: ...
 def save(path: Union[str, PathLike[str]], vertices: Any, faces: Any) -> None: ...
 def demo() -> tuple[_Vertices, _Faces]: ...
+def repair(vertices: Any, faces: Any) -> tuple[_Vertices, _Faces, dict[str, Any]]: ...
+
+# The natives of envelope.batch (python/envelope/batch.py): an outcome is its summary line,
+# whether it is final, and whether this run did the work.
+def batch_items(
+    manifest: str, outdir: str, epsilon: Optional[_Epsilon] = None, shard: Optional[str] = None
+) -> list[str]: ...
+def batch_run_item(
+    manifest: str,
+    outdir: str,
+    epsilon: Optional[_Epsilon],
+    item: str,
+    threads: Optional[int] = None,
+) -> tuple[str, bool, bool]: ...
+def batch_run(
+    manifest: str,
+    outdir: str,
+    epsilon: Optional[_Epsilon] = None,
+    shard: Optional[str] = None,
+    threads: Optional[int] = None,
+    on_item: Optional[Callable[[str, bool, bool], bool]] = None,
+) -> list[tuple[str, bool, bool]]: ...
+def batch_summary(
+    manifest: str, outdir: str, epsilon: Optional[_Epsilon], transient: list[str]
+) -> list[str]: ...
+def batch_lost(
+    manifest: str, outdir: str, epsilon: Optional[_Epsilon], item: str, message: str
+) -> str: ...

@@ -55,7 +55,7 @@ pub enum Error {
     Threads(String),
     /// A batch manifest line that cannot be run.
     #[error(transparent)]
-    Manifest(#[from] crate::batch::ManifestError),
+    Manifest(#[from] ManifestError),
     /// A file or folder other than a mesh could not be read or written.
     #[error("{}: {source}", .path.display())]
     Io {
@@ -82,4 +82,17 @@ impl From<DriverError> for Error {
             e => Error::Simplify(e),
         }
     }
+}
+
+/// A batch manifest line that cannot be run, named by its line (from 1; 0 for the whole
+/// file) and key (`envelope::batch`).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{}: line {line}: {message}", .manifest.display())]
+pub struct ManifestError {
+    /// The manifest file.
+    pub manifest: PathBuf,
+    /// The line, from 1.
+    pub line: usize,
+    /// What is wrong.
+    pub message: String,
 }

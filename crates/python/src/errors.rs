@@ -167,7 +167,10 @@ fn kind_of(e: &Error) -> Kind {
     match e {
         Error::Read(_) => Kind::Read,
         Error::Write(_) => Kind::Write,
-        Error::UnknownFormat(_) | Error::InvalidArgument(_) => Kind::InvalidArgument,
+        Error::UnknownFormat(_) | Error::InvalidArgument(_) | Error::Manifest(_) => {
+            Kind::InvalidArgument
+        }
+        Error::Repair(_) => Kind::NotAcceptable,
         Error::InvalidMesh(_) => Kind::InvalidMesh,
         Error::InvalidEpsilon(_)
         | Error::Simplify(DriverError::Epsilons(_))

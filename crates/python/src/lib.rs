@@ -11,9 +11,12 @@
 //! * [`options`]: epsilons, named choices, counts, defaults.
 //! * [`progress`]: the GIL released, progress callbacks, cancellation and Ctrl-C.
 //! * [`simplify`], [`oracle`] (verify, check), [`chains`] (lod, genus), [`files`].
+//! * [`repair`]: repair that never moves the surface.
+//! * [`batch`]: the natives under `envelope.batch` (manifests, items, summaries).
 #![forbid(unsafe_code)]
 
 mod arrays;
+mod batch;
 mod certificate;
 mod chains;
 mod errors;
@@ -21,6 +24,7 @@ mod files;
 mod options;
 mod oracle;
 mod progress;
+mod repair;
 mod simplify;
 
 use pyo3::prelude::*;
@@ -50,10 +54,10 @@ fn _envelope(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(files::load, m)?)?;
     m.add_function(wrap_pyfunction!(files::save, m)?)?;
     m.add_function(wrap_pyfunction!(files::demo, m)?)?;
+    m.add_function(wrap_pyfunction!(repair::repair, m)?)?;
 
-    // Reserved: the `batch` submodule (batch runs and Ray, `src/batch.rs`, another
-    // engineer's) is registered here, e.g.
-    // `m.add_submodule(&batch::module(m.py())?)?;`
+    // The natives of `envelope.batch` (python/envelope/batch.py).
+    batch::register(m)?;
 
     Ok(())
 }

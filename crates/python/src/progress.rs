@@ -55,8 +55,18 @@ impl Watch {
         }
     }
 
+    /// Asks the work to stop (as a callback returning `False` does).
+    pub(crate) fn stop(&self) {
+        self.stop.store(true, Ordering::Relaxed);
+    }
+
+    /// Whether anything asked the work to stop.
+    pub(crate) fn stopped(&self) -> bool {
+        self.stop.load(Ordering::Relaxed)
+    }
+
     /// Keeps the first exception and asks the work to stop.
-    fn fail(&self, e: PyErr) {
+    pub(crate) fn fail(&self, e: PyErr) {
         let mut slot = self.error.lock().unwrap_or_else(|p| p.into_inner());
         slot.get_or_insert(e);
         self.stop.store(true, Ordering::Relaxed);

@@ -14,6 +14,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{Map, Value};
 
+pub use crate::error::ManifestError;
 use crate::{Epsilon, Method, Placement, defaults};
 
 /// One item of a manifest, checked.
@@ -46,18 +47,6 @@ pub enum Job {
     Simplify(Epsilon),
     /// A chain of levels at these epsilons (each a bound to the input).
     Lod(Vec<Epsilon>),
-}
-
-/// A manifest line that cannot be run, named by its line and key.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{}: line {line}: {message}", .manifest.display())]
-pub struct ManifestError {
-    /// The manifest file.
-    pub manifest: PathBuf,
-    /// The line, from 1.
-    pub line: usize,
-    /// What is wrong.
-    pub message: String,
 }
 
 /// The keys an item may have.
