@@ -229,6 +229,7 @@ def batch_run(
     epsilon: Optional[_Epsilon] = None,
     shard: Optional[str] = None,
     threads: Optional[int] = None,
+    threads_per_item: Optional[int] = None,
     on_item: Optional[Callable[[str, bool, bool], bool]] = None,
 ) -> list[tuple[str, bool, bool]]: ...
 def batch_summary(

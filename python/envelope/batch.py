@@ -7,7 +7,8 @@ epsilons), ``method``, ``placement``, ``repair`` and ``format``. Item ``id``'s o
 ``envelope batch MANIFEST OUTDIR`` on the command line, made by the same Rust code: the
 engines only decide where each item runs.
 
-* ``engine="local"``: the items side by side on this machine's worker pool.
+* ``engine="local"``: ``threads / cpus_per_task`` items at a time on this machine, each on a
+  pool of ``cpus_per_task`` threads.
 * ``engine="ray"``: one Ray task per item, ``num_cpus=cpus_per_task``, with the item's Rust
   pool sized to match, retried when a worker is lost, at most ``max_in_flight`` at a time.
   ``ray.init()`` is called if Ray is not initialized yet: it joins the cluster named by
@@ -70,16 +71,19 @@ def run(
     none. ``progress(item)`` hears each item as it ends; returning False cancels (finished
     items are kept; the rest are run by the next call), as does Ctrl-C.
 
-    ``threads`` sizes the local engine's pool (default: one per core); ``cpus_per_task``,
-    ``max_in_flight`` (default: twice the cluster's CPUs over ``cpus_per_task``) and
-    ``ray_address`` are the Ray engine's.
+    ``cpus_per_task`` is each item's threads: the local engine runs ``threads`` (default:
+    one per core) over ``cpus_per_task`` items at a time, the Ray engine gives each task
+    that many CPUs. ``max_in_flight`` (default: twice the cluster's CPUs over
+    ``cpus_per_task``) and ``ray_address`` are the Ray engine's.
 
     Raises ``envelope.InvalidArgumentError`` (a ``ValueError``) for a manifest line that
     cannot be run, naming the line and key, before any item runs; ``envelope.Cancelled``.
     """
     manifest, outdir = os.fspath(manifest), os.fspath(outdir)
     if engine == "local":
-        got = _envelope.batch_run(manifest, outdir, epsilon, shard, threads, _relay(progress))
+        got = _envelope.batch_run(
+            manifest, outdir, epsilon, shard, threads, cpus_per_task, _relay(progress)
+        )
         return [_outcome(*o) for o in got]
     if engine == "ray":
         return _run_on_ray(

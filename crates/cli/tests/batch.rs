@@ -191,7 +191,11 @@ fn a_killed_run_resumes_and_a_changed_input_runs_again() {
 fn shards_and_thread_counts_make_the_same_files() {
     let (dir, manifest) = setup();
     let whole = dir.path().join("whole");
-    batch(&manifest, &whole, &["--threads", "2"]);
+    batch(
+        &manifest,
+        &whole,
+        &["--threads", "2", "--threads-per-item", "2"],
+    );
     let sharded = dir.path().join("sharded");
     let one = batch(&manifest, &sharded, &["--shard", "1/2", "--threads", "1"]);
     assert!(stdout(&one).starts_with("3 items") || stdout(&one).contains("\n3 items"));

@@ -5,7 +5,7 @@
 use std::ops::ControlFlow;
 
 use envelope::Epsilon;
-use envelope::batch::{Batch, Outcome, Shard};
+use envelope::batch::{Batch, Outcome, Schedule, Shard};
 use pyo3::prelude::*;
 
 use crate::{errors, options, progress};
@@ -77,10 +77,10 @@ pub(crate) fn batch_run_item(
     Ok(line(&outcome))
 }
 
-/// Runs the items of `shard` side by side on a pool of `threads`; `on_item(line, final,
+/// Runs the items of `shard`, `threads / threads_per_item` at a time; `on_item(line, final,
 /// ran)` hears each, and returning False cancels, as does Ctrl-C.
 #[pyfunction]
-#[pyo3(signature = (manifest, outdir, epsilon=None, shard=None, threads=None, on_item=None))]
+#[pyo3(signature = (manifest, outdir, epsilon=None, shard=None, threads=None, threads_per_item=None, on_item=None))]
 pub(crate) fn batch_run(
     py: Python<'_>,
     manifest: &str,
@@ -88,11 +88,15 @@ pub(crate) fn batch_run(
     epsilon: Option<&Bound<'_, PyAny>>,
     shard: Option<&str>,
     threads: Option<i64>,
+    threads_per_item: Option<i64>,
     on_item: Option<Py<PyAny>>,
 ) -> PyResult<Vec<Line>> {
     let batch = open(py, manifest, outdir, epsilon)?;
-    let shard = self::shard(shard)?;
-    let threads = options::threads(threads);
+    let schedule = Schedule {
+        shard: self::shard(shard)?,
+        threads: options::threads(threads),
+        threads_per_item: options::threads(threads_per_item),
+    };
     let outcomes = progress::run(py, None, |watch| {
         let tell = |o: &Outcome| {
             if let Some(callback) = &on_item {
@@ -115,7 +119,7 @@ pub(crate) fn batch_run(
                 ControlFlow::Continue(())
             }
         };
-        batch.run(shard, threads, &tell)
+        batch.run(schedule, &tell)
     })?
     .map_err(errors::from_error)?;
     Ok(outcomes.iter().map(line).collect())

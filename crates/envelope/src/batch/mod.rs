@@ -19,8 +19,8 @@
 //!   in manifest order, plus this run's transient failures. It is rebuilt from the result
 //!   files at the end of every run, so a rerun with no work left rewrites the summary of
 //!   every shard.
-//! * **Parallelism.** As many items run at a time as the pool has threads, and each item's
-//!   own parallel work shares the pool; every output is the same for any number of threads.
+//! * **Parallelism.** Several items at a time, each on a pool of its own ([`Schedule`]);
+//!   every output is the same for any number of threads.
 //!
 //! ```
 //! # let dir = tempfile::tempdir()?;
@@ -30,11 +30,11 @@
 //!     "{\"id\": \"cup\", \"input\": \"cup.obj\", \"epsilon\": \"1%\", \"placement\": \"subset\"}\n",
 //! )?;
 //! let batch = envelope::batch::Batch::open(dir.path().join("manifest.jsonl"), dir.path().join("out"))?;
-//! let outcomes = batch.run(None, None, &|_| std::ops::ControlFlow::Continue(()))?;
+//! let outcomes = batch.run(Default::default(), &|_| std::ops::ControlFlow::Continue(()))?;
 //! assert_eq!(outcomes[0].status, envelope::batch::Status::Ok);
 //! assert!(dir.path().join("out/cup/simplified.obj").exists());
 //! // A second run reuses the result.
-//! assert!(!batch.run(None, None, &|_| std::ops::ControlFlow::Continue(()))?[0].ran);
+//! assert!(!batch.run(Default::default(), &|_| std::ops::ControlFlow::Continue(()))?[0].ran);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -81,6 +81,23 @@ impl std::str::FromStr for Shard {
         }
         Ok(Shard { index, count })
     }
+}
+
+/// Which items run, and how many at a time.
+///
+/// `threads` (default: rayon's, one per core) are shared out as `threads / threads_per_item`
+/// items at a time, each on a pool of `threads_per_item` (default 1). One thread per item
+/// gave the most objects per minute over the `libcgal-demo` corpus (small items parallelize
+/// poorly); a batch of a few large meshes is faster with more threads per item. The
+/// outputs are the same either way.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Schedule {
+    /// Only this shard's items.
+    pub shard: Option<Shard>,
+    /// Threads in all.
+    pub threads: Option<usize>,
+    /// Threads of each item (the Ray engine's `cpus_per_task`).
+    pub threads_per_item: Option<usize>,
 }
 
 /// A manifest, checked line by line, and the folder its outputs go to.
@@ -166,31 +183,37 @@ impl Batch {
         run::run_item(&self.outdir, item, &AtomicBool::new(false))
     }
 
-    /// Runs the items of `shard`, as many at a time as the pool has `threads` (default: one
-    /// per core), each item's own parallel work on the same pool, then writes the summary.
-    /// `on_item` hears each outcome as it comes (from several threads); returning `Break`
-    /// cancels the run (running items stop at their next check and are retried by the next
-    /// run).
+    /// Runs the items of `schedule.shard` (every item for `None`), several at a time (see
+    /// [`Schedule`]), then writes the summary. `on_item` hears each outcome as it comes (from
+    /// several threads); returning `Break` cancels the run (running items stop at their next
+    /// check and are retried by the next run).
     ///
     /// # Errors
     /// [`Error::Io`] when the summary cannot be written; [`Error::Cancelled`] when `on_item`
     /// asked to stop (finished items are kept); [`Error::InvalidArgument`] for 0 threads.
     pub fn run(
         &self,
-        shard: Option<Shard>,
-        threads: Option<usize>,
+        schedule: Schedule,
         on_item: &(dyn Fn(&Outcome) -> ControlFlow<()> + Sync),
     ) -> Result<Vec<Outcome>, Error> {
-        let pool = threads::pool(threads.unwrap_or_else(rayon::current_num_threads))?;
+        let threads = schedule.threads.unwrap_or_else(rayon::current_num_threads);
+        let per_item = schedule.threads_per_item.unwrap_or(1);
+        if threads == 0 || per_item == 0 {
+            return Err(Error::InvalidArgument("threads must be at least 1".into()));
+        }
+        let items: Vec<&Item> = self.shard(schedule.shard).collect();
+        let workers = (threads / per_item).clamp(1, items.len().max(1));
+        let pools = (0..workers)
+            .map(|_| threads::pool(per_item.min(threads)))
+            .collect::<Result<Vec<_>, _>>()?;
         let stop = AtomicBool::new(false);
-        let items: Vec<&Item> = self.shard(shard).collect();
         let next = AtomicUsize::new(0);
         let slots: Vec<Mutex<Option<Outcome>>> = items.iter().map(|_| Mutex::new(None)).collect();
-        // One thread per worker hands items to the pool and waits for each outside it: an
-        // item's time is then its own, where items run as tasks inside the pool, a worker
-        // that waits on an item's parallel step would steal another item and time both.
+        // Each worker thread hands its items to a pool of its own and waits outside it, so an
+        // item's time is its own (inside one shared pool, a thread waiting on an item's
+        // parallel step steals another item and times both).
         std::thread::scope(|scope| {
-            for _ in 0..pool.current_num_threads().min(items.len()) {
+            for pool in &pools {
                 scope.spawn(|| {
                     while !stop.load(Ordering::Relaxed) {
                         let k = next.fetch_add(1, Ordering::Relaxed);
