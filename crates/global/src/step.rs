@@ -28,9 +28,12 @@ pub enum Method {
 }
 
 impl Method {
+    /// Every method, in the order of [`Method::as_str`]'s names.
+    pub const ALL: [Method; 3] = [Method::Local, Method::Global, Method::Hybrid];
+
     /// `"local"`, `"global"` or `"hybrid"`.
     #[must_use]
-    pub fn as_str(self) -> &'static str {
+    pub const fn as_str(self) -> &'static str {
         match self {
             Method::Local => "local",
             Method::Global => "global",
@@ -47,9 +50,7 @@ impl Method {
     /// ```
     #[must_use]
     pub fn parse(s: &str) -> Option<Method> {
-        [Method::Local, Method::Global, Method::Hybrid]
-            .into_iter()
-            .find(|m| m.as_str() == s)
+        Method::ALL.into_iter().find(|m| m.as_str() == s)
     }
 
     /// The driver step of this method (with the default options of each stage).
@@ -125,7 +126,7 @@ pub enum HybridOrder {
 impl HybridOrder {
     /// `"local-global-local"` or `"global-local"`.
     #[must_use]
-    pub fn as_str(self) -> &'static str {
+    pub const fn as_str(self) -> &'static str {
         match self {
             HybridOrder::LocalFirst => "local-global-local",
             HybridOrder::GlobalFirst => "global-local",

@@ -63,12 +63,16 @@ const ENVELOPES: &Table<EnvelopeMethod> = &[
     ("auto", EnvelopeMethod::Auto),
 ];
 
-const PLACEMENTS: &Table<Placement> = &[
-    ("subset", Placement::Subset),
-    ("slide", Placement::Slide),
-    ("collapse", Placement::Collapse),
-    ("auto", Placement::Auto),
-];
+/// The library's names ([`Placement::as_str`]).
+const PLACEMENTS: &Table<Placement> = &{
+    let mut t = [("", Placement::Subset); 4];
+    let mut i = 0;
+    while i < t.len() {
+        t[i] = (Placement::ALL[i].as_str(), Placement::ALL[i]);
+        i += 1;
+    }
+    t
+};
 
 const RULES: &Table<LodRule> = &[("cumulative", LodRule::Cumulative), ("sum", LodRule::Sum)];
 
@@ -77,11 +81,16 @@ const SOURCES: &Table<TessellationSource> = &[
     ("prism_union", TessellationSource::PrismUnion),
 ];
 
-const METHODS: &Table<Method> = &[
-    ("local", Method::Local),
-    ("global", Method::Global),
-    ("hybrid", Method::Hybrid),
-];
+/// The library's names ([`Method::as_str`]).
+const METHODS: &Table<Method> = &{
+    let mut t = [("", Method::Local); 3];
+    let mut i = 0;
+    while i < t.len() {
+        t[i] = (Method::ALL[i].as_str(), Method::ALL[i]);
+        i += 1;
+    }
+    t
+};
 
 /// The hole fillers: the paper's greedy pass, or every triangulation up to the engine's
 /// hole size, greedy above (as the command line's `--hole-filling exhaustive`).

@@ -226,7 +226,7 @@ impl Placement {
 
     /// `"subset"`, `"slide"`, `"collapse"` or `"auto"` (the command line's names).
     #[must_use]
-    pub fn as_str(self) -> &'static str {
+    pub const fn as_str(self) -> &'static str {
         match self {
             Placement::Subset => "subset",
             Placement::Slide => "slide",
