@@ -152,6 +152,7 @@ def _run_on_ray(
     waiting = iter(ids)
     running: dict[Any, str] = {}
     cancelled = False
+    interrupted: Optional[KeyboardInterrupt] = None
     try:
         while True:
             while not cancelled and len(running) < max_in_flight:
@@ -176,12 +177,14 @@ def _run_on_ray(
                 results[item] = _outcome(line, final, ran)
                 if progress is not None and progress(results[item]) is False:
                     cancelled = True
-    except KeyboardInterrupt:
-        cancelled = True
+    except KeyboardInterrupt as e:
+        cancelled, interrupted = True, e
     if cancelled:
         for ref in running:
             ray.cancel(ref)
     _envelope.batch_summary(manifest, outdir, epsilon, transient)
+    if interrupted is not None:
+        raise interrupted
     if cancelled:
         raise _envelope.Cancelled("cancelled")
     return [results[i] for i in ids]

@@ -198,3 +198,24 @@ def test_the_module_examples_run():
 
     result = doctest.testmod(envelope.batch)
     assert result.attempted >= 3 and result.failed == 0, result
+
+
+def test_ctrl_c_stops_a_local_run_and_keeps_what_finished(manifest, tmp_path):
+    import signal
+
+    out = tmp_path / "out"
+
+    pressed = []
+
+    def interrupt(item):
+        # One Ctrl-C, as a user presses it (a second would interrupt the test itself).
+        if not pressed:
+            pressed.append(item["id"])
+            signal.raise_signal(signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        envelope.batch.run(manifest, out, epsilon="3%", threads=1, progress=interrupt)
+    finished = [json.loads(l) for l in (out / "summary.jsonl").read_text().splitlines()]
+    assert 1 <= len(finished) < 5
+    results = envelope.batch.run(manifest, out, epsilon="3%", threads=1)
+    assert [r["status"] for r in results] == STATUSES

@@ -99,7 +99,7 @@ pub(crate) fn batch_run(
     };
     let outcomes = progress::run(py, None, |watch| {
         let tell = |o: &Outcome| {
-            if let Some(callback) = &on_item {
+            if let Some(callback) = on_item.as_ref().filter(|_| !watch.stopped()) {
                 let (text, final_, ran) = line(o);
                 let answer = Python::attach(|py| {
                     callback
