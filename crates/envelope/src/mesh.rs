@@ -6,7 +6,7 @@ use glam::DVec3;
 /// A triangle mesh: vertex positions and triangles of vertex indices, counter-clockwise seen
 /// from outside. Room for attributes (normals, texture coordinates) comes later.
 ///
-/// A `Mesh` made by [`Mesh::new`] or [`load`] has every index in range and every coordinate
+/// A `Mesh` made by [`Mesh::new`] or [`load`](crate::load) has every index in range and every coordinate
 /// finite; whether it is acceptable input for the simplifier (manifold, no degenerate or
 /// intersecting faces) is `envelope::check`'s question.
 ///

@@ -53,7 +53,7 @@ impl Default for NumericalParams {
     }
 }
 
-/// Options of [`build_envelopes`].
+/// Options of [`build_envelopes`](crate::build_envelopes).
 #[derive(Debug)]
 pub struct EnvelopeOptions {
     /// Requested epsilon per vertex.

@@ -303,7 +303,7 @@ fn origin_of(t1: &[DVec3; 3], fs: [bool; 3]) -> (DVec3, usize) {
 
 /// The separating-axis test on the nine edge-cross-edge directions (any direction is a
 /// valid axis, so the f64 cross products need no error bound; the projections carry one,
-/// see [`projection`]). With no shared vertex: the projections of the two triangles are
+/// see `projection`). With no shared vertex: the projections of the two triangles are
 /// disjoint intervals. With exactly one shared vertex `s`: the unshared vertices of one
 /// project strictly below `s`, of the other strictly above, so the triangles (convex
 /// combinations) meet at most in `s`. A `false` decides nothing.

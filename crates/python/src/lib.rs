@@ -1,18 +1,18 @@
 //! The Python package `envelope`: a thin layer over the library's front door (`envelope`).
 //!
 //! This is the compiled module `envelope._envelope`; the public functions, their defaults
-//! (read from here: [`options::defaults_dict`]) and their docstrings are in
+//! (read from here: `options::defaults_dict`) and their docstrings are in
 //! `python/envelope/__init__.py`. Every call validates its arrays at the boundary
-//! ([`arrays`]), releases the GIL for the library's work, and maps the library's errors onto
-//! exception classes whose messages are the library's `Display` ([`errors`]).
+//! (`arrays`), releases the GIL for the library's work, and maps the library's errors onto
+//! exception classes whose messages are the library's `Display` (`errors`).
 //!
-//! * [`arrays`]: numpy arrays in and out, JSON reports as dicts.
-//! * [`errors`]: the exception classes.
-//! * [`options`]: epsilons, named choices, counts, defaults.
-//! * [`progress`]: the GIL released, progress callbacks, cancellation and Ctrl-C.
-//! * [`simplify`], [`oracle`] (verify, check), [`chains`] (lod, genus), [`files`].
-//! * [`repair`]: repair that never moves the surface.
-//! * [`batch`]: the natives under `envelope.batch` (manifests, items, summaries).
+//! * `arrays`: numpy arrays in and out, JSON reports as dicts.
+//! * `errors`: the exception classes.
+//! * `options`: epsilons, named choices, counts, defaults.
+//! * `progress`: the GIL released, progress callbacks, cancellation and Ctrl-C.
+//! * `simplify`, `oracle` (verify, check), `chains` (lod, genus), `files`.
+//! * `repair`: repair that never moves the surface.
+//! * `batch`: the natives under `envelope.batch` (manifests, items, summaries).
 #![forbid(unsafe_code)]
 
 mod arrays;

@@ -70,7 +70,7 @@ impl VertexFibers<'_> {
 }
 
 /// What the fiber test needs beyond the fibers: the connected components of the envelope
-/// meshes and the box of each (condition 2 of the [module docs](self)).
+/// meshes and the box of each (condition 2 of the module docs).
 ///
 /// ```
 /// use envelope_mesh::generate;
@@ -95,7 +95,7 @@ pub struct FiberTest<'a> {
 impl<'a> FiberTest<'a> {
     /// The test for envelopes whose vertex `i` is `fibers.inner[i]` / `fibers.outer[i]` and
     /// whose faces are `faces` (both envelopes; in `envelope simplify`, the input's faces).
-    /// The caller promises condition 1 of the [module docs](self) for the simplification it
+    /// The caller promises condition 1 of the module docs for the simplification it
     /// is given to; the driver's `simplify` gives it only with proved envelopes and no pins.
     #[must_use]
     pub fn new(fibers: VertexFibers<'a>, faces: &[[VertexId; 3]]) -> Self {

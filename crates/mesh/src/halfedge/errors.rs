@@ -3,7 +3,7 @@
 use crate::{FaceId, VertexId};
 use thiserror::Error;
 
-/// Why [`HalfEdgeMesh::from_soup`] refused a soup.
+/// Why [`HalfEdgeMesh::from_soup`](super::HalfEdgeMesh::from_soup) refused a soup.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Error)]
 pub enum BuildError {
     /// A face names a vertex that does not exist.
@@ -44,7 +44,7 @@ pub enum BuildError {
     },
 }
 
-/// Why [`HalfEdgeMesh::add_face`] refused a face. Nothing was changed.
+/// Why [`HalfEdgeMesh::add_face`](super::HalfEdgeMesh::add_face) refused a face. Nothing was changed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Error)]
 pub enum AddFaceError {
     /// A corner is not a live vertex.
