@@ -64,9 +64,23 @@ const KEYS: [&str; 8] = [
 /// The output formats an item may ask for.
 const FORMATS: [&str; 4] = ["obj", "off", "ply", "stl"];
 
-/// Parses and checks every line of `text`, the manifest at `path`. `epsilon` is the batch's
+/// Parses and checks every line of `text`, the manifest at `path` (relative inputs are taken
+/// from its folder), as [`Batch::open`](super::Batch::open) does; `epsilon` is the batch's
 /// default for items that give none.
-pub(crate) fn parse(
+///
+/// ```
+/// use std::path::Path;
+/// let text = r#"{"id": "cup", "input": "cup.obj", "epsilon": "1%"}"#;
+/// let items = envelope::batch::parse_manifest(text, Path::new("jobs/m.jsonl"), None)?;
+/// assert_eq!(items[0].input, Path::new("jobs/cup.obj"));
+/// let err = envelope::batch::parse_manifest("{}", Path::new("m.jsonl"), None).unwrap_err();
+/// assert_eq!(err.to_string(), "m.jsonl: line 1: `id` is missing");
+/// # Ok::<(), envelope::batch::ManifestError>(())
+/// ```
+///
+/// # Errors
+/// The first line that cannot be run, with its number and what is wrong.
+pub fn parse(
     text: &str,
     path: &Path,
     epsilon: Option<Epsilon>,

@@ -48,7 +48,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 
-pub use manifest::{Item, Job, ManifestError};
+pub use manifest::{Item, Job, ManifestError, parse as parse_manifest};
 pub use outcome::{Outcome, Status};
 
 use crate::{Epsilon, Error, threads};
