@@ -26,25 +26,22 @@ pub(crate) struct Args {
     /// OUTDIR/<id>/, and OUTDIR/summary.jsonl lists every item's status.
     outdir: PathBuf,
     /// Run only shard I of N (`I/N`, 1 <= I <= N): every N-th item, from the I-th.
-    #[arg(long, value_parser = parse_shard)]
+    #[arg(long, value_parser = parse::<Shard>)]
     shard: Option<Shard>,
     /// Threads of each item, 1..=1024 (default 1: --threads items run at a time, one thread
     /// each; a few large meshes go faster with more). Outputs are the same for any number.
     #[arg(long, value_parser = crate::ranges::threads, allow_hyphen_values = true)]
     threads_per_item: Option<usize>,
     /// Epsilon for items that give none (same syntax as the manifest's).
-    #[arg(long, value_parser = parse_epsilon, allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse::<Epsilon>, allow_hyphen_values = true)]
     epsilon: Option<Epsilon>,
     /// No progress bar and no per-item lines (the summary line is still printed).
     #[arg(long)]
     quiet: bool,
 }
 
-fn parse_shard(s: &str) -> Result<Shard, String> {
-    s.parse().map_err(|e: envelope::Error| e.to_string())
-}
-
-fn parse_epsilon(s: &str) -> Result<Epsilon, String> {
+/// A value the library parses, with its message (`--shard`, `--epsilon`).
+fn parse<T: std::str::FromStr<Err = envelope::Error>>(s: &str) -> Result<T, String> {
     s.parse().map_err(|e: envelope::Error| e.to_string())
 }
 

@@ -5,7 +5,7 @@
 use std::ops::ControlFlow;
 
 use envelope::Epsilon;
-use envelope::batch::{Batch, Outcome, Schedule, Shard};
+use envelope::batch::{Batch, Item, Outcome, Schedule, Shard};
 use pyo3::prelude::*;
 
 use crate::{errors, options, progress};
@@ -30,6 +30,16 @@ fn open(
         .transpose()?;
     py.detach(|| Batch::open_with(manifest, outdir, epsilon))
         .map_err(errors::from_error)
+}
+
+/// The item `id` of `batch`, or an `InvalidArgumentError` naming the manifest.
+fn named<'b>(batch: &'b Batch, id: &str) -> PyResult<&'b Item> {
+    batch.item(id).ok_or_else(|| {
+        errors::Kind::InvalidArgument.err(format!(
+            "{}: no item has the id {id:?}",
+            batch.manifest().display()
+        ))
+    })
 }
 
 fn shard(given: Option<&str>) -> PyResult<Option<Shard>> {
@@ -66,9 +76,7 @@ pub(crate) fn batch_run_item(
     threads: Option<i64>,
 ) -> PyResult<Line> {
     let batch = open(py, manifest, outdir, epsilon)?;
-    let item = batch.item(item).ok_or_else(|| {
-        errors::Kind::InvalidArgument.err(format!("{manifest}: no item has the id {item:?}"))
-    })?;
+    let item = named(&batch, item)?;
     let threads = options::threads(threads);
     let outcome = progress::run(py, None, |_| {
         envelope::advanced::in_pool(threads, || batch.run_item(item))
@@ -159,9 +167,7 @@ pub(crate) fn batch_lost(
     message: String,
 ) -> PyResult<String> {
     let batch = open(py, manifest, outdir, epsilon)?;
-    let item = batch.item(item).ok_or_else(|| {
-        errors::Kind::InvalidArgument.err(format!("{manifest}: no item has the id {item:?}"))
-    })?;
+    let item = named(&batch, item)?;
     Ok(Outcome::lost(item, message).to_json_line())
 }
 

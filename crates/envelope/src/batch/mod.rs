@@ -248,13 +248,9 @@ impl Batch {
     pub fn write_summary(&self, transient: &[Outcome]) -> Result<Vec<Outcome>, Error> {
         let mut lines = Vec::new();
         for item in &self.items {
-            let recorded = fs::read_to_string(self.outdir.join(&item.id).join(run::RESULT))
-                .ok()
-                .and_then(|t| serde_json::from_str::<Outcome>(&t).ok())
-                .filter(|o| o.id == item.id);
             if let Some(o) = transient.iter().find(|o| o.id == item.id) {
                 lines.push(o.clone());
-            } else if let Some(o) = recorded {
+            } else if let Some(o) = run::recorded(&self.outdir, item) {
                 lines.push(o);
             }
         }

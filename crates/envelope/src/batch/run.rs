@@ -39,11 +39,16 @@ pub(crate) fn key(item: &Item, bytes: &[u8]) -> String {
     hash.finalize().iter().map(|b| format!("{b:02x}")).collect()
 }
 
-/// The final result of an earlier run for this key, if its folder has one.
-pub(crate) fn finished(outdir: &Path, item: &Item, key: &str) -> Option<Outcome> {
+/// The result recorded in `item`'s folder by an earlier run, whatever its key.
+pub(crate) fn recorded(outdir: &Path, item: &Item) -> Option<Outcome> {
     let text = fs::read_to_string(outdir.join(&item.id).join(RESULT)).ok()?;
     let outcome: Outcome = serde_json::from_str(&text).ok()?;
-    (outcome.key == key && outcome.id == item.id).then_some(outcome)
+    (outcome.id == item.id).then_some(outcome)
+}
+
+/// The final result of an earlier run for this key, if its folder has one.
+fn finished(outdir: &Path, item: &Item, key: &str) -> Option<Outcome> {
+    recorded(outdir, item).filter(|o| o.key == key)
 }
 
 /// Runs `item` unless an earlier run finished it; never panics (a panic in the engine is a
