@@ -1,6 +1,7 @@
 //! Indexed triangle meshes for the envelope engine.
 //!
-//! * [`TriangleSoup`]: positions plus index triples, what readers produce.
+//! * [`TriangleSoup`]: positions plus index triples, what readers produce; [`Attributes`]:
+//!   per-corner texture coordinates, normals and colours beside it.
 //! * [`analyze`] / [`Topology`]: components, border loops, Euler characteristic, genus,
 //!   manifoldness and orientability of *any* soup; the [`degeneracy`] finders name the
 //!   offending elements (non-manifold edges and vertices, duplicate faces and vertices,
@@ -21,6 +22,7 @@
 #![forbid(unsafe_code)]
 
 mod analysis;
+mod attributes;
 mod coords;
 pub mod degeneracy;
 pub mod generate;
@@ -29,6 +31,7 @@ mod ids;
 mod soup;
 mod topology;
 
+pub use attributes::{Attributes, Wedges};
 pub use coords::{
     CoordError, MAX_ALLOWED_MAGNITUDE, MIN_ALLOWED_MAGNITUDE, check_coordinate, flush_tiny,
 };
