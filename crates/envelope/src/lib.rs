@@ -34,6 +34,7 @@ mod threads;
 pub use envelope_check::CheckReport;
 pub use envelope_genus::{GenusReport, TessellationSource};
 pub use envelope_global::Method;
+pub use envelope_mesh::{Attributes, Wedges};
 pub use envelope_offset::EnvelopeMethod;
 pub use envelope_repair::{RepairError, RepairReport, Step as RepairStep};
 pub use envelope_simplify::{

@@ -1,10 +1,11 @@
 //! The mesh users hand in and get back.
 
-use envelope_mesh::{TriangleSoup, VertexId, generate};
+use envelope_mesh::{Attributes, TriangleSoup, VertexId, generate};
 use glam::DVec3;
 
 /// A triangle mesh: vertex positions and triangles of vertex indices, counter-clockwise seen
-/// from outside. Room for attributes (normals, texture coordinates) comes later.
+/// from outside, with optional per-corner [`Attributes`] (texture coordinates, normals,
+/// colours).
 ///
 /// A `Mesh` made by [`Mesh::new`] or [`load`](crate::load) has every index in range and every coordinate
 /// finite; whether it is acceptable input for the simplifier (manifold, no degenerate or
@@ -22,6 +23,7 @@ use glam::DVec3;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mesh {
     soup: TriangleSoup,
+    attributes: Attributes,
 }
 
 impl Mesh {
@@ -51,12 +53,10 @@ impl Mesh {
                 vertices: n,
             });
         }
-        Ok(Mesh {
-            soup: TriangleSoup::new(
-                positions.into_iter().map(DVec3::from_array).collect(),
-                triangles.into_iter().map(|t| t.map(VertexId)).collect(),
-            ),
-        })
+        Ok(Mesh::from_soup(TriangleSoup::new(
+            positions.into_iter().map(DVec3::from_array).collect(),
+            triangles.into_iter().map(|t| t.map(VertexId)).collect(),
+        )))
     }
 
     /// The built-in model of `envelope demo`: a cup with a curved fluted wall, a sharp bottom
@@ -104,13 +104,43 @@ impl Mesh {
     /// A mesh from the engine's representation (no validation: [`Mesh::new`] validates).
     #[must_use]
     pub fn from_soup(soup: TriangleSoup) -> Mesh {
-        Mesh { soup }
+        Mesh {
+            soup,
+            attributes: Attributes::default(),
+        }
     }
 
-    /// The engine's representation.
+    /// The per-corner attributes (all absent for a mesh made from positions alone).
+    #[must_use]
+    pub fn attributes(&self) -> &Attributes {
+        &self.attributes
+    }
+
+    /// This mesh with `attributes`, refused unless each present attribute has a corner list
+    /// per triangle, every index in range and every value finite.
+    ///
+    /// # Errors
+    /// [`MeshError::InvalidAttributes`].
+    pub fn with_attributes(mut self, attributes: Attributes) -> Result<Mesh, MeshError> {
+        if !attributes.is_valid_for(self.num_faces()) {
+            return Err(MeshError::InvalidAttributes {
+                triangles: self.num_faces(),
+            });
+        }
+        self.attributes = attributes;
+        Ok(self)
+    }
+
+    /// The engine's representation (the attributes are dropped).
     #[must_use]
     pub fn into_soup(self) -> TriangleSoup {
         self.soup
+    }
+
+    /// The engine's representation and the attributes.
+    #[must_use]
+    pub fn into_parts(self) -> (TriangleSoup, Attributes) {
+        (self.soup, self.attributes)
     }
 }
 
@@ -136,5 +166,15 @@ pub enum MeshError {
         corners: [u32; 3],
         /// Vertices in the mesh.
         vertices: usize,
+    },
+    /// An attribute's corner lists do not match the triangles, name a missing value, or a
+    /// value is not finite.
+    #[error(
+        "the attributes do not fit the mesh: each needs one corner triple per triangle \
+         ({triangles}), indices below its value count and finite values"
+    )]
+    InvalidAttributes {
+        /// Triangles in the mesh.
+        triangles: usize,
     },
 }
