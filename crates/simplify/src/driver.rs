@@ -23,10 +23,10 @@ use std::time::Instant;
 use envelope_check::{
     CheckOptions, CheckReport, DegeneracyClass, check_with_shared, check_with_topology,
 };
-use envelope_mesh::{BuildError, HalfEdgeMesh, Topology, TriangleSoup, VertexId, analyze};
+use envelope_mesh::{BuildError, FaceId, HalfEdgeMesh, Topology, TriangleSoup, VertexId, analyze};
 use envelope_offset::{
-    EnvelopeError, EnvelopeMethod, EnvelopeOptions, Envelopes, EpsilonField, build_envelopes,
-    build_envelopes_with, face_tree,
+    EnvelopeError, EnvelopeMethod, EnvelopeOptions, Envelopes, EpsilonField, Surface,
+    build_envelopes, build_envelopes_with, face_tree,
 };
 use envelope_predicates::bvh::Bvh;
 use envelope_verify::{Certificate, Verdict};
@@ -36,7 +36,7 @@ use thiserror::Error;
 
 use crate::barriers::{BarrierError, Barriers};
 use crate::fiber::{FiberTest, VertexFibers};
-use crate::kept::{KeptRegion, MAX_RINGS};
+use crate::kept::{KeptRegion, MAX_ROUNDS};
 use crate::local::{
     HoleFilling, Options as LocalOptions, Order, Placement, SimplifyError, Stats,
     simplify_local_from,
@@ -386,7 +386,7 @@ impl SimplifyReport {
             "kept_around_intersections": self.kept.as_ref().map(|k| json!({
                 "intersecting_pairs": k.intersecting_pairs,
                 "kept_faces": k.kept_faces,
-                "rings": k.rings,
+                "rounds": k.rounds,
                 "shared_vertices": k.shared_vertices,
             })),
             "method": self.method,
@@ -672,12 +672,15 @@ pub fn simplify_with(
 }
 
 /// The error classes an input meeting itself has: the faces around them are kept
-/// ([`simplify_around_crossings`]). A T-junction is an intersecting pair too (the faces at
-/// the vertex meet the edge's face away from what they share).
-const CROSSINGS: [DegeneracyClass; 3] = [
+/// ([`simplify_around_crossings`]). Each makes intersecting pairs that cover it: a T-junction
+/// (the faces at the vertex meet the edge's face away from what they share), two vertices at
+/// one position (the faces of one meet those of the other there; what repair leaves where it
+/// splits a pinch into sheets), coincident faces.
+const CROSSINGS: [DegeneracyClass; 4] = [
     DegeneracyClass::IntersectingTriangles,
     DegeneracyClass::CoincidentTriangles,
     DegeneracyClass::TJunctions,
+    DegeneracyClass::DuplicateVertices,
 ];
 
 /// The envelopes of `soup` for `options` (with its topology and face tree when known).
@@ -932,9 +935,9 @@ pub struct KeptReport {
     /// Input faces kept unchanged: the faces of those pairs, the rings around them and what
     /// keeps the rest a manifold.
     pub kept_faces: usize,
-    /// Rings of faces added around the pairs (one more each time the rest's envelopes could
-    /// not be proved).
-    pub rings: usize,
+    /// Envelope builds after the first: each time the rest's envelopes could not be proved,
+    /// the faces the proof named were kept too (or one ring around the kept ones).
+    pub rounds: usize,
     /// Vertices the kept faces share with the rest (kept, never removed nor moved).
     pub shared_vertices: usize,
 }
@@ -958,11 +961,11 @@ fn simplify_around_crossings(
     let Some(pairs) = envelope_check::intersecting_pairs(soup, tree) else {
         return Err(DriverError::Unacceptable(problems));
     };
-    let mut rings = 0;
+    let mut region = KeptRegion::around(soup, &pairs);
+    let mut rounds = 0;
     let (region, env, env_seconds) = loop {
         go_on(progress)?;
         let t = Instant::now();
-        let region = KeptRegion::around(soup, &pairs, rings);
         if region.rest.num_faces() == 0 {
             return Err(DriverError::Unacceptable(problems));
         }
@@ -970,13 +973,25 @@ fn simplify_around_crossings(
         if env.proof.holds() {
             break (region, env, t.elapsed().as_secs_f64());
         }
-        if rings == MAX_RINGS {
+        if rounds == MAX_ROUNDS {
             return Err(DriverError::UnprovedEnvelopes {
                 contacts: env.proof.contacts.len() + env.proof.tube_contacts.len(),
                 repair_rounds: env.proof.repair_rounds,
             });
         }
-        rings += 1;
+        // The rest faces the proof names (as input faces, or through their envelope faces,
+        // which have the input's connectivity) are kept too.
+        let named: Vec<FaceId> = env
+            .proof
+            .contacts
+            .iter()
+            .chain(&env.proof.tube_contacts)
+            .flat_map(|c| [c.a, c.b])
+            .filter(|(surface, _)| !matches!(surface, Surface::Tube(_)))
+            .map(|(_, f)| region.rest_faces[f.index()])
+            .collect();
+        region = region.grown(soup, &named);
+        rounds += 1;
     };
     let topo_rest = analyze(&region.rest);
     let between = simplify_between(
@@ -1010,7 +1025,7 @@ fn simplify_around_crossings(
     let kept = KeptReport {
         intersecting_pairs: pairs.len(),
         kept_faces: region.num_kept(),
-        rings,
+        rounds,
         shared_vertices: region.shared.iter().filter(|&&s| s).count(),
     };
     let verify = certify(soup, &out, between.epsilon_abs, true, options, progress)?;

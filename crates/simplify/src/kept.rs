@@ -2,32 +2,39 @@
 //!
 //! The envelopes of section 3 cannot be proved free of intersections where the input meets
 //! itself, and the paper refuses such input (7.1). Instead the faces of every intersecting
-//! pair are kept unchanged, with `rings` rings of faces around them, and the rest is
-//! simplified as usual: its envelopes are built and proved for the rest alone (which meets
-//! itself nowhere), the kept faces are barriers no new triangle may touch except at the
-//! vertices it shares with them, and those shared vertices are kept (never removed nor
-//! moved), so the rest's border along the kept faces is unchanged and the two parts join as
-//! they did. Every intersecting pair of the output is then a pair of unchanged input faces
-//! that met in the input already, which the certificate checks
+//! pair are kept unchanged and the rest is simplified as usual: its envelopes are built and
+//! proved for the rest alone (which meets itself nowhere), the kept faces are barriers no new
+//! triangle may touch except at the vertices it shares with them, and those shared vertices
+//! are kept (never removed nor moved), so the rest's border along the kept faces is unchanged
+//! and the two parts join as they did. Every intersecting pair of the output is then a pair
+//! of unchanged input faces that met in the input already, which the certificate checks
 //! (`envelope_verify::Options::allow_input_intersections`).
 //!
-//! Choices the papers leave open (they refuse such input): no ring by default (the kept
-//! faces are barriers, so the rest needs no margin for the proof), and one more ring each
-//! time the rest's envelopes cannot be proved, up to [`MAX_RINGS`]; faces are added to the
-//! kept set until every shared vertex has one fan of rest faces, so the rest is a manifold
-//! with border (a vertex the kept faces cut into two fans would be non-manifold there).
+//! Choices the papers leave open (they refuse such input):
+//! * no margin at first: the kept faces are barriers, so the rest needs none for the proof;
+//! * when the rest's envelopes cannot be proved, the rest faces the proof names in its
+//!   contacts are kept too (or, when it names only tube faces, one ring of faces around the
+//!   kept ones), and the envelopes are built again, at most [`MAX_ROUNDS`] times: the rest
+//!   near a crossing is close to the other sheet there, and a thin part elsewhere needs the
+//!   same;
+//! * faces are added to the kept set until every shared vertex has one fan of rest faces, so
+//!   the rest is a manifold with border (a vertex the kept faces cut into two fans would be
+//!   non-manifold there).
 
 use envelope_mesh::{FaceId, TriangleSoup, VertexFaces, VertexId};
 
-/// Rings of faces added around the intersecting pairs before giving up on the rest's
-/// envelopes.
-pub(crate) const MAX_RINGS: usize = 3;
+/// Envelope builds after the first one before giving up on the rest's proof.
+pub(crate) const MAX_ROUNDS: usize = 4;
 
 /// The input split into the faces kept as they are and the rest to simplify.
 #[derive(Clone, Debug)]
 pub(crate) struct KeptRegion {
+    /// Per input face: kept as it is.
+    pub kept_face: Vec<bool>,
     /// The rest: every input position (ids unchanged), the faces not kept, in input order.
     pub rest: TriangleSoup,
+    /// The input face of each face of `rest`.
+    pub rest_faces: Vec<FaceId>,
     /// The kept faces, on every input position.
     pub kept: TriangleSoup,
     /// Per input vertex: a corner of both a kept face and a rest face (never removed nor
@@ -36,17 +43,27 @@ pub(crate) struct KeptRegion {
 }
 
 impl KeptRegion {
-    /// The faces of `pairs` and `rings` rings of faces around them, grown until every shared
-    /// vertex has one fan of rest faces; `soup` must be a manifold (possibly with border).
-    pub(crate) fn around(soup: &TriangleSoup, pairs: &[(FaceId, FaceId)], rings: usize) -> Self {
-        let n = soup.num_vertices();
-        let faces_of = VertexFaces::new(n, &soup.faces);
+    /// The faces of `pairs` kept, grown until every shared vertex has one fan of rest faces;
+    /// `soup` must be a manifold (possibly with border).
+    pub(crate) fn around(soup: &TriangleSoup, pairs: &[(FaceId, FaceId)]) -> Self {
         let mut kept_face = vec![false; soup.num_faces()];
         for &(a, b) in pairs {
             kept_face[a.index()] = true;
             kept_face[b.index()] = true;
         }
-        for _ in 0..rings {
+        Self::new(soup, kept_face)
+    }
+
+    /// This region with the input faces `more` kept too (faces of the rest the envelope proof
+    /// named), or, when `more` adds none, with one ring of faces around the kept ones.
+    pub(crate) fn grown(&self, soup: &TriangleSoup, more: &[FaceId]) -> Self {
+        let mut kept_face = self.kept_face.clone();
+        let before = kept_face.iter().filter(|&&k| k).count();
+        for f in more {
+            kept_face[f.index()] = true;
+        }
+        if kept_face.iter().filter(|&&k| k).count() == before {
+            let faces_of = VertexFaces::new(soup.num_vertices(), &soup.faces);
             let touched = touched_vertices(soup, &kept_face);
             for (v, _) in touched.iter().enumerate().filter(|(_, t)| **t) {
                 for &f in faces_of.of(v) {
@@ -54,6 +71,12 @@ impl KeptRegion {
                 }
             }
         }
+        Self::new(soup, kept_face)
+    }
+
+    fn new(soup: &TriangleSoup, mut kept_face: Vec<bool>) -> Self {
+        let n = soup.num_vertices();
+        let faces_of = VertexFaces::new(n, &soup.faces);
         // Until every vertex on both sides has one fan of rest faces.
         loop {
             let touched = touched_vertices(soup, &kept_face);
@@ -80,6 +103,7 @@ impl KeptRegion {
                 .collect(),
         };
         let (kept, rest) = (pick(true), pick(false));
+        let rest_faces = soup.face_ids().filter(|f| !kept_face[f.index()]).collect();
         let mut on_kept = vec![false; n];
         let mut on_rest = vec![false; n];
         for (f, &k) in soup.faces.iter().zip(&kept_face) {
@@ -96,7 +120,13 @@ impl KeptRegion {
             .zip(&on_rest)
             .map(|(a, b)| *a && *b)
             .collect();
-        KeptRegion { rest, kept, shared }
+        KeptRegion {
+            kept_face,
+            rest,
+            rest_faces,
+            kept,
+            shared,
+        }
     }
 
     /// Number of kept faces.
@@ -163,29 +193,35 @@ mod tests {
     fn kept_faces_cover_the_pairs_and_the_rest_is_manifold() {
         let soup = generate::icosphere(2, 1.0);
         let pairs = [(FaceId(3), FaceId(40)), (FaceId(41), FaceId(100))];
-        for rings in 0..3 {
-            let r = KeptRegion::around(&soup, &pairs, rings);
+        let mut r = KeptRegion::around(&soup, &pairs);
+        for round in 0..3 {
             for &(a, b) in &pairs {
-                assert!(r.kept.faces.contains(&soup.faces[a.index()]));
-                assert!(r.kept.faces.contains(&soup.faces[b.index()]));
+                assert!(r.kept_face[a.index()] && r.kept_face[b.index()]);
             }
             assert_eq!(r.num_kept() + r.rest.num_faces(), soup.num_faces());
-            let topo = analyze(&r.rest);
-            assert!(topo.manifold, "rings {rings}");
+            assert_eq!(r.rest_faces.len(), r.rest.num_faces());
+            for (k, f) in r.rest_faces.iter().enumerate() {
+                assert_eq!(r.rest.faces[k], soup.faces[f.index()]);
+            }
+            assert!(analyze(&r.rest).manifold, "round {round}");
             assert!(r.shared.iter().any(|&s| s));
+            // Nothing named: one more ring.
+            let next = r.grown(&soup, &[]);
+            assert!(next.num_kept() > r.num_kept());
+            r = next;
         }
-        // More rings keep more.
-        let (a, b) = (
-            KeptRegion::around(&soup, &pairs, 0),
-            KeptRegion::around(&soup, &pairs, 1),
-        );
-        assert!(b.num_kept() > a.num_kept());
+        // Named faces are kept, and only what keeps the rest manifold besides.
+        let r = KeptRegion::around(&soup, &pairs);
+        let named = r.rest_faces[r.rest_faces.len() / 2];
+        let g = r.grown(&soup, &[named]);
+        assert!(g.kept_face[named.index()]);
+        assert!(g.num_kept() < r.grown(&soup, &[]).num_kept() + 10);
     }
 
     #[test]
     fn a_vertex_cut_into_two_fans_is_kept_whole() {
-        // Two opposite faces of a vertex's fan kept: its rest faces form two fans, so all
-        // its faces are kept.
+        // Two faces of a vertex's fan that share no edge kept: its rest faces form two fans,
+        // so all its faces are kept.
         let soup = generate::icosphere(1, 1.0);
         let v = 0u32;
         let fan: Vec<u32> = soup
@@ -207,10 +243,9 @@ mod tests {
             .copied()
             .find(|&g| others(fan[0]).all(|w| !others(g).any(|x| x == w)))
             .expect("a face of the fan apart from the first");
-        let pairs = [(FaceId(fan[0]), FaceId(apart))];
-        let r = KeptRegion::around(&soup, &pairs, 0);
+        let r = KeptRegion::around(&soup, &[(FaceId(fan[0]), FaceId(apart))]);
         for &f in &fan {
-            assert!(r.kept.faces.contains(&soup.faces[f as usize]));
+            assert!(r.kept_face[f as usize]);
         }
         assert!(analyze(&r.rest).manifold);
     }

@@ -92,3 +92,28 @@ fn non_manifold_input_still_refused() {
         Err(DriverError::Unacceptable(_))
     ));
 }
+
+/// Two spheres touching at one point through two vertices at the same position (what repair
+/// leaves of a pinch): duplicate vertices whose faces meet there, kept as they are.
+#[test]
+fn spheres_touching_at_a_duplicated_vertex() {
+    let sphere = generate::icosphere(3, 1.0);
+    // The icosphere is symmetric through its centre: the second one, moved by twice vertex
+    // 0, touches the first there with its antipode of vertex 0.
+    let p0 = sphere.positions[0];
+    let antipode = sphere
+        .positions
+        .iter()
+        .position(|&p| p == -p0)
+        .expect("an antipodal vertex");
+    let soup = union(&sphere, &sphere, 2.0 * p0);
+    assert_eq!(
+        soup.positions[0],
+        soup.positions[sphere.num_vertices() + antipode]
+    );
+    let (out, report) = simplify(&soup, &options(0.02, Placement::Subset), &mut ()).unwrap();
+    let kept = report.kept.expect("kept around the touching point");
+    assert!(kept.kept_faces >= 10, "{kept:?}");
+    assert!(out.num_faces() < soup.num_faces() / 2);
+    assert_eq!(report.verify.unwrap().verdict, Verdict::Holds);
+}

@@ -67,8 +67,8 @@ pub struct Options {
     pub orig_to_approx: bool,
     /// Allow the intersections `orig` already had: an intersecting pair of `approx` whose two
     /// faces are both faces of `orig` (the same three corners, bit for bit, in the same
-    /// cyclic order) is listed in [`Certificate::kept_intersections`] and is no violation;
-    /// any other pair is. For a simplifier that keeps the faces around an input's
+    /// cyclic order) that intersect in `orig` too is listed in
+    /// [`Certificate::kept_intersections`] and is no violation; any other pair is. For a simplifier that keeps the faces around an input's
     /// self-intersections unchanged: such a pair meets exactly as it did in `orig`.
     pub allow_input_intersections: bool,
 }
@@ -244,7 +244,8 @@ pub struct Certificate {
     /// none of the pairs tested within it intersect: whether any pair does is not decided
     /// (the verdict is then at best [`Verdict::Undecided`]).
     pub self_intersections_undecided: bool,
-    /// Intersecting pairs of `approx` made of two unchanged faces of `orig`, allowed by
+    /// Intersecting pairs of `approx` made of two unchanged faces of `orig` that met there
+    /// too, allowed by
     /// [`Options::allow_input_intersections`] (empty otherwise; never in
     /// `self_intersections`).
     pub kept_intersections: Vec<(FaceId, FaceId)>,
@@ -406,8 +407,9 @@ pub fn first_self_intersection(positions: &[DVec3], faces: &[[u32; 3]]) -> Optio
 /// Two faces of a soup.
 type FacePair = (FaceId, FaceId);
 
-/// Splits intersecting pairs of `approx` into those whose two faces are both faces of `orig`
-/// (the same corners bit for bit, in the same cyclic order) and the others.
+/// Splits intersecting pairs of `approx` into those whose two faces are faces of `orig` (the
+/// same corners bit for bit, in the same cyclic order) that intersect in `orig` too, exactly,
+/// and the others.
 fn split_kept_pairs(
     orig: &TriangleSoup,
     approx: &TriangleSoup,
@@ -420,11 +422,15 @@ fn split_kept_pairs(
         let k = (0..3).min_by_key(|&k| c[k]).unwrap_or(0);
         [c[k], c[(k + 1) % 3], c[(k + 2) % 3]]
     };
-    let faces: std::collections::HashSet<_> = orig.face_ids().map(|f| key(orig, f)).collect();
-    let unchanged = |f: FaceId| faces.contains(&key(approx, f));
-    pairs
-        .into_iter()
-        .partition(|&(a, b)| unchanged(a) && unchanged(b))
+    let faces: std::collections::HashMap<_, FaceId> =
+        orig.face_ids().map(|f| (key(orig, f), f)).collect();
+    let of = raw_faces(orig);
+    let met_in_orig =
+        |&(a, b): &FacePair| match (faces.get(&key(approx, a)), faces.get(&key(approx, b))) {
+            (Some(&x), Some(&y)) => faces_intersect(&orig.positions, of[x.index()], of[y.index()]),
+            _ => false,
+        };
+    pairs.into_iter().partition(met_in_orig)
 }
 
 /// [`first_self_intersection`] with the faces' BVH given.
@@ -660,6 +666,24 @@ mod kept_intersection_tests {
         moved.positions[4].z += 1e-3;
         let c = certify(&orig, &moved, &allow);
         assert_eq!(c.violations(), vec!["self_intersections"]);
+        assert!(c.kept_intersections.is_empty());
+        // Two faces sharing a vertex in `orig` meet nowhere else; with the vertex split in
+        // two copies they touch there: unchanged faces, but not an intersection of `orig`.
+        let fan = TriangleSoup::from_raw(
+            &[
+                [0., 0., 0.],
+                [1., 0., 0.],
+                [0., 1., 0.],
+                [-1., 0., 0.],
+                [0., -1., 0.],
+            ],
+            &[[0, 1, 2], [0, 3, 4]],
+        );
+        let mut split = fan.clone();
+        split.positions.push(split.positions[0]);
+        split.faces[1][0] = envelope_mesh::VertexId(5);
+        let c = certify(&fan, &split, &allow);
+        assert!(c.violations().contains(&"self_intersections"));
         assert!(c.kept_intersections.is_empty());
     }
 }
