@@ -137,6 +137,15 @@ fn render_text(input: &Path, read: &ReadReport, r: &CheckReport) -> String {
         let _ = writeln!(s, "verdict     acceptable input");
     } else {
         let _ = writeln!(s, "verdict     not acceptable: {}", errors.join(", "));
+        if r.errors()
+            .all(|c| envelope::advanced::simplify::CROSSINGS.contains(&c))
+            && r.errors().all(|c| !r.finding(c).undecided)
+        {
+            let _ = writeln!(
+                s,
+                "            (simplify keeps the faces where the input meets itself as they are and simplifies the rest)"
+            );
+        }
     }
     s
 }

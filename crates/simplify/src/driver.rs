@@ -13,6 +13,13 @@
 //!   simplify_local      section 5.2 with the 5.1 validity test
 //!   certify             (optional) two-sided Hausdorff <= max epsilon, no self-intersection,
 //!                       same genus / components / border loops
+//!
+//! a self-intersecting input (only CROSSINGS classes): the same steps on the rest, around
+//!   KeptRegion          module kept: the faces of intersecting pairs, kept as they are
+//!   build_envelopes     for the rest; named contact faces kept too until proved (<= 4 rounds)
+//!   Barriers            + the kept faces as walls (touched only at shared vertices), the
+//!                       shared vertices kept
+//!   join, certify       rest + kept faces; only the input's own intersections allowed
 //! ```
 //!
 //! Sharp features need no special case (6.1): where the envelopes leave no room across a
@@ -576,6 +583,12 @@ impl LocalStep {
 }
 
 /// [`simplify`] with another simplification step in place of the local algorithm.
+///
+/// An input whose only error classes are [`CROSSINGS`] (it meets itself) is simplified
+/// around its crossings: the faces of its intersecting pairs are kept as they are (module
+/// `kept`), the rest is simplified between its own proved envelopes with the kept faces as
+/// walls, and the certificate allows exactly the input's own intersections; the report's
+/// [`SimplifyReport::kept`] says how much was kept.
 pub fn simplify_with(
     soup: &TriangleSoup,
     options: &SimplifyOptions,
@@ -671,12 +684,13 @@ pub fn simplify_with(
     Ok((out, report))
 }
 
-/// The error classes an input meeting itself has: the faces around them are kept
-/// ([`simplify_around_crossings`]). Each makes intersecting pairs that cover it: a T-junction
+/// The error classes an input meeting itself has: the faces around them are kept (the
+/// driver's crossing path, see [`simplify_with`]); an input whose only error classes are
+/// these is simplified, not refused. Each makes intersecting pairs that cover it: a T-junction
 /// (the faces at the vertex meet the edge's face away from what they share), two vertices at
 /// one position (the faces of one meet those of the other there; what repair leaves where it
 /// splits a pinch into sheets), coincident faces.
-const CROSSINGS: [DegeneracyClass; 4] = [
+pub const CROSSINGS: [DegeneracyClass; 4] = [
     DegeneracyClass::IntersectingTriangles,
     DegeneracyClass::CoincidentTriangles,
     DegeneracyClass::TJunctions,

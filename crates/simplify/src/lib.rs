@@ -33,9 +33,9 @@ mod rules;
 mod walls;
 
 pub use driver::{
-    DriverError, EnvelopeReport, KeptReport, LocalStep, Progress, SimplifyOptions, SimplifyReport,
-    SimplifyStep, Stage, StepInput, StepOutcome, VerifyReport, input_problems, peak_memory_bytes,
-    simplify, simplify_with,
+    CROSSINGS, DriverError, EnvelopeReport, KeptReport, LocalStep, Progress, SimplifyOptions,
+    SimplifyReport, SimplifyStep, Stage, StepInput, StepOutcome, VerifyReport, input_problems,
+    peak_memory_bytes, simplify, simplify_with,
 };
 pub use local::{HoleFilling, Order, Placement};
 pub use lod::{Level, LodOptions, LodRule, Screen, lod_chain};
