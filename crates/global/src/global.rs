@@ -237,6 +237,7 @@ fn run(
     let mut g = Global {
         grid: FaceGrid::from_mesh(mesh),
         mesh,
+        keep: screen.map_or(&[][..], Barriers::kept),
         touched: Vec::new(),
         epoch: 0,
         border: options.border,
@@ -297,6 +298,8 @@ struct Global<'m> {
     epoch: u64,
     /// Regions may remove border vertices ([`GlobalOptions::border`]).
     border: bool,
+    /// Vertices no region may remove ([`Barriers::with_kept`]).
+    keep: &'m [bool],
 }
 
 impl Global<'_> {
@@ -370,6 +373,12 @@ impl Global<'_> {
         filter: &dyn Filter,
         fibers: &Fibers<'_>,
     ) -> (u64, bool) {
+        if c.inside
+            .iter()
+            .any(|v| self.keep.get(v.index()).copied().unwrap_or(false))
+        {
+            return (0, false);
+        }
         let Some(r) = region(self.mesh, &c.inside, self.border) else {
             return (0, false);
         };

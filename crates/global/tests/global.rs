@@ -330,3 +330,43 @@ fn global_and_hybrid_stop_at_the_target_face_count() {
         assert_certified(&soup, &out, eps);
     }
 }
+
+/// Kept vertices (`SimplifyOptions::keep`) survive every method and placement at their input
+/// positions, the rest still simplifies, and the output is certified.
+#[test]
+fn kept_vertices_stay_where_they_are() {
+    use envelope_simplify::Placement;
+    let sphere = generate::icosphere(3, 1.0);
+    let n = sphere.num_vertices();
+    let keep: Vec<bool> = (0..n).map(|v| v % 7 == 0).collect();
+    let cases = [
+        (Method::Local, Placement::Collapse),
+        (Method::Local, Placement::Slide),
+        (Method::Global, Placement::Subset),
+        (Method::Hybrid, Placement::Collapse),
+    ];
+    for (method, placement) in cases {
+        let options = envelope_simplify::SimplifyOptions {
+            placement,
+            keep: keep.clone(),
+            ..envelope_simplify::SimplifyOptions::new(EpsilonField::Constant(0.05))
+        };
+        let (out, _) =
+            simplify_with(&sphere, &options, method.step().as_ref(), &mut ()).expect("simplify");
+        let key = |p: DVec3| p.to_array().map(f64::to_bits);
+        let at: std::collections::HashSet<_> = out.positions.iter().map(|&p| key(p)).collect();
+        for v in (0..n).filter(|&v| keep[v]) {
+            assert!(
+                at.contains(&key(sphere.positions[v])),
+                "{method:?}/{placement:?}: kept vertex {v} moved or removed"
+            );
+        }
+        let kept = keep.iter().filter(|&&k| k).count();
+        assert!(
+            out.num_vertices() < n - (n - kept) / 2,
+            "{method:?}/{placement:?}: {} of {n} vertices left",
+            out.num_vertices()
+        );
+        assert_certified(&sphere, &out, 0.05);
+    }
+}

@@ -2,7 +2,7 @@
 //! tubes a new border edge must not touch (section 6.2), as plain triangle data with one
 //! static BVH over all of them.
 
-use envelope_mesh::{CoordError, FaceId, TriangleSoup, check_coordinate};
+use envelope_mesh::{CoordError, FaceId, TriangleSoup, VertexId, check_coordinate};
 use envelope_predicates::bvh::{Aabb, Bvh, NodeKind};
 use envelope_predicates::{
     SegmentTriangle, indexed_triangles_intersect, polyline_crossings, segment_triangle,
@@ -152,6 +152,8 @@ pub struct Barriers {
     /// face count.
     envelope_faces: Vec<(u32, u32)>,
     has_tubes: bool,
+    /// Input vertices no step may remove or move ([`Barriers::with_kept`]), by vertex id.
+    kept: Vec<bool>,
     /// Per connected component of every surface: its box and one of its vertices
     /// ([`Barriers::sweeps_across`]).
     components: Vec<(Aabb, DVec3)>,
@@ -331,6 +333,7 @@ impl Barriers {
             position,
             envelope_faces,
             has_tubes,
+            kept: Vec::new(),
             components,
             component_tree,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
@@ -436,6 +439,36 @@ impl Barriers {
             }
         }
         self
+    }
+
+    /// Declares kept vertices: `kept[v]` for each vertex id `v` of the mesh being simplified
+    /// that no step may remove or move (the local algorithm's removals, slides and
+    /// collapses, the global regions). Vertices beyond `kept` are free. A constraint on the
+    /// approximation beside the barrier triangles: the vertices where kept input faces
+    /// (around self-intersections) or attribute seams attach.
+    ///
+    /// ```
+    /// use envelope_mesh::VertexId;
+    /// use envelope_simplify::policy::Barriers;
+    /// let b = Barriers::none().with_kept(vec![false, true]);
+    /// assert!(b.keeps(VertexId(1)) && !b.keeps(VertexId(0)) && !b.keeps(VertexId(7)));
+    /// ```
+    #[must_use]
+    pub fn with_kept(mut self, kept: Vec<bool>) -> Self {
+        self.kept = kept;
+        self
+    }
+
+    /// Whether `v` is kept ([`Self::with_kept`]).
+    #[must_use]
+    pub fn keeps(&self, v: VertexId) -> bool {
+        self.kept.get(v.index()).copied().unwrap_or(false)
+    }
+
+    /// The kept flags by vertex id ([`Self::with_kept`]; empty when none is kept).
+    #[must_use]
+    pub fn kept(&self) -> &[bool] {
+        &self.kept
     }
 
     /// Number of barrier triangles (envelopes and tubes).

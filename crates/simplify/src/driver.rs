@@ -72,6 +72,10 @@ pub struct SimplifyOptions {
     /// Certify the output against the input with `envelope-verify` (two-sided Hausdorff at
     /// the largest requested epsilon, self-intersections, topology).
     pub verify: bool,
+    /// Input vertices no step may remove or move, by vertex id (empty: none; ids beyond the
+    /// end are free): attribute seams, say. Kept vertices stay in the output at their input
+    /// positions, so an edge between two kept vertices is never removed.
+    pub keep: Vec<bool>,
 }
 
 impl SimplifyOptions {
@@ -89,6 +93,7 @@ impl SimplifyOptions {
             tube_segments: Some(8),
             target_faces: None,
             verify: false,
+            keep: Vec::new(),
         }
     }
 }
@@ -696,7 +701,7 @@ pub fn simplify_with(
             )
         },
     );
-    let barriers = barriers?.with_pins(&pins);
+    let barriers = barriers?.with_pins(&pins).with_kept(options.keep.clone());
     let mut mesh = mesh?;
     go_on(progress)?;
     progress.stage(Stage::Simplify {

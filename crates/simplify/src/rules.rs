@@ -89,6 +89,9 @@ pub enum Rejection {
     NotAVertex,
     /// A border vertex while there is no border tube (nothing bounds the border, 6.2).
     BorderWithoutTubes,
+    /// A kept vertex ([`Barriers::with_kept`](crate::policy::Barriers::with_kept)): never
+    /// removed nor moved.
+    Kept,
     /// A border vertex with one face: removing it would leave no triangle whose new border
     /// edge the tubes could be checked on.
     Ear,

@@ -140,6 +140,9 @@ impl LocalSimplifier<'_> {
         if !m.contains_vertex(v) || !m.contains_vertex(w) || m.find_halfedge(v, w).is_none() {
             return (Err(Rejection::NotAVertex), 0);
         }
+        if self.keeps(v) || self.keeps(w) {
+            return (Err(Rejection::Kept), 0);
+        }
         if m.is_border_vertex(v) || m.is_border_vertex(w) || !in_range(p) {
             return (Err(Rejection::NoValidFill), 0);
         }

@@ -260,6 +260,8 @@ pub struct Policies<'p> {
     pub stop: &'p dyn StopRule,
     /// Keep every border vertex (set when there is no border tube).
     pub keep_border: bool,
+    /// Vertices never removed nor moved, by id ([`Barriers::with_kept`]; empty: none).
+    pub keep: &'p [bool],
     /// Run sanity checks after every attempt.
     pub check_each_step: bool,
     /// With fibers, the slide phase ([`Placement::Slide`]) runs after the subset run.
@@ -342,6 +344,7 @@ pub fn simplify_local_from(
         filler,
         stop,
         keep_border: !barriers.has_tubes(),
+        keep: barriers.kept(),
         check_each_step: options.check_each_step,
         fibers: fibers.filter(|_| options.placement != Placement::Subset),
         collapse: matches!(options.placement, Placement::Collapse | Placement::Auto),

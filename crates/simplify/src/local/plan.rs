@@ -26,6 +26,8 @@ pub struct LocalSimplifier<'m> {
     pub(super) mesh: &'m mut HalfEdgeMesh,
     pub(super) grid: FaceGrid,
     pub(super) keep_border: bool,
+    /// Vertices never removed nor moved, by id (empty: none).
+    pub(super) keep: &'m [bool],
     /// Asked before every plain removal's filling ([`Policies::fiber_test`]).
     pub(super) fiber_test: Option<&'m FiberTest<'m>>,
     /// Candidate triangles given to the filter so far.
@@ -42,6 +44,18 @@ impl<'m> LocalSimplifier<'m> {
         }
     }
 
+    /// Vertices never to remove nor move, by id (vertices beyond the slice are free).
+    #[must_use]
+    pub fn with_keep(mut self, keep: &'m [bool]) -> Self {
+        self.keep = keep;
+        self
+    }
+
+    /// Whether `v` is never to be removed nor moved ([`Self::with_keep`]).
+    pub(super) fn keeps(&self, v: VertexId) -> bool {
+        self.keep.get(v.index()).copied().unwrap_or(false)
+    }
+
     /// [`Self::new`] with an empty face index, for plans that read none (the fiber test's
     /// verdicts, see [`Doomed`]) while the index is built; the caller sets `grid` before
     /// anything else.
@@ -50,6 +64,7 @@ impl<'m> LocalSimplifier<'m> {
             mesh,
             grid: FaceGrid::empty(),
             keep_border,
+            keep: &[],
             fiber_test: None,
             candidate_tests: 0,
         }
@@ -170,6 +185,9 @@ impl<'m> LocalSimplifier<'m> {
         let m = &*self.mesh;
         if !m.contains_vertex(v) || m.is_isolated(v) {
             return Err(Rejection::NotAVertex);
+        }
+        if self.keeps(v) {
+            return Err(Rejection::Kept);
         }
         let border = m.is_border_vertex(v);
         if border && self.keep_border {

@@ -41,12 +41,14 @@ pub(super) fn run(
     let verdicts = Doomed::new(
         start.as_mut().map(|m| {
             let s = LocalSimplifier::without_grid(m, policies.keep_border)
+                .with_keep(policies.keep)
                 .with_fiber_test(policies.fiber_test);
             (s, policies.filter)
         }),
         &queue,
     );
     let mut local = LocalSimplifier::without_grid(mesh, policies.keep_border)
+        .with_keep(policies.keep)
         .with_fiber_test(policies.fiber_test);
     let mut rings = RingBoxes::default();
     let take_ahead = || verdicts.take_one();

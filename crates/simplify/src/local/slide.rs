@@ -60,7 +60,7 @@ impl LocalSimplifier<'_> {
         let pv = m.position(v);
         let mut moves = Vec::new();
         for u in m.vertex_neighbors(v) {
-            if m.is_border_vertex(u) {
+            if m.is_border_vertex(u) || self.keeps(u) {
                 continue;
             }
             let Some((a, d)) = fibers.segment(u) else {
