@@ -583,18 +583,27 @@ fn carry_charts(s: &Source<'_>, t: &Target<'_>, from: &mut [[Option<Origin>; 3]]
             *c = Some(s.chart[*g as usize]);
         }
     }
-    // Input faces per chart, and a tree per chart that has a moved corner.
+    // A tree per chart that has a moved corner, over the chart's input faces.
+    let mut by_chart: Vec<Vec<u32>> = Vec::new();
     let mut trees: HashMap<Option<u32>, ChartTree> = HashMap::new();
     for f in 0..n {
         for k in 0..3 {
             if from[f][k].is_some() {
                 continue;
             }
+            if by_chart.is_empty() {
+                let charts = s.chart.iter().map(|&c| c as usize + 1).max().unwrap_or(0);
+                by_chart = vec![Vec::new(); charts];
+                for (g, &c) in s.chart.iter().enumerate() {
+                    by_chart[c as usize].push(g as u32);
+                }
+            }
             let chart = chart_of[component[f] as usize];
             let tree = trees.entry(chart).or_insert_with(|| {
-                let faces = (0..s.faces.len() as u32)
-                    .filter(|&g| chart.is_none_or(|c| s.chart[g as usize] == c))
-                    .collect();
+                let faces = match chart {
+                    Some(c) => std::mem::take(&mut by_chart[c as usize]),
+                    None => (0..s.faces.len() as u32).collect(),
+                };
                 ChartTree::new(s, faces)
             });
             let p = t.soup.positions[t.faces[f][k] as usize];

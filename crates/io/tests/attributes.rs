@@ -330,3 +330,47 @@ fn paths_are_written_atomically_and_off_stl_drop_attributes() {
     assert!(err.to_string().contains("attributes do not fit"), "{err}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
 }
+
+mod round_trips {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn finite() -> impl Strategy<Value = f64> {
+        any::<f64>().prop_filter("finite", |x| x.is_finite())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// Any finite values at any corners come back bit-exact from OBJ and PLY.
+        #[test]
+        fn any_values_round_trip(
+            uv in proptest::collection::vec([finite(), finite()], 6),
+            normals in proptest::collection::vec([finite(), finite(), finite()], 6),
+            colours in proptest::collection::vec([0u8..=255, 0u8..=255, 0u8..=255, 0u8..=255], 6),
+        ) {
+            let soup = TriangleSoup::from_raw(
+                &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+                &[[0, 1, 2], [0, 2, 3]],
+            );
+            let corners = vec![[0, 1, 2], [3, 4, 5]];
+            let attributes = Attributes {
+                texcoords: Some(Wedges { values: uv, corners: corners.clone() }),
+                normals: Some(Wedges { values: normals, corners: corners.clone() }),
+                colors: Some(Wedges {
+                    values: colours.iter().map(|c| c.map(|k| f64::from(k) / 255.0)).collect(),
+                    corners,
+                }),
+            };
+            for format in [Format::Obj, Format::Ply(PlyEncoding::Ascii), Format::Ply(PlyEncoding::BinaryBigEndian)] {
+                let mut bytes = Vec::new();
+                write_with_attributes(&mut bytes, &soup, &attributes, format).unwrap();
+                let (back, again, _) = read_with_attributes(&bytes[..], format).unwrap();
+                let mut expected = attributes.clone();
+                if format == Format::Obj {
+                    expected.colors = None;
+                }
+                prop_assert_eq!(corner_bits(&back, &again), corner_bits(&soup, &expected));
+            }
+        }
+    }
+}
