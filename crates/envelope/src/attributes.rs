@@ -29,7 +29,10 @@
 //! **Normals**: a corner of an output face that is an input face (the same three vertices in
 //! the same turn) keeps its input normal exactly; any other corner gets the area-weighted
 //! normal of the output faces around its vertex up to the nearest *sharp* output edges, an
-//! output edge being sharp when it joins two input vertices along an input edge whose faces
+//! output edge being sharp when it joins two input vertices along a path of input edges
+//! whose inner vertices are all gone from the output (an input edge itself, or a crease whose
+//! middle vertices were removed; at most [`SHARP_PATH_LIMIT`] vertices are visited), every
+//! edge of the path one whose faces
 //! gave different normals at either end.
 //!
 //! No guarantee rests on anything here (the certificate is about positions only), so nothing
@@ -138,6 +141,8 @@ struct Source<'a> {
     edges: Edges,
     seams: HashSet<(u32, u32)>,
     sharp: HashSet<(u32, u32)>,
+    /// Per vertex, its neighbours across sharp edges.
+    sharp_neighbours: HashMap<u32, Vec<u32>>,
     seam_vertex: Vec<bool>,
     /// A corner (face, index) of each vertex (`u32::MAX` for an unused one).
     corner_of: Vec<(u32, u8)>,
@@ -197,6 +202,17 @@ impl<'a> Source<'a> {
             faces,
             edges,
             seams,
+            sharp_neighbours: {
+                let mut m: HashMap<u32, Vec<u32>> = HashMap::new();
+                for &(a, b) in &sharp {
+                    m.entry(a).or_default().push(b);
+                    m.entry(b).or_default().push(a);
+                }
+                for list in m.values_mut() {
+                    list.sort_unstable();
+                }
+                m
+            },
             sharp,
             seam_vertex,
             corner_of,
@@ -239,22 +255,29 @@ struct Target<'a> {
     faces: Vec<[u32; 3]>,
     edges: Edges,
     origin: Vec<Option<u32>>,
+    /// Per input vertex, whether an output vertex is at its position.
+    present: Vec<bool>,
 }
 
 impl<'a> Target<'a> {
     fn new(soup: &'a TriangleSoup, source: &Source<'_>) -> Self {
         let faces = faces_of(soup);
         let edges = directed_edges(&faces);
-        let origin = soup
+        let origin: Vec<Option<u32>> = soup
             .positions
             .iter()
             .map(|&p| source.by_position.get(&bits(p)).copied())
             .collect();
+        let mut present = vec![false; source.soup.num_vertices()];
+        for &v in origin.iter().flatten() {
+            present[v as usize] = true;
+        }
         Target {
             soup,
             faces,
             edges,
             origin,
+            present,
         }
     }
 
@@ -325,6 +348,34 @@ impl Target<'_> {
             .get(&(a, v))
             .is_some_and(|&(h, _)| h as usize == f)
     }
+}
+
+/// How many input vertices a search for a sharp path between two output vertices visits at
+/// most (keeps the normals' cost linear; a longer merged crease is then not sharp).
+const SHARP_PATH_LIMIT: usize = 256;
+
+/// Whether output edge `v-w` is sharp (see the module docs): its ends are input vertices
+/// joined by a path of sharp input edges through input vertices the output no longer has.
+fn sharp_between(s: &Source<'_>, t: &Target<'_>, v: u32, w: u32) -> bool {
+    let (Some(a), Some(b)) = (t.origin[v as usize], t.origin[w as usize]) else {
+        return false;
+    };
+    if s.sharp.contains(&undirected(a, b)) {
+        return true;
+    }
+    let mut seen: HashSet<u32> = HashSet::from([a]);
+    let mut stack = vec![a];
+    while let Some(x) = stack.pop() {
+        for &y in s.sharp_neighbours.get(&x).map_or(&[][..], Vec::as_slice) {
+            if y == b {
+                return true;
+            }
+            if !t.present[y as usize] && seen.len() < SHARP_PATH_LIMIT && seen.insert(y) {
+                stack.push(y);
+            }
+        }
+    }
+    false
 }
 
 /// What [`Target::fan`] found.
@@ -651,7 +702,7 @@ fn normals(s: &Source<'_>, t: &Target<'_>, w: &Wedges<3>) -> Wedges<3> {
             continue;
         }
         for k in 0..3 {
-            let fan = t.fan(f, k, |a, b| t.on(&s.sharp, a, b));
+            let fan = t.fan(f, k, |a, b| sharp_between(s, t, a, b));
             let sum: DVec3 = fan
                 .corners
                 .iter()

@@ -481,3 +481,74 @@ fn moved_vertices_take_the_fields_value_at_their_closest_input_point() {
         assert!(moved > 0, "{placement:?}: nothing moved");
     }
 }
+
+/// A roof: two planes meeting at a straight crease x = 1/2, flat-shaded (each plane's faces
+/// carry its normal at every corner), so only the crease edges are sharp.
+fn roof(n: u32) -> Mesh {
+    let mut positions = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let x = f64::from(i) / f64::from(n);
+            positions.push([x, f64::from(j) / f64::from(n), 0.3 * (x - 0.5).abs()]);
+        }
+    }
+    let mut faces = Vec::new();
+    let mut corners = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let v = j * (n + 1) + i;
+            let side = u32::from(i >= n / 2);
+            faces.push([v, v + 1, v + n + 2]);
+            faces.push([v, v + n + 2, v + n + 1]);
+            corners.push([side; 3]);
+            corners.push([side; 3]);
+        }
+    }
+    let normals = Wedges {
+        values: vec![[0.3, 0.0, 1.0], [-0.3, 0.0, 1.0]],
+        corners,
+    };
+    Mesh::new(positions, faces)
+        .unwrap()
+        .with_attributes(Attributes {
+            normals: Some(normals),
+            ..Attributes::default()
+        })
+        .unwrap()
+}
+
+#[test]
+fn normals_stay_flat_on_each_side_of_a_crease() {
+    let mesh = roof(12);
+    // Normal creases are not kept: the roof simplifies like an unshaded one.
+    assert!(seam_vertices(&mesh).iter().all(|k| !k));
+    let done = Simplifier::new(Epsilon::percent(1.0))
+        .threads(1)
+        .run(&mesh)
+        .unwrap();
+    let out = done.mesh();
+    assert!(out.num_faces() < 40, "{}", out.num_faces());
+    let normals = out.attributes().normals.as_ref().unwrap();
+    let positions: Vec<[f64; 3]> = out.positions().collect();
+    let unit = |n: [f64; 3]| {
+        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        n.map(|x| x / l)
+    };
+    for (f, tri) in out.triangles().enumerate() {
+        let cx: f64 = tri.iter().map(|&v| positions[v as usize][0]).sum::<f64>() / 3.0;
+        let want = unit(if cx < 0.5 {
+            [0.3, 0.0, 1.0]
+        } else {
+            [-0.3, 0.0, 1.0]
+        });
+        for k in 0..3 {
+            let got = unit(normals.value(f, k));
+            for c in 0..3 {
+                assert!(
+                    (got[c] - want[c]).abs() < 1e-12,
+                    "face {f} corner {k}: {got:?}"
+                );
+            }
+        }
+    }
+}
