@@ -468,7 +468,7 @@ pub fn write<W: Write>(writer: W, soup: &TriangleSoup, format: Format) -> Result
     Ok(())
 }
 
-/// [`write`], with the attributes the format holds: OBJ writes `vt`/`vn` tables and `f
+/// [`write()`], with the attributes the format holds: OBJ writes `vt`/`vn` tables and `f
 /// v/t/n` corners (no colours: OBJ has no colour statement); PLY writes per-vertex `u v`,
 /// `nx ny nz` and `red green blue alpha` columns, a vertex split into one per distinct
 /// combination of values its corners have (a seam's copies are then separate vertices of the
@@ -488,7 +488,7 @@ pub fn write<W: Write>(writer: W, soup: &TriangleSoup, format: Format) -> Result
 /// ```
 ///
 /// # Errors
-/// As [`write`]; [`WriteErrorKind::InvalidAttributes`] when the attributes do not fit the
+/// As [`write()`]; [`WriteErrorKind::InvalidAttributes`] when the attributes do not fit the
 /// soup ([`Attributes::is_valid_for`]).
 pub fn write_with_attributes<W: Write>(
     writer: W,
