@@ -32,8 +32,7 @@
 //! output edge being sharp when it joins two input vertices along a path of input edges
 //! whose inner vertices are all gone from the output (an input edge itself, or a crease whose
 //! middle vertices were removed; at most [`SHARP_PATH_LIMIT`] vertices are visited), every
-//! edge of the path one whose faces
-//! gave different normals at either end.
+//! edge of the path one whose faces gave different normals at either end.
 //!
 //! No guarantee rests on anything here (the certificate is about positions only), so nothing
 //! here needs an exact predicate.
@@ -554,8 +553,9 @@ enum Origin {
 }
 
 /// The attributes of `output`, a simplification of `input` whose kept and unmoved vertices
-/// keep their input positions bitwise (every output of `Simplifier`, `Lod` and `Genus`
-/// outside its new vertices): see the module docs. Empty when `input` has none.
+/// keep their input positions bitwise (as `Simplifier` and `Lod` outputs do; moved vertices
+/// are the others): see the module docs. Empty when `input` has none. `Simplifier::run`
+/// and `Lod::level_mesh` call it; it is public for outputs made by other means.
 ///
 /// ```
 /// use envelope::{carry_attributes, Attributes, Mesh, Wedges};
