@@ -165,7 +165,7 @@ fn seam_vertices_are_the_seam_column() {
 #[test]
 fn simplified_cylinder_keeps_values_and_seams() {
     let mesh = cylinder();
-    for method in [Method::Local, Method::Hybrid] {
+    for method in [Method::Local, Method::Hybrid, Method::Global] {
         let done = Simplifier::new(Epsilon::percent(1.0))
             .method(method)
             .placement(Placement::Subset)
