@@ -133,3 +133,22 @@ def test_gil_is_released(sphere):
         spins += 1
     thread.join()
     assert spins > 1000
+
+
+def test_self_intersecting_input_keeps_its_crossings(sphere):
+    """Two spheres through each other: the faces where they meet stay as they are, the rest
+    is simplified, and the certificate allows only the input's own intersections."""
+    v, f = sphere
+    both_v = np.vstack([v, v + np.array([1.2, 0.1, 0.05])])
+    both_f = np.vstack([f, f + len(v)])
+    out = envelope.simplify(both_v, both_f, "1%", threads=1)
+    assert out.is_certified
+    assert len(out.faces) < len(both_f)
+    kept = out.report["kept_around_intersections"]
+    assert kept is not None and kept["intersecting_pairs"] > 0
+    assert kept["kept_faces"] >= 2
+    assert len(out.certificate.kept_intersections) > 0
+    assert out.certificate.self_intersections == []
+    # The oracle, which allows the input's own intersections too, finds the same pairs.
+    strict = envelope.verify(both_v, both_f, out.vertices, out.faces, "1%")
+    assert strict.holds and len(strict.kept_intersections) == len(out.certificate.kept_intersections)

@@ -422,3 +422,35 @@ fn referenced_vertices(soup: &TriangleSoup) -> Vec<bool> {
 
 #[cfg(test)]
 mod tests;
+
+/// Every pair of faces of `soup` that meet away from what they share (the pairs behind
+/// [`DegeneracyClass::IntersectingTriangles`], coincident and T-junction pairs among them),
+/// `(i, j)` with `i < j`, sorted; `None` when the faces' boxes overlap in more pairs than the
+/// checker's budget allows (the class is then undecided). Exact. `face_tree`: as in
+/// [`check_with_shared`].
+///
+/// ```
+/// use envelope_check::intersecting_pairs;
+/// use envelope_mesh::{FaceId, TriangleSoup};
+/// let crossing = TriangleSoup::from_raw(
+///     &[[0., 0., 0.], [2., 0., 0.], [0., 2., 0.], [0.5, 0.5, -1.], [0.5, 0.5, 1.], [1.5, 1.5, 0.]],
+///     &[[0, 1, 2], [3, 4, 5]],
+/// );
+/// assert_eq!(intersecting_pairs(&crossing, None), Some(vec![(FaceId(0), FaceId(1))]));
+/// ```
+#[must_use]
+pub fn intersecting_pairs(
+    soup: &TriangleSoup,
+    face_tree: Option<&Bvh>,
+) -> Option<Vec<(FaceId, FaceId)>> {
+    let found = geometric::PairwiseFindings::compute(soup, face_tree);
+    (!found.undecided).then(|| {
+        let mut pairs: Vec<(FaceId, FaceId)> = found
+            .intersecting
+            .into_iter()
+            .map(|(i, j)| (FaceId(i.min(j)), FaceId(i.max(j))))
+            .collect();
+        pairs.sort_unstable();
+        pairs
+    })
+}

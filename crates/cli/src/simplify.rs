@@ -397,13 +397,23 @@ fn print_summary(args: &Args, r: &SimplifyReport) {
     if let Some(mb) = r.peak_memory_bytes {
         println!("peak memory {:.1} MiB", mb as f64 / (1024.0 * 1024.0));
     }
+    if let Some(k) = &r.kept {
+        println!(
+            "self-intersecting input: {} intersecting pairs; {} faces kept as they are ({} rounds of growth), {} vertices they share kept",
+            k.intersecting_pairs, k.kept_faces, k.rounds, k.shared_vertices
+        );
+    }
     match &r.verify {
         Some(v) => println!(
-            "certificate {}: output->input <= {:.4e}, input->output <= {:.4e}, {} self-intersections, topology {}",
+            "certificate {}: output->input <= {:.4e}, input->output <= {:.4e}, {} self-intersections{}, topology {}",
             v.verdict.as_str(),
             v.approx_to_orig_upper,
             v.orig_to_approx_upper,
             v.self_intersections,
+            match v.certificate.kept_intersections.len() {
+                0 => String::new(),
+                k => format!(" ({k} kept from the input)"),
+            },
             if v.topology_matches {
                 "unchanged"
             } else {

@@ -37,6 +37,11 @@ pub(crate) struct Args {
     /// Skip the self-intersection test of APPROX.
     #[arg(long)]
     no_self_intersections: bool,
+    /// Count every intersecting pair of APPROX as a violation, also a pair of unchanged ORIG
+    /// faces that met in ORIG already (by default those are allowed and listed as kept: what
+    /// `simplify` leaves of a self-intersecting input).
+    #[arg(long)]
+    strict_intersections: bool,
     /// Skip the topology comparison.
     #[arg(long)]
     no_topology: bool,
@@ -78,6 +83,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         options.resolution = r * scale;
     }
     options.self_intersections = !args.no_self_intersections;
+    options.allow_input_intersections = !args.strict_intersections;
     options.topology = !args.no_topology;
     options.orig_to_approx = !args.envelope_of;
     options.first_intersection_only = args.stop_at_first;
@@ -189,10 +195,16 @@ fn render_text(args: &Args, c: &Certificate) -> String {
             .take(5)
             .map(|(a, b)| format!("({a}, {b})"))
             .collect();
+        let kept = c.kept_intersections.len();
         let _ = writeln!(
             out,
-            "self-intersections of approx: {}{}{}",
+            "self-intersections of approx: {}{}{}{}",
             pairs.len(),
+            if kept > 0 {
+                format!(" new ({kept} kept from orig: unchanged faces that met there)")
+            } else {
+                String::new()
+            },
             if c.self_intersections_complete || pairs.is_empty() {
                 ""
             } else {

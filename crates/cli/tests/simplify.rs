@@ -355,3 +355,64 @@ fn default_placement_collapses_only_when_few_vertices_are_left() {
         assert_eq!(few, ran == "collapse", "{eps}: {left} vertices left");
     }
 }
+
+/// Two spheres through each other: simplified around their crossing, the report says how
+/// much was kept, `verify` allows the input's own intersections unless
+/// `--strict-intersections`.
+#[test]
+fn self_intersecting_input_is_simplified_around_its_crossing() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut two = generate::icosphere(3, 1.0);
+    let other = generate::icosphere(3, 1.0);
+    let n = two.positions.len() as u32;
+    two.positions.extend(
+        other
+            .positions
+            .iter()
+            .map(|p| *p + glam::DVec3::new(1.2, 0.1, 0.05)),
+    );
+    two.faces.extend(
+        other
+            .faces
+            .iter()
+            .map(|t| t.map(|v| envelope_mesh::VertexId(v.0 + n))),
+    );
+    let input = write(dir.path(), "two.off", &two);
+    let output = dir.path().join("out.off");
+    let report = dir.path().join("report.json");
+    let out = envelope(&[
+        "simplify",
+        &input,
+        output.to_str().unwrap(),
+        "--epsilon",
+        "1%",
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("self-intersecting input"), "{stdout}");
+    assert!(stdout.contains("kept from the input"), "{stdout}");
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let kept = &r["kept_around_intersections"];
+    assert!(kept["intersecting_pairs"].as_u64().unwrap() > 0, "{r:#}");
+    assert!(r["output_faces"].as_u64().unwrap() < 2 * 1280 / 2, "{r:#}");
+    let verify = |strict: bool| {
+        let mut args = vec![
+            "verify",
+            &input,
+            output.to_str().unwrap(),
+            "--epsilon",
+            "1%",
+        ];
+        if strict {
+            args.push("--strict-intersections");
+        }
+        envelope(&args)
+    };
+    let allowed = verify(false);
+    assert_eq!(allowed.status.code(), Some(0), "{}", stderr(&allowed));
+    assert!(String::from_utf8_lossy(&allowed.stdout).contains("kept from orig"));
+    assert_eq!(verify(true).status.code(), Some(1));
+}

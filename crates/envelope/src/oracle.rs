@@ -18,8 +18,11 @@ pub fn check(mesh: &Mesh) -> CheckReport {
 }
 
 /// Certifies `approx` against `orig`, whoever made it: every point of each within `epsilon`
-/// of the other (exact branch and bound), no self-intersection of `approx`, the same genus,
-/// components and border loops. A relative epsilon is a part of `orig`'s diagonal.
+/// of the other (exact branch and bound), no self-intersection of `approx` but those `orig`
+/// had (a pair of unchanged `orig` faces that met there already, listed in
+/// [`Certificate::kept_intersections`]: what the simplifier leaves of a self-intersecting
+/// input), the same genus, components and border loops. A relative epsilon is a part of
+/// `orig`'s diagonal.
 ///
 /// ```
 /// use envelope::{Epsilon, Verdict};
@@ -39,5 +42,9 @@ pub fn verify(orig: &Mesh, approx: &Mesh, epsilon: Epsilon) -> Result<Certificat
             orig.diagonal()
         )));
     }
-    Ok(certify(orig.soup(), approx.soup(), &Options::new(eps)))
+    let options = Options {
+        allow_input_intersections: true,
+        ..Options::new(eps)
+    };
+    Ok(certify(orig.soup(), approx.soup(), &options))
 }

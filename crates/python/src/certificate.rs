@@ -132,6 +132,11 @@ pub(crate) struct Certificate {
     /// Too many overlapping face pairs to decide whether any intersects.
     #[pyo3(get)]
     self_intersections_undecided: bool,
+    /// Intersecting face pairs of the approximation made of two unchanged faces of the
+    /// original that met there already (allowed: what simplifying a self-intersecting input
+    /// keeps; not in `self_intersections`).
+    #[pyo3(get)]
+    kept_intersections: Vec<(usize, usize)>,
     /// The names of the violated properties (`approx_to_orig`, `orig_to_approx`,
     /// `self_intersections`, `topology`).
     #[pyo3(get)]
@@ -201,6 +206,11 @@ impl Certificate {
                 .map(|pairs| pairs.iter().map(|(a, b)| (a.index(), b.index())).collect()),
             self_intersections_complete: c.self_intersections_complete,
             self_intersections_undecided: c.self_intersections_undecided,
+            kept_intersections: c
+                .kept_intersections
+                .iter()
+                .map(|(a, b)| (a.index(), b.index()))
+                .collect(),
             violations: c.violations(),
             json: c.to_json(),
         })

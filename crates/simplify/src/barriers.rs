@@ -471,6 +471,28 @@ impl Barriers {
         &self.kept
     }
 
+    /// [`Self::with_pins`] for walls: a wall triangle with a corner at one of `pins` no longer
+    /// blocks a candidate that has that point as a corner and meets it nowhere else. For the
+    /// faces of a self-intersecting input kept as they are (given as walls): a new triangle
+    /// may share a vertex (or an edge) with them, which the rest keeps (never removed nor
+    /// moved), and must meet them nowhere else, so no intersection is made.
+    #[must_use]
+    pub fn with_wall_pins(mut self, pins: &[DVec3]) -> Self {
+        let key = |p: DVec3| p.to_array().map(f64::to_bits);
+        let set: std::collections::HashSet<[u64; 3]> = pins.iter().map(|&p| key(p)).collect();
+        if set.is_empty() {
+            return self;
+        }
+        for (i, t) in self.triangles.iter().enumerate() {
+            if self.kinds[i] == BarrierKind::Wall {
+                self.pinned[i] = (0..3)
+                    .filter(|&k| set.contains(&key(t[k])))
+                    .fold(0, |m, k| m | 1 << k);
+            }
+        }
+        self
+    }
+
     /// Number of barrier triangles (envelopes and tubes).
     #[must_use]
     pub fn num_triangles(&self) -> usize {

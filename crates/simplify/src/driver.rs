@@ -23,10 +23,10 @@ use std::time::Instant;
 use envelope_check::{
     CheckOptions, CheckReport, DegeneracyClass, check_with_shared, check_with_topology,
 };
-use envelope_mesh::{BuildError, HalfEdgeMesh, Topology, TriangleSoup, VertexId, analyze};
+use envelope_mesh::{BuildError, FaceId, HalfEdgeMesh, Topology, TriangleSoup, VertexId, analyze};
 use envelope_offset::{
-    EnvelopeError, EnvelopeMethod, EnvelopeOptions, EpsilonField, build_envelopes,
-    build_envelopes_with, face_tree,
+    EnvelopeError, EnvelopeMethod, EnvelopeOptions, Envelopes, EpsilonField, Surface,
+    build_envelopes, build_envelopes_with, face_tree,
 };
 use envelope_predicates::bvh::Bvh;
 use envelope_verify::{Certificate, Verdict};
@@ -36,6 +36,7 @@ use thiserror::Error;
 
 use crate::barriers::{BarrierError, Barriers};
 use crate::fiber::{FiberTest, VertexFibers};
+use crate::kept::{KeptRegion, MAX_ROUNDS};
 use crate::local::{
     HoleFilling, Options as LocalOptions, Order, Placement, SimplifyError, Stats,
     simplify_local_from,
@@ -334,6 +335,9 @@ pub struct SimplifyReport {
     pub envelope: EnvelopeReport,
     /// The certificate of the output, when asked for.
     pub verify: Option<VerifyReport>,
+    /// For a self-intersecting input, what was kept as it was around its intersecting pairs
+    /// (`None`: the input meets itself nowhere).
+    pub kept: Option<KeptReport>,
     /// The simplification method that ran ([`SimplifyStep`]): `"local"` by default.
     pub method: &'static str,
     /// What the method adds to the report (candidate counts for the global one).
@@ -379,6 +383,12 @@ impl SimplifyReport {
                 "seconds": e.seconds,
             },
             "verify": self.verify.as_ref().map(VerifyReport::to_json),
+            "kept_around_intersections": self.kept.as_ref().map(|k| json!({
+                "intersecting_pairs": k.intersecting_pairs,
+                "kept_faces": k.kept_faces,
+                "rounds": k.rounds,
+                "shared_vertices": k.shared_vertices,
+            })),
             "method": self.method,
             "method_details": self.method_details,
         })
@@ -596,36 +606,34 @@ pub fn simplify_with(
             }
         },
         || {
-            let env = options
-                .epsilon
-                .evaluate(&soup.positions)
-                .map_err(DriverError::from)
-                .and_then(|field| {
-                    let env_options = EnvelopeOptions {
-                        method: options.method,
-                        tube_segments: options.tube_segments,
-                        // The check beside (`input_problems`) tests every input pair
-                        // exactly and refuses an intersecting input before these are used.
-                        input_free_of_intersections: true,
-                        ..EnvelopeOptions::new(EpsilonField::PerVertex(field))
-                    };
-                    Ok(match &shared {
-                        Some((topology, tree)) => {
-                            build_envelopes_with(soup, &env_options, topology, tree)?
-                        }
-                        None => build_envelopes(soup, &env_options)?,
-                    })
-                });
+            let env = envelopes_for(soup, options, shared.as_ref().map(|(t, b)| (t, b)));
             (env, t_env.elapsed().as_secs_f64())
         },
     );
-    if !problems.is_empty() {
+    let crossing = !problems.is_empty() && problems.iter().all(|(c, _)| CROSSINGS.contains(c));
+    if !problems.is_empty() && !crossing {
         return Err(DriverError::Unacceptable(problems));
     }
-    let topo_in = match (shared, own_topology) {
-        (Some((topology, _)), _) | (None, Some(topology)) => topology,
-        (None, None) => analyze(soup),
+    let (topo_in, tree) = match (shared, own_topology) {
+        (Some((topology, tree)), _) => (topology, Some(tree)),
+        (None, Some(topology)) => (topology, None),
+        (None, None) => (analyze(soup), None),
     };
+    let used = referenced(soup);
+    if crossing {
+        drop(env);
+        return simplify_around_crossings(
+            soup,
+            &topo_in,
+            tree.as_ref(),
+            &used,
+            problems,
+            options,
+            step,
+            progress,
+            start,
+        );
+    }
     let env = env?;
     // An invariant of every command: no output from envelopes whose proof failed.
     if !env.proof.holds() {
@@ -634,9 +642,164 @@ pub fn simplify_with(
             repair_rounds: env.proof.repair_rounds,
         });
     }
-    let env_proved = env.proof.holds();
+    let between = simplify_between(
+        soup,
+        &topo_in,
+        (env, env_seconds),
+        &used,
+        None,
+        options,
+        step,
+        progress,
+    )?;
+    // The half-edge count: the same numbers as `analyze(&out)`, without its edge table.
+    let (out, (genus_out, border_loops_out)) = rayon::join(
+        || between.mesh.to_soup(),
+        || between.mesh.genus_and_border_loops(),
+    );
+    let verify = certify(soup, &out, between.epsilon_abs, false, options, progress)?;
+    let report = between.report(
+        soup,
+        &out,
+        &topo_in,
+        (genus_out, border_loops_out),
+        verify,
+        None,
+        options,
+        start,
+    );
+    Ok((out, report))
+}
+
+/// The error classes an input meeting itself has: the faces around them are kept
+/// ([`simplify_around_crossings`]). Each makes intersecting pairs that cover it: a T-junction
+/// (the faces at the vertex meet the edge's face away from what they share), two vertices at
+/// one position (the faces of one meet those of the other there; what repair leaves where it
+/// splits a pinch into sheets), coincident faces.
+const CROSSINGS: [DegeneracyClass; 4] = [
+    DegeneracyClass::IntersectingTriangles,
+    DegeneracyClass::CoincidentTriangles,
+    DegeneracyClass::TJunctions,
+    DegeneracyClass::DuplicateVertices,
+];
+
+/// The envelopes of `soup` for `options` (with its topology and face tree when known).
+fn envelopes_for(
+    soup: &TriangleSoup,
+    options: &SimplifyOptions,
+    shared: Option<(&Topology, &Bvh)>,
+) -> Result<Envelopes, DriverError> {
+    let field = options.epsilon.evaluate(&soup.positions)?;
+    let env_options = EnvelopeOptions {
+        method: options.method,
+        tube_segments: options.tube_segments,
+        // The driver tests every input pair exactly and refuses an intersecting input, or
+        // builds these for faces that meet nowhere ([`simplify_around_crossings`]), before
+        // they are used.
+        input_free_of_intersections: true,
+        ..EnvelopeOptions::new(EpsilonField::PerVertex(field))
+    };
+    Ok(match shared {
+        Some((topology, tree)) => build_envelopes_with(soup, &env_options, topology, tree)?,
+        None => build_envelopes(soup, &env_options)?,
+    })
+}
+
+/// The certificate of `out` against `soup` at `epsilon`, when asked for.
+fn certify(
+    soup: &TriangleSoup,
+    out: &TriangleSoup,
+    epsilon: f64,
+    allow_input_intersections: bool,
+    options: &SimplifyOptions,
+    progress: &mut dyn Progress,
+) -> Result<Option<VerifyReport>, DriverError> {
+    if !options.verify {
+        return Ok(None);
+    }
+    progress.stage(Stage::Verify);
+    go_on(progress)?;
+    let t = Instant::now();
+    let certify_options = envelope_verify::Options {
+        allow_input_intersections,
+        ..envelope_verify::Options::new(epsilon)
+    };
+    let c = envelope_verify::certify(soup, out, &certify_options);
+    Ok(Some(VerifyReport::from_certificate(
+        c,
+        t.elapsed().as_secs_f64(),
+    )))
+}
+
+/// What [`simplify_between`] leaves: the simplified mesh and the numbers of the report.
+struct Between {
+    mesh: HalfEdgeMesh,
+    stats: Stats,
+    method: &'static str,
+    details: Value,
+    envelope: EnvelopeReport,
+    epsilon_abs: f64,
+    epsilon_min_abs: f64,
+    simplify_seconds: f64,
+}
+
+impl Between {
+    /// The report of a run whose output is `out`.
+    #[allow(clippy::too_many_arguments)]
+    fn report(
+        self,
+        soup: &TriangleSoup,
+        out: &TriangleSoup,
+        topo_in: &Topology,
+        (genus_out, border_loops_out): (Option<u32>, usize),
+        verify: Option<VerifyReport>,
+        kept: Option<KeptReport>,
+        options: &SimplifyOptions,
+        start: Instant,
+    ) -> SimplifyReport {
+        let diagonal = soup.diagonal();
+        let stats = self.stats;
+        SimplifyReport {
+            input_faces: soup.num_faces(),
+            output_faces: out.num_faces(),
+            input_vertices: topo_in.num_referenced_vertices,
+            output_vertices: out.num_vertices(),
+            epsilon_abs: self.epsilon_abs,
+            epsilon_min_abs: self.epsilon_min_abs,
+            epsilon_fraction: self.epsilon_abs / diagonal,
+            diagonal,
+            seconds: start.elapsed().as_secs_f64(),
+            simplify_seconds: self.simplify_seconds,
+            peak_memory_bytes: peak_memory_bytes(),
+            removed_vertices: stats.removed,
+            placement: match options.placement {
+                Placement::Subset => "subset",
+                Placement::Slide => "slide",
+                Placement::Collapse => "collapse",
+                Placement::Auto if stats.moving_phase => "auto: collapse",
+                Placement::Auto => "auto: subset",
+            },
+            slid_removals: stats.slid,
+            collapsed_removals: stats.collapsed,
+            attempts: stats.attempts,
+            no_fill_across_fiber: stats.no_fill_across_fiber,
+            genus_in: topo_in.genus,
+            genus_out,
+            border_loops_in: topo_in.num_border_loops(),
+            border_loops_out,
+            envelope: self.envelope,
+            verify,
+            kept,
+            method: self.method,
+            method_details: self.details,
+        }
+    }
+}
+
+/// The envelopes' statistics for the report.
+fn envelope_report(env: &Envelopes, options: &SimplifyOptions, seconds: f64) -> EnvelopeReport {
     let fractions = env.achieved_fractions();
-    let envelope = EnvelopeReport {
+    EnvelopeReport {
         method: match options.method {
             EnvelopeMethod::Analytical => "analytical",
             EnvelopeMethod::Numerical => "numerical",
@@ -652,13 +815,31 @@ pub fn simplify_with(
         repair_rounds: env.proof.repair_rounds,
         tubes: env.tubes.len(),
         pinned: env.pinned.len(),
-        seconds: env_seconds,
-    };
-    let used = referenced(soup);
+        seconds,
+    }
+}
+
+/// Sections 5.1-5.2 between proved envelopes: the barriers (envelopes, tubes, border walls,
+/// and the kept faces of a self-intersecting input with the vertices they share kept), the
+/// half-edge mesh of `soup`, and the step run on it. `used`: the referenced vertices of the
+/// whole input (whose requested epsilons bound the output).
+#[allow(clippy::too_many_arguments)]
+fn simplify_between(
+    soup: &TriangleSoup,
+    topo_in: &Topology,
+    (env, env_seconds): (Envelopes, f64),
+    used: &[bool],
+    kept: Option<&KeptRegion>,
+    options: &SimplifyOptions,
+    step: &dyn SimplifyStep,
+    progress: &mut dyn Progress,
+) -> Result<Between, DriverError> {
+    let env_proved = env.proof.holds();
+    let envelope = envelope_report(&env, options, env_seconds);
     let (epsilon_abs, epsilon_min_abs) = env
         .requested
         .iter()
-        .zip(&used)
+        .zip(used)
         .filter(|(_, u)| **u)
         .fold((0.0f64, f64::INFINITY), |(hi, lo), (&e, _)| {
             (hi.max(e), lo.min(e))
@@ -666,15 +847,18 @@ pub fn simplify_with(
     let tubes: Vec<TriangleSoup> = env.tubes.into_iter().map(|t| t.mesh).collect();
     // Without the walls, the space between the envelopes is open along the border and an
     // interior candidate triangle can leave it there (see `walls`).
-    let walls: Vec<TriangleSoup> = border_walls(soup, &topo_in, &env.outer, &env.inner)
+    let mut walls: Vec<TriangleSoup> = border_walls(soup, topo_in, &env.outer, &env.inner)
         .into_iter()
         .map(|w| w.mesh)
         .collect();
+    // The kept faces: no new triangle may touch them but at a shared vertex.
+    walls.extend(kept.map(|k| k.kept.clone()));
     let (outer, inner) = (env.outer.positions.clone(), env.inner.positions.clone());
+    let referenced = referenced(soup);
     // Pins: where an envelope passes through the input vertex (a zero offset; every pinned
     // vertex, and any vertex the numerical growth could not move at all).
     let pins: Vec<DVec3> = (0..soup.num_vertices())
-        .filter(|&v| used[v] && (env.eps_plus[v] == 0.0 || env.eps_minus[v] == 0.0))
+        .filter(|&v| referenced[v] && (env.eps_plus[v] == 0.0 || env.eps_minus[v] == 0.0))
         .map(|v| soup.positions[v])
         .collect();
     // The barriers' tree, the mesh the simplifier edits and the fiber test are independent:
@@ -686,7 +870,7 @@ pub fn simplify_with(
             rayon::join(
                 || HalfEdgeMesh::from_soup(soup),
                 // The fiber test's conditions: envelopes proved apart from the input,
-                // nothing pinned.
+                // nothing pinned. (It only refuses: more barriers leave its refusals true.)
                 || {
                     (env_proved && pins.is_empty()).then(|| {
                         FiberTest::new(
@@ -701,7 +885,20 @@ pub fn simplify_with(
             )
         },
     );
-    let barriers = barriers?.with_pins(&pins).with_kept(options.keep.clone());
+    let mut keep = options.keep.clone();
+    let mut barriers = barriers?.with_pins(&pins);
+    if let Some(k) = kept {
+        keep.resize(keep.len().max(k.shared.len()), false);
+        for (slot, &s) in keep.iter_mut().zip(&k.shared) {
+            *slot |= s;
+        }
+        let shared: Vec<DVec3> = (0..soup.num_vertices())
+            .filter(|&v| k.shared[v])
+            .map(|v| soup.positions[v])
+            .collect();
+        barriers = barriers.with_wall_pins(&shared);
+    }
+    let barriers = barriers.with_kept(keep);
     let mut mesh = mesh?;
     go_on(progress)?;
     progress.stage(Stage::Simplify {
@@ -717,57 +914,132 @@ pub fn simplify_with(
         fiber_test: fiber_test.as_ref(),
     };
     let outcome = step.run(&mut mesh, &input, progress)?;
-    let stats = outcome.stats;
     go_on(progress)?;
-
-    let simplify_seconds = t_simp.elapsed().as_secs_f64();
-    // The half-edge count: the same numbers as `analyze(&out)`, without its edge table.
-    let (out, (genus_out, border_loops_out)) =
-        rayon::join(|| mesh.to_soup(), || mesh.genus_and_border_loops());
-
-    let verify = if options.verify {
-        progress.stage(Stage::Verify);
-        go_on(progress)?;
-        let t = Instant::now();
-        let c = envelope_verify::certify(soup, &out, &envelope_verify::Options::new(epsilon_abs));
-        Some(VerifyReport::from_certificate(c, t.elapsed().as_secs_f64()))
-    } else {
-        None
-    };
-    let diagonal = soup.diagonal();
-    let report = SimplifyReport {
-        input_faces: soup.num_faces(),
-        output_faces: out.num_faces(),
-        input_vertices: topo_in.num_referenced_vertices,
-        output_vertices: out.num_vertices(),
+    Ok(Between {
+        mesh,
+        stats: outcome.stats,
+        method: outcome.method,
+        details: outcome.details,
+        envelope,
         epsilon_abs,
         epsilon_min_abs,
-        epsilon_fraction: epsilon_abs / diagonal,
-        diagonal,
-        seconds: start.elapsed().as_secs_f64(),
-        simplify_seconds,
-        peak_memory_bytes: peak_memory_bytes(),
-        removed_vertices: stats.removed,
-        placement: match options.placement {
-            Placement::Subset => "subset",
-            Placement::Slide => "slide",
-            Placement::Collapse => "collapse",
-            Placement::Auto if stats.moving_phase => "auto: collapse",
-            Placement::Auto => "auto: subset",
-        },
-        slid_removals: stats.slid,
-        collapsed_removals: stats.collapsed,
-        attempts: stats.attempts,
-        no_fill_across_fiber: stats.no_fill_across_fiber,
-        genus_in: topo_in.genus,
-        genus_out,
-        border_loops_in: topo_in.num_border_loops(),
-        border_loops_out,
-        envelope,
-        verify,
-        method: outcome.method,
-        method_details: outcome.details,
+        simplify_seconds: t_simp.elapsed().as_secs_f64(),
+    })
+}
+
+/// How much of a self-intersecting input was kept as it was ([`SimplifyReport::kept`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct KeptReport {
+    /// Intersecting face pairs of the input (T-junction and coincident pairs among them).
+    pub intersecting_pairs: usize,
+    /// Input faces kept unchanged: the faces of those pairs, the rings around them and what
+    /// keeps the rest a manifold.
+    pub kept_faces: usize,
+    /// Envelope builds after the first: each time the rest's envelopes could not be proved,
+    /// the faces the proof named were kept too (or one ring around the kept ones).
+    pub rounds: usize,
+    /// Vertices the kept faces share with the rest (kept, never removed nor moved).
+    pub shared_vertices: usize,
+}
+
+/// A self-intersecting input (its only error classes are [`CROSSINGS`]): the faces around its
+/// intersecting pairs kept as they are (module `kept`), the rest simplified between its own
+/// envelopes, the two joined again and certified with the input's own intersections allowed.
+#[allow(clippy::too_many_arguments)]
+fn simplify_around_crossings(
+    soup: &TriangleSoup,
+    topo_in: &Topology,
+    tree: Option<&Bvh>,
+    used: &[bool],
+    problems: Vec<(DegeneracyClass, usize)>,
+    options: &SimplifyOptions,
+    step: &dyn SimplifyStep,
+    progress: &mut dyn Progress,
+    start: Instant,
+) -> Result<(TriangleSoup, SimplifyReport), DriverError> {
+    // Undecided (too many overlapping boxes) stays refused.
+    let Some(pairs) = envelope_check::intersecting_pairs(soup, tree) else {
+        return Err(DriverError::Unacceptable(problems));
     };
+    let mut region = KeptRegion::around(soup, &pairs);
+    let mut rounds = 0;
+    let (region, env, env_seconds) = loop {
+        go_on(progress)?;
+        let t = Instant::now();
+        if region.rest.num_faces() == 0 {
+            return Err(DriverError::Unacceptable(problems));
+        }
+        let env = envelopes_for(&region.rest, options, None)?;
+        if env.proof.holds() {
+            break (region, env, t.elapsed().as_secs_f64());
+        }
+        if rounds == MAX_ROUNDS {
+            return Err(DriverError::UnprovedEnvelopes {
+                contacts: env.proof.contacts.len() + env.proof.tube_contacts.len(),
+                repair_rounds: env.proof.repair_rounds,
+            });
+        }
+        // The rest faces the proof names (as input faces, or through their envelope faces,
+        // which have the input's connectivity) are kept too.
+        let named: Vec<FaceId> = env
+            .proof
+            .contacts
+            .iter()
+            .chain(&env.proof.tube_contacts)
+            .flat_map(|c| [c.a, c.b])
+            .filter(|(surface, _)| !matches!(surface, Surface::Tube(_)))
+            .map(|(_, f)| region.rest_faces[f.index()])
+            .collect();
+        region = region.grown(soup, &named);
+        rounds += 1;
+    };
+    let topo_rest = analyze(&region.rest);
+    let between = simplify_between(
+        &region.rest,
+        &topo_rest,
+        (env, env_seconds),
+        used,
+        Some(&region),
+        options,
+        step,
+        progress,
+    )?;
+    // The kept faces joined on again: their vertices are live in the mesh (shared ones are
+    // kept, the others isolated there, and no step removes an isolated vertex).
+    let (mut out, ids, _) = between.mesh.to_soup_with_ids();
+    let mut index_of = vec![u32::MAX; ids.iter().map(|v| v.index() + 1).max().unwrap_or(0)];
+    for (i, v) in ids.iter().enumerate() {
+        index_of[v.index()] = i as u32;
+    }
+    for f in &region.kept.faces {
+        let joined = f.map(|v| index_of.get(v.index()).copied().unwrap_or(u32::MAX));
+        if let Some(k) = joined.iter().position(|&i| i == u32::MAX) {
+            return Err(DriverError::Simplify(SimplifyError::SanityCheck {
+                after: f[k],
+                message: "a vertex of a kept face left the mesh".into(),
+            }));
+        }
+        out.faces.push(joined.map(VertexId));
+    }
+    let topo_out = analyze(&out);
+    let kept = KeptReport {
+        intersecting_pairs: pairs.len(),
+        kept_faces: region.num_kept(),
+        rounds,
+        shared_vertices: region.shared.iter().filter(|&&s| s).count(),
+    };
+    let verify = certify(soup, &out, between.epsilon_abs, true, options, progress)?;
+    let numbers = (topo_out.genus, topo_out.num_border_loops());
+    let report = between.report(
+        soup,
+        &out,
+        topo_in,
+        numbers,
+        verify,
+        Some(kept),
+        options,
+        start,
+    );
     Ok((out, report))
 }
 

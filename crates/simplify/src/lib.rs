@@ -13,7 +13,8 @@
 //! algorithm's lower-level entry points ([`policy::simplify_local`] and its variants).
 //!
 //! Inside, the modules form a chain: `grid`, `barriers`, `fiber`, `filter`, `rules`,
-//! `walls`, `fill`, then `local` (the algorithm, one idea per file), `driver`, `lod`.
+//! `walls`, `fill`, then `local` (the algorithm, one idea per file), `kept` (the faces kept
+//! around a self-intersecting input's crossings), `driver`, `lod`.
 //! Decisions are exact predicates (`envelope-predicates`); aspect ratios and queue
 //! priorities are f64 numbers that only order the work.
 #![forbid(unsafe_code)]
@@ -24,6 +25,7 @@ mod fiber;
 mod fill;
 mod filter;
 mod grid;
+mod kept;
 mod local;
 mod lod;
 pub mod policy;
@@ -31,7 +33,7 @@ mod rules;
 mod walls;
 
 pub use driver::{
-    DriverError, EnvelopeReport, LocalStep, Progress, SimplifyOptions, SimplifyReport,
+    DriverError, EnvelopeReport, KeptReport, LocalStep, Progress, SimplifyOptions, SimplifyReport,
     SimplifyStep, Stage, StepInput, StepOutcome, VerifyReport, input_problems, peak_memory_bytes,
     simplify, simplify_with,
 };

@@ -65,6 +65,12 @@ pub struct Options {
     /// Check `orig -> approx` too (two-sided). When false only `approx -> orig` is decided:
     /// the envelope question, see [`Certificate::envelope_of`].
     pub orig_to_approx: bool,
+    /// Allow the intersections `orig` already had: an intersecting pair of `approx` whose two
+    /// faces are both faces of `orig` (the same three corners, bit for bit, in the same
+    /// cyclic order) that intersect in `orig` too is listed in
+    /// [`Certificate::kept_intersections`] and is no violation; any other pair is. For a simplifier that keeps the faces around an input's
+    /// self-intersections unchanged: such a pair meets exactly as it did in `orig`.
+    pub allow_input_intersections: bool,
 }
 
 impl Options {
@@ -78,6 +84,7 @@ impl Options {
             first_intersection_only: false,
             topology: true,
             orig_to_approx: true,
+            allow_input_intersections: false,
         }
     }
 
@@ -237,6 +244,11 @@ pub struct Certificate {
     /// none of the pairs tested within it intersect: whether any pair does is not decided
     /// (the verdict is then at best [`Verdict::Undecided`]).
     pub self_intersections_undecided: bool,
+    /// Intersecting pairs of `approx` made of two unchanged faces of `orig` that met there
+    /// too, allowed by
+    /// [`Options::allow_input_intersections`] (empty otherwise; never in
+    /// `self_intersections`).
+    pub kept_intersections: Vec<(FaceId, FaceId)>,
     /// Topology of both, when asked.
     pub topology: Option<TopologyCheck>,
 }
@@ -352,6 +364,7 @@ impl Certificate {
                 "complete": self.self_intersections_complete,
                 "undecided": self.self_intersections_undecided,
                 "pairs": p.iter().take(100).map(|(a, b)| [a.index(), b.index()]).collect::<Vec<_>>(),
+                "kept_from_input": self.kept_intersections.len(),
             })),
             "topology": self.topology.map(|t| json!({
                 "orig": topo(&t.orig),
@@ -389,6 +402,35 @@ fn raw_faces(soup: &TriangleSoup) -> Vec<[u32; 3]> {
 #[must_use]
 pub fn first_self_intersection(positions: &[DVec3], faces: &[[u32; 3]]) -> Option<(u32, u32)> {
     first_pair(&Bvh::from_triangles(positions, faces), positions, faces)
+}
+
+/// Two faces of a soup.
+type FacePair = (FaceId, FaceId);
+
+/// Splits intersecting pairs of `approx` into those whose two faces are faces of `orig` (the
+/// same corners bit for bit, in the same cyclic order) that intersect in `orig` too, exactly,
+/// and the others.
+fn split_kept_pairs(
+    orig: &TriangleSoup,
+    approx: &TriangleSoup,
+    pairs: Vec<FacePair>,
+) -> (Vec<FacePair>, Vec<FacePair>) {
+    // A face as its corners' bits, rotated to start at the smallest: equal for the same
+    // oriented triangle whatever corner it starts at.
+    let key = |s: &TriangleSoup, f: FaceId| {
+        let c = s.triangle(f).map(|p| p.to_array().map(f64::to_bits));
+        let k = (0..3).min_by_key(|&k| c[k]).unwrap_or(0);
+        [c[k], c[(k + 1) % 3], c[(k + 2) % 3]]
+    };
+    let faces: std::collections::HashMap<_, FaceId> =
+        orig.face_ids().map(|f| (key(orig, f), f)).collect();
+    let of = raw_faces(orig);
+    let met_in_orig =
+        |&(a, b): &FacePair| match (faces.get(&key(approx, a)), faces.get(&key(approx, b))) {
+            (Some(&x), Some(&y)) => faces_intersect(&orig.positions, of[x.index()], of[y.index()]),
+            _ => false,
+        };
+    pairs.into_iter().partition(met_in_orig)
 }
 
 /// [`first_self_intersection`] with the faces' BVH given.
@@ -546,9 +588,20 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
             (si, topo)
         },
     );
-    let (self_intersections, complete, undecided) = match self_intersections {
+    let (self_intersections, complete, mut undecided) = match self_intersections {
         Some((pairs, complete, undecided)) => (Some(pairs), complete, undecided),
         None => (None, !options.first_intersection_only, false),
+    };
+    let (self_intersections, kept_intersections) = match self_intersections {
+        Some(pairs) if options.allow_input_intersections && !pairs.is_empty() => {
+            let (kept, new) = split_kept_pairs(orig, approx, pairs);
+            // Stopped at its first pair, which was kept: whether a new one follows is open.
+            if new.is_empty() && !complete {
+                undecided = true;
+            }
+            (Some(new), kept)
+        }
+        other => (other, Vec::new()),
     };
     let mut c = Certificate {
         verdict: Verdict::Holds,
@@ -561,6 +614,7 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
         self_intersections,
         self_intersections_complete: complete,
         self_intersections_undecided: undecided,
+        kept_intersections,
         topology,
     };
     c.verdict = if !c.violations().is_empty() {
@@ -573,4 +627,63 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
         c.approx_to_orig.verdict
     };
     c
+}
+
+#[cfg(test)]
+mod kept_intersection_tests {
+    use super::*;
+
+    /// Two crossing triangles and a third apart: kept as they are, the crossing is allowed
+    /// only with `allow_input_intersections`; a moved copy of one of them is not.
+    #[test]
+    fn input_intersections_are_allowed_only_unchanged() {
+        let orig = TriangleSoup::from_raw(
+            &[
+                [0., 0., 0.],
+                [2., 0., 0.],
+                [0., 2., 0.],
+                [0.5, 0.5, -1.],
+                [0.5, 0.5, 1.],
+                [1.5, 1.5, 0.],
+            ],
+            &[[0, 1, 2], [3, 4, 5]],
+        );
+        let strict = certify(&orig, &orig, &Options::new(0.1));
+        assert_eq!(strict.violations(), vec!["self_intersections"]);
+        let allow = Options {
+            allow_input_intersections: true,
+            ..Options::new(0.1)
+        };
+        let c = certify(&orig, &orig, &allow);
+        assert!(c.holds(), "{:?}", c.violations());
+        assert_eq!(c.kept_intersections, vec![(FaceId(0), FaceId(1))]);
+        // The same crossing, one face rotated in its corner order: still unchanged.
+        let mut rotated = orig.clone();
+        rotated.faces[1].rotate_left(1);
+        assert!(certify(&orig, &rotated, &allow).holds());
+        // One face moved a little: a new intersection, refused.
+        let mut moved = orig.clone();
+        moved.positions[4].z += 1e-3;
+        let c = certify(&orig, &moved, &allow);
+        assert_eq!(c.violations(), vec!["self_intersections"]);
+        assert!(c.kept_intersections.is_empty());
+        // Two faces sharing a vertex in `orig` meet nowhere else; with the vertex split in
+        // two copies they touch there: unchanged faces, but not an intersection of `orig`.
+        let fan = TriangleSoup::from_raw(
+            &[
+                [0., 0., 0.],
+                [1., 0., 0.],
+                [0., 1., 0.],
+                [-1., 0., 0.],
+                [0., -1., 0.],
+            ],
+            &[[0, 1, 2], [0, 3, 4]],
+        );
+        let mut split = fan.clone();
+        split.positions.push(split.positions[0]);
+        split.faces[1][0] = envelope_mesh::VertexId(5);
+        let c = certify(&fan, &split, &allow);
+        assert!(c.violations().contains(&"self_intersections"));
+        assert!(c.kept_intersections.is_empty());
+    }
 }

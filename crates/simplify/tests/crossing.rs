@@ -1,0 +1,119 @@
+//! Self-intersecting input: the faces around the intersecting pairs are kept as they are,
+//! the rest is simplified, and the certificate holds with the input's own intersections
+//! allowed (every intersecting pair of the output is a pair of unchanged input faces).
+
+use envelope_check::intersecting_pairs;
+use envelope_mesh::{TriangleSoup, VertexId, analyze, generate};
+use envelope_offset::EpsilonField;
+use envelope_simplify::{DriverError, Placement, SimplifyOptions, simplify};
+use envelope_verify::{Options, Verdict, certify};
+use glam::DVec3;
+
+/// `a` and `b` as one soup, `b` moved by `offset`.
+fn union(a: &TriangleSoup, b: &TriangleSoup, offset: DVec3) -> TriangleSoup {
+    let n = a.num_vertices() as u32;
+    let mut s = a.clone();
+    s.positions.extend(b.positions.iter().map(|&p| p + offset));
+    s.faces
+        .extend(b.faces.iter().map(|f| f.map(|v| VertexId(v.0 + n))));
+    s
+}
+
+fn options(eps: f64, placement: Placement) -> SimplifyOptions {
+    SimplifyOptions {
+        placement,
+        verify: true,
+        ..SimplifyOptions::new(EpsilonField::Constant(eps))
+    }
+}
+
+/// The two spheres meet along a circle: the faces there stay, the rest simplifies, and the
+/// only intersecting pairs of the output are input pairs.
+#[test]
+fn interpenetrating_spheres_simplify_around_their_circle() {
+    let sphere = generate::icosphere(4, 1.0);
+    let soup = union(&sphere, &sphere, DVec3::new(1.2, 0.1, 0.05));
+    let pairs = intersecting_pairs(&soup, None).expect("decided");
+    assert!(!pairs.is_empty());
+    for placement in [Placement::Subset, Placement::Collapse] {
+        let (out, report) = simplify(&soup, &options(0.02, placement), &mut ()).unwrap();
+        let kept = report.kept.clone().expect("kept around the crossings");
+        assert_eq!(kept.intersecting_pairs, pairs.len());
+        assert!(kept.kept_faces >= 2 && kept.shared_vertices > 0);
+        assert!(
+            out.num_faces() < soup.num_faces() / 3,
+            "{placement:?}: {} of {} faces",
+            out.num_faces(),
+            soup.num_faces()
+        );
+        let v = report.verify.expect("certified");
+        assert_eq!(v.verdict, Verdict::Holds, "{:?}", v.violations);
+        assert!(!v.certificate.kept_intersections.is_empty());
+        // Independently: strict, the output's intersections are all there, each a pair of
+        // input faces, and nothing else is violated.
+        let strict = certify(&soup, &out, &Options::new(0.02));
+        assert_eq!(strict.violations(), vec!["self_intersections"]);
+        assert_eq!(
+            strict.self_intersections.as_ref().unwrap().len(),
+            v.certificate.kept_intersections.len()
+        );
+        let (a, b) = (analyze(&soup), analyze(&out));
+        assert_eq!((a.genus, a.components.len()), (b.genus, b.components.len()));
+    }
+}
+
+/// A torus pushed through a sphere: two components meeting along two circles.
+#[test]
+fn torus_through_sphere() {
+    let torus = generate::torus(1.0, 0.25, 48, 16);
+    let sphere = generate::icosphere(3, 0.6);
+    let soup = union(&torus, &sphere, DVec3::new(1.0, 0.0, 0.0));
+    let (out, report) = simplify(&soup, &options(0.01, Placement::Auto), &mut ()).unwrap();
+    assert!(report.kept.is_some());
+    assert!(out.num_faces() < soup.num_faces() / 2);
+    assert_eq!(report.verify.unwrap().verdict, Verdict::Holds);
+    assert_eq!(analyze(&out).genus, Some(1));
+}
+
+/// An input meeting itself nowhere is simplified as before: no kept report.
+#[test]
+fn clean_input_keeps_nothing() {
+    let sphere = generate::icosphere(3, 1.0);
+    let (_, report) = simplify(&sphere, &options(0.02, Placement::Subset), &mut ()).unwrap();
+    assert!(report.kept.is_none());
+}
+
+/// Other error classes are still refused.
+#[test]
+fn non_manifold_input_still_refused() {
+    let soup = generate::three_triangles_on_edge();
+    assert!(matches!(
+        simplify(&soup, &options(0.02, Placement::Subset), &mut ()),
+        Err(DriverError::Unacceptable(_))
+    ));
+}
+
+/// Two spheres touching at one point through two vertices at the same position (what repair
+/// leaves of a pinch): duplicate vertices whose faces meet there, kept as they are.
+#[test]
+fn spheres_touching_at_a_duplicated_vertex() {
+    let sphere = generate::icosphere(3, 1.0);
+    // The icosphere is symmetric through its centre: the second one, moved by twice vertex
+    // 0, touches the first there with its antipode of vertex 0.
+    let p0 = sphere.positions[0];
+    let antipode = sphere
+        .positions
+        .iter()
+        .position(|&p| p == -p0)
+        .expect("an antipodal vertex");
+    let soup = union(&sphere, &sphere, 2.0 * p0);
+    assert_eq!(
+        soup.positions[0],
+        soup.positions[sphere.num_vertices() + antipode]
+    );
+    let (out, report) = simplify(&soup, &options(0.02, Placement::Subset), &mut ()).unwrap();
+    let kept = report.kept.expect("kept around the touching point");
+    assert!(kept.kept_faces >= 10, "{kept:?}");
+    assert!(out.num_faces() < soup.num_faces() / 2);
+    assert_eq!(report.verify.unwrap().verdict, Verdict::Holds);
+}
