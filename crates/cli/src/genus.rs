@@ -67,6 +67,14 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
         .resolve("--alpha", &args.input.display().to_string(), mesh.soup())?;
     let (out, report) = reduce(&mesh, alpha, args.beta, args.union)
         .map_err(|e| format!("{}: {e}", args.input.display()))?;
+    if !mesh.attributes().is_empty() {
+        // The tessellation makes new surface: its corners would need values from nowhere.
+        eprintln!(
+            "envelope: note: genus does not carry texture coordinates, normals or colours; \
+             {} has none",
+            args.output.display()
+        );
+    }
     let mut staging = Staging::new();
     staging.mesh(&args.output, out.soup(), format)?;
     if let Some(path) = &args.report {

@@ -188,6 +188,9 @@ pub(crate) fn run_chain(mesh: &Mesh, chain: Chain<'_>) -> Result<ExitCode, Strin
     staging.dir(dir)?;
     let level_path = |i: usize| dir.join(format!("level-{i}.off"));
     staging.mesh(&level_path(0), original, Format::Off)?;
+    // The levels are OFF files: attributes are carried by the library (`Lod::level_mesh`)
+    // but not written here.
+    crate::outputs::note_dropped(&level_path(0), Format::Off, mesh.attributes(), chain.quiet);
 
     let start = std::time::Instant::now();
     let bar = Bar::new(chain.quiet);

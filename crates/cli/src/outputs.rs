@@ -251,6 +251,23 @@ impl Plan {
     }
 }
 
+/// One line on stderr (unless `quiet`) naming the input's attributes `format` cannot hold.
+pub(crate) fn note_dropped(
+    path: &Path,
+    format: Format,
+    attributes: &envelope::Attributes,
+    quiet: bool,
+) {
+    let dropped = format.dropped_attributes(attributes);
+    if !quiet && !dropped.is_empty() {
+        eprintln!(
+            "envelope: note: {} is {format}, which holds no {}; not written",
+            path.display(),
+            dropped.join(" or ")
+        );
+    }
+}
+
 /// Outputs written to temporary places until [`Staging::commit`].
 pub(crate) struct Staging {
     /// (temporary file, final path), renamed in this order.
@@ -305,6 +322,28 @@ impl Staging {
         let (_, file) = self.create(path)?;
         envelope::advanced::io::write(&file, soup, format)
             .map_err(|e| format!("{}: {}", path.display(), e.kind))?;
+        file.sync_all()
+            .map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// Writes `mesh` with the attributes `format` holds to what becomes `path` at the commit;
+    /// says on stderr (unless `quiet`) which attributes the format cannot hold.
+    pub(crate) fn mesh_with_attributes(
+        &mut self,
+        path: &Path,
+        mesh: &envelope::Mesh,
+        format: Format,
+        quiet: bool,
+    ) -> Result<(), String> {
+        let (_, file) = self.create(path)?;
+        envelope::advanced::io::write_with_attributes(
+            &file,
+            mesh.soup(),
+            mesh.attributes(),
+            format,
+        )
+        .map_err(|e| format!("{}: {}", path.display(), e.kind))?;
+        note_dropped(path, format, mesh.attributes(), quiet);
         file.sync_all()
             .map_err(|e| format!("{}: {e}", path.display()))
     }

@@ -88,7 +88,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     let mesh = envelope::load(&args.input).map_err(|e| e.to_string())?;
     let repaired = envelope::repair(&mesh).map_err(|e| format!("{input}: {e}"))?;
     let mut staging = Staging::new();
-    staging.mesh(&args.output, repaired.mesh().soup(), format)?;
+    staging.mesh_with_attributes(&args.output, repaired.mesh(), format, args.quiet)?;
     if let Some(path) = &args.report {
         let mut v = serde_json::json!({
             "input": input,

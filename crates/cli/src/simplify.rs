@@ -476,7 +476,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         args.output.clone()
     };
     let mut staging = Staging::new();
-    staging.mesh(&target, done.mesh().soup(), format)?;
+    staging.mesh_with_attributes(&target, done.mesh(), format, args.quiet)?;
     if let Some(path) = &args.report {
         let mut v = report.to_json();
         v["input"] = args.input.display().to_string().into();

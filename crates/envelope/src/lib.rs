@@ -2,7 +2,9 @@
 //!
 //! # The front door
 //!
-//! * [`Mesh`], [`load`], [`save`]: a triangle mesh and its files (OBJ, OFF, PLY, STL).
+//! * [`Mesh`], [`load`], [`save`]: a triangle mesh and its files (OBJ, OFF, PLY, STL), with
+//!   per-corner [`Attributes`] (texture coordinates, normals, colours) that every command
+//!   carries to its output ([`carry_attributes`], [`seam_vertices`]).
 //! * [`Epsilon`]: the tolerance, absolute or a part of the bounding-box diagonal.
 //! * [`Simplifier`]: simplification within epsilon, certified ([`Simplified`]).
 //! * [`Lod`]: levels of detail with nested vertex sets and switching distances.
@@ -17,6 +19,7 @@
 //! engine's crates, for people who write their own policies, are under [`advanced`].
 #![forbid(unsafe_code)]
 
+mod attributes;
 pub mod batch;
 mod epsilon;
 mod error;
@@ -42,6 +45,7 @@ pub use envelope_simplify::{
 };
 pub use envelope_verify::{Certificate, OneSided, Verdict, Witness};
 
+pub use attributes::{carry_attributes, seam_vertices};
 pub use epsilon::Epsilon;
 pub use error::Error;
 pub use files::{load, load_with_report, save};

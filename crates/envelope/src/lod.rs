@@ -124,12 +124,16 @@ impl<'a> Lod<'a> {
             tube_segments: self.tube_segments,
             verify: self.certify,
             screen: self.screen,
+            // Seam vertices stay where they are, so texture charts do not tear.
+            keep: crate::seam_vertices(mesh),
             ..LodOptions::new(epsilons)
         })
     }
 
     /// Builds the chain (level 0, the input itself, is not listed); `on_level` hears each
-    /// level as it is made.
+    /// level as it is made. Vertices on texture-coordinate or colour seams are kept in every
+    /// level ([`crate::seam_vertices`]); a level's attributes are
+    /// [`crate::carry_attributes`]`(mesh, &level.mesh)` ([`Lod::level_mesh`]).
     ///
     /// # Errors
     /// As [`Simplifier::run`](crate::Simplifier::run) for each level; a level whose
@@ -156,6 +160,16 @@ impl<'a> Lod<'a> {
         Ok(threads::run(self.threads, || {
             lod_chain(mesh.soup(), &options, &mut relay, on_level)
         })??)
+    }
+}
+
+impl Lod<'_> {
+    /// A level as a [`Mesh`] with the attributes carried from `original`, the mesh the chain
+    /// was built from ([`crate::carry_attributes`]).
+    #[must_use]
+    pub fn level_mesh(original: &Mesh, level: &Level) -> Mesh {
+        let attributes = crate::carry_attributes(original, &level.mesh);
+        Mesh::from_parts(level.mesh.clone(), attributes)
     }
 }
 

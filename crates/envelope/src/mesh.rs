@@ -110,6 +110,13 @@ impl Mesh {
         }
     }
 
+    /// A mesh from a soup and attributes made for it (no validation: the carrying code makes
+    /// one corner triple per face with indices in range).
+    pub(crate) fn from_parts(soup: TriangleSoup, attributes: Attributes) -> Mesh {
+        debug_assert!(attributes.is_valid_for(soup.num_faces()));
+        Mesh { soup, attributes }
+    }
+
     /// The per-corner attributes (all absent for a mesh made from positions alone).
     #[must_use]
     pub fn attributes(&self) -> &Attributes {

@@ -79,6 +79,8 @@ impl Repaired {
 /// vertices, drops exact duplicate faces, zero-area faces proved to lie on others and
 /// unreferenced vertices, splits faces at T-junctions and non-manifold vertices and edges
 /// into manifold sheets, and orients each component consistently. Then checks the result.
+/// Per-corner attributes follow their faces: a kept or flipped face keeps its corners'
+/// values, a T-junction piece's new corner gets the value interpolated along its edge.
 ///
 /// ```
 /// // A square whose second triangle is written with a copy of vertex 2 and the wrong winding.
@@ -99,8 +101,10 @@ impl Repaired {
 /// surface: a zero-area face whose points are not proved to lie on other faces, or a
 /// non-orientable component.
 pub fn repair(mesh: &Mesh) -> Result<Repaired, Error> {
-    let (soup, report) = envelope_repair::repair(mesh.soup(), &RepairOptions::default())?;
-    let mesh = Mesh::from_soup(soup);
+    let (soup, report, origin) =
+        envelope_repair::repair_traced(mesh.soup(), &RepairOptions::default())?;
+    let attributes = crate::attributes::carry_through_repair(mesh, &soup, &origin);
+    let mesh = Mesh::from_parts(soup, attributes);
     let check = crate::check(&mesh);
     Ok(Repaired {
         mesh,

@@ -185,11 +185,15 @@ impl<'a> Simplifier<'a> {
             tube_segments: self.tube_segments,
             target_faces: self.target_faces,
             verify: self.certify,
+            // Seam vertices stay where they are, so texture charts do not tear.
+            keep: crate::seam_vertices(mesh),
             ..SimplifyOptions::new(field)
         })
     }
 
-    /// Simplifies `mesh`.
+    /// Simplifies `mesh`. Its attributes are carried to the output ([`crate::carry_attributes`]):
+    /// vertices on texture-coordinate or colour seams are kept where they are
+    /// ([`crate::seam_vertices`]), so charts do not tear.
     ///
     /// # Errors
     /// [`Error::Simplify`] when the input is not acceptable (see [`check`](crate::check)) or
@@ -203,7 +207,8 @@ impl<'a> Simplifier<'a> {
         let (out, report) = threads::run(self.threads, || {
             simplify_with(mesh.soup(), &options, step.as_ref(), &mut relay)
         })??;
-        let done = Simplified::new(Mesh::from_soup(out), report);
+        let attributes = crate::carry_attributes(mesh, &out);
+        let done = Simplified::new(Mesh::from_parts(out, attributes), report);
         match done.certificate().map(|c| c.verdict) {
             Some(Verdict::Violated) => Err(Error::CertificateViolated(Box::new(done))),
             _ => Ok(done),

@@ -25,6 +25,9 @@ pub(crate) fn checked_position(p: [f64; 3], vertex: u64) -> Result<DVec3, ReadEr
     Ok(DVec3::from_array(p))
 }
 
+/// Per triangle, the number of each corner among all corners as written.
+pub(crate) type CornerOrigins = Vec<[u64; 3]>;
+
 /// The faces of a file as they are read. Triangles are kept as written; polygons are checked
 /// for repeated corners at once and triangulated ([`triangulate_polygon`]) when all positions
 /// are known (a PLY file may list its faces before its vertices), their triangles keeping the
@@ -36,6 +39,13 @@ pub(crate) struct Faces {
     corners: Vec<u32>,
     /// (vertex, 1-based corner position as written) of the polygon being added.
     kept: Vec<(u32, u64)>,
+    /// With [`Faces::track_corners`]: per triangle, the number of each corner among all
+    /// corners as written (so a reader can find the corner's attribute indices).
+    origins: Option<Vec<[u64; 3]>>,
+    /// Corners as written so far (counted only while tracking).
+    written: u64,
+    /// With tracking: the written number of each pending polygon corner, beside `corners`.
+    corner_origins: Vec<u64>,
 }
 
 /// A polygon whose triangles are still to be computed.
@@ -55,7 +65,16 @@ impl Faces {
             pending: Vec::new(),
             corners: Vec::new(),
             kept: Vec::new(),
+            origins: None,
+            written: 0,
+            corner_origins: Vec::new(),
         }
+    }
+
+    /// Records, per triangle, which written corners it was made of (see
+    /// [`Faces::resolve_with_origins`]); only for [`Faces::push_polygon`], not strips.
+    pub(crate) fn track_corners(&mut self) {
+        self.origins = Some(Vec::new());
     }
 
     pub(crate) fn reserve(&mut self, n: usize) {
@@ -70,6 +89,10 @@ impl Faces {
         at: Location,
         report: &mut ReadReport,
     ) -> Result<(), ReadErrorKind> {
+        let base = self.written;
+        if self.origins.is_some() {
+            self.written += poly.len() as u64;
+        }
         match poly.len() {
             n if n < 3 => {
                 return Err(ReadErrorKind::TooFewCorners {
@@ -81,6 +104,9 @@ impl Faces {
             3 => {
                 self.triangles
                     .push([VertexId(poly[0]), VertexId(poly[1]), VertexId(poly[2])]);
+                if let Some(o) = &mut self.origins {
+                    o.push([base, base + 1, base + 2]);
+                }
                 return Ok(());
             }
             _ => {}
@@ -117,10 +143,18 @@ impl Faces {
         if m == 3 {
             let [a, b, c] = [0, 1, 2].map(|i| VertexId(self.kept[i].0));
             self.triangles.push([a, b, c]);
+            if let Some(o) = &mut self.origins {
+                o.push([0, 1, 2].map(|i| base + self.kept[i].1 - 1));
+            }
             return Ok(());
         }
         let start = self.corners.len();
         self.corners.extend(self.kept.iter().map(|&(v, _)| v));
+        if let Some(o) = &mut self.origins {
+            self.corner_origins
+                .extend(self.kept.iter().map(|&(_, k)| base + k - 1));
+            o.resize(o.len() + m - 2, [u64::MAX; 3]);
+        }
         self.pending.push(Pending {
             face,
             at,
@@ -156,7 +190,16 @@ impl Faces {
     }
 
     /// The triangles, polygons triangulated on `positions` (which every index is below).
-    pub(crate) fn resolve(mut self, positions: &[DVec3]) -> Result<Vec<[VertexId; 3]>, ReadError> {
+    pub(crate) fn resolve(self, positions: &[DVec3]) -> Result<Vec<[VertexId; 3]>, ReadError> {
+        Ok(self.resolve_with_origins(positions)?.0)
+    }
+
+    /// [`Faces::resolve`], and with [`Faces::track_corners`] the written corner number of
+    /// each triangle corner.
+    pub(crate) fn resolve_with_origins(
+        mut self,
+        positions: &[DVec3],
+    ) -> Result<(Vec<[VertexId; 3]>, Option<CornerOrigins>), ReadError> {
         let mut corners = Vec::new();
         for p in &self.pending {
             let ids = &self.corners[p.corners.clone()];
@@ -175,11 +218,17 @@ impl Faces {
             if triangles.len() != ids.len() - 2 {
                 return Err(not_simple());
             }
+            if let Some(o) = &mut self.origins {
+                let written = &self.corner_origins[p.corners.clone()];
+                for (slot, t) in o[p.first..].iter_mut().zip(&triangles) {
+                    *slot = t.map(|i| written[i as usize]);
+                }
+            }
             for (slot, t) in self.triangles[p.first..].iter_mut().zip(triangles) {
                 *slot = t.map(|i| VertexId(ids[i as usize]));
             }
         }
-        Ok(self.triangles)
+        Ok((self.triangles, self.origins))
     }
 }
 

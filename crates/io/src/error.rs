@@ -131,6 +131,30 @@ pub enum ReadErrorKind {
         /// Vertices defined before the face.
         vertices: u64,
     },
+    /// An OBJ face corner whose texture-coordinate or normal index names no `vt` or `vn`
+    /// defined so far (read only with attributes).
+    #[error(
+        "face {face}: {what} index {index} names no {what} ({defined} defined so far; allowed: {})",
+        allowed_obj_attribute(*.defined)
+    )]
+    ObjAttributeIndexOutOfRange {
+        /// 0-based number of the face (`f` statement) in the file.
+        face: u64,
+        /// "texture coordinate" or "normal".
+        what: &'static str,
+        /// The index as written (1-based, or negative counting back from the last one).
+        index: i64,
+        /// Values of that kind defined before the face.
+        defined: u64,
+    },
+    /// An attribute value (texture coordinate, normal, colour) that is NaN or infinite.
+    #[error("{what} {element}: a value is not finite")]
+    AttributeValue {
+        /// "texture coordinate", "normal" or "vertex" (PLY per-vertex attributes).
+        what: &'static str,
+        /// Its 0-based number in file order.
+        element: u64,
+    },
     /// An OBJ face corner that is not `i`, `i/t`, `i//n` or `i/t/n` with integers fitting 64
     /// bits.
     #[error(
@@ -212,6 +236,13 @@ fn allowed_0_based(vertices: u64) -> String {
 fn allowed_obj(vertices: u64) -> String {
     match vertices {
         0 => "none, no vertex is defined before this face".to_owned(),
+        n => format!("1 to {n}, or -1 to -{n} counting back"),
+    }
+}
+
+fn allowed_obj_attribute(defined: u64) -> String {
+    match defined {
+        0 => "none, none is defined before this face".to_owned(),
         n => format!("1 to {n}, or -1 to -{n} counting back"),
     }
 }
@@ -372,6 +403,13 @@ pub enum WriteErrorKind {
     /// More faces than binary STL's 32-bit count can hold.
     #[error("too many faces for the format")]
     TooManyFaces,
+    /// Attributes without one corner triple per face, an index out of range, or a value that
+    /// is not finite.
+    #[error("the attributes do not fit the mesh ({faces} faces)")]
+    InvalidAttributes {
+        /// Faces in the soup.
+        faces: u64,
+    },
 }
 
 /// A failed write, naming the target file when there is one.

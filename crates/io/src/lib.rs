@@ -1,6 +1,9 @@
 //! Readers and writers for OBJ, OFF, PLY and STL triangle meshes.
 //!
-//! Every reader produces a [`TriangleSoup`] and a [`ReadReport`], and validates at the
+//! Every reader produces a [`TriangleSoup`] and a [`ReadReport`] (and, through
+//! [`read_with_attributes`], the per-corner [`Attributes`] OBJ and PLY hold: texture
+//! coordinates, normals, colours; [`write_with_attributes`] writes them back, OFF and STL
+//! drop them), and validates at the
 //! boundary: each coordinate passes [`envelope_mesh::check_coordinate`], each index is in
 //! range, and anything else wrong (truncation, wrong header counts, malformed numbers, no
 //! faces, garbage) is a typed [`ReadError`] naming the file, the line or byte offset and the
@@ -51,6 +54,7 @@ mod input;
 mod obj;
 mod off;
 mod ply;
+mod ply_write;
 mod report;
 mod stl;
 
@@ -60,7 +64,7 @@ use std::io::{self, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use envelope_mesh::{TriangleSoup, check_coordinate};
+use envelope_mesh::{Attributes, TriangleSoup, check_coordinate};
 
 pub use error::{Axis, Location, ReadError, ReadErrorKind, Word, WriteError, WriteErrorKind};
 pub use report::ReadReport;
@@ -183,6 +187,37 @@ impl Format {
         None
     }
 
+    /// The present attributes this format cannot write (`"texture coordinates"`,
+    /// `"normals"`, `"colours"`), for a note when they are dropped.
+    ///
+    /// ```
+    /// use envelope_io::Format;
+    /// use envelope_mesh::{Attributes, Wedges};
+    /// let colours = Wedges { values: vec![[1.0, 0.0, 0.0, 1.0]], corners: vec![[0, 0, 0]] };
+    /// let a = Attributes { colors: Some(colours), ..Attributes::default() };
+    /// assert_eq!(Format::Obj.dropped_attributes(&a), ["colours"]);
+    /// assert!(Format::from_extension("ply").unwrap().dropped_attributes(&a).is_empty());
+    /// ```
+    #[must_use]
+    pub fn dropped_attributes(self, attributes: &Attributes) -> Vec<&'static str> {
+        let (tex, normals, colors) = match self {
+            Format::Obj => (true, true, false),
+            Format::Ply(_) => (true, true, true),
+            Format::Off | Format::Stl(_) => (false, false, false),
+        };
+        let mut out = Vec::new();
+        if attributes.texcoords.is_some() && !tex {
+            out.push("texture coordinates");
+        }
+        if attributes.normals.is_some() && !normals {
+            out.push("normals");
+        }
+        if attributes.colors.is_some() && !colors {
+            out.push("colours");
+        }
+        out
+    }
+
     /// The usual file extension.
     #[must_use]
     pub fn extension(self) -> &'static str {
@@ -243,6 +278,72 @@ fn read_input<R: Read>(
     }
 }
 
+/// [`read`], with the per-corner attributes the format holds: OBJ `vt` and `vn` tables and
+/// `f i/t/n` corners; PLY vertex properties `u v` (or `s t`, `texture_u texture_v`,
+/// `texture_s texture_t`), `nx ny nz` and `red green blue [alpha]` (integer colours divided
+/// by their type's maximum, `uchar` by 255; floats as written). OFF and STL give none.
+/// The soup is exactly the one [`read`] gives: attributes never change the positions, the
+/// faces or the numbering (so a PLY vertex split at a seam stays split; `envelope repair`
+/// welds it).
+///
+/// An OBJ attribute some corners have and others lack is dropped, with a note naming the
+/// first face without it (the positions are whole; refusing would refuse common files whose
+/// untextured parts omit `vt`). Corner indices are checked like vertex indices: 1-based or
+/// negative, naming a `vt`/`vn` defined before the face; an error names the line and the
+/// index as written.
+///
+/// ```
+/// use envelope_io::{read_with_attributes, Format};
+/// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+/// let (soup, attributes, _report) = read_with_attributes(&obj[..], Format::Obj).unwrap();
+/// assert_eq!(soup.num_faces(), 1);
+/// assert_eq!(attributes.texcoords.unwrap().value(0, 1), [1.0, 0.0]);
+/// let bad = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n";
+/// let err = read_with_attributes(&bad[..], Format::Obj).unwrap_err();
+/// assert!(err.to_string().contains("line 5: face 0: texture coordinate index 2"), "{err}");
+/// ```
+///
+/// # Errors
+/// As [`read`]; also a corner index naming no value, or a value that is not finite.
+pub fn read_with_attributes<R: Read>(
+    reader: R,
+    format: Format,
+) -> Result<(TriangleSoup, Attributes, ReadReport), ReadError> {
+    read_input_with_attributes(Input::new(reader, None), format)
+}
+
+fn read_input_with_attributes<R: Read>(
+    input: Input<R>,
+    format: Format,
+) -> Result<(TriangleSoup, Attributes, ReadReport), ReadError> {
+    let without = |(soup, report)| (soup, Attributes::default(), report);
+    match format {
+        Format::Obj => obj::read_with_attributes(input),
+        Format::Off => off::read(input).map(without),
+        Format::Ply(_) => ply::read_with_attributes(input),
+        Format::Stl(_) => stl::read(input).map(without),
+    }
+}
+
+/// [`read_path`] with attributes ([`read_with_attributes`]).
+///
+/// # Errors
+/// As [`read_path`] and [`read_with_attributes`].
+pub fn read_path_with_attributes(
+    path: impl AsRef<Path>,
+) -> Result<(TriangleSoup, Attributes, ReadReport), ReadError> {
+    let path = path.as_ref();
+    let fail = |kind: ReadErrorKind| ReadError::new(Location::None, kind).with_path(path);
+    let meta = fs::metadata(path).map_err(|e| fail(e.kind().into()))?;
+    if meta.is_dir() {
+        return Err(fail(ReadErrorKind::IsADirectory));
+    }
+    let file = fs::File::open(path).map_err(|e| fail(e.kind().into()))?;
+    let mut input = Input::new(file, Some(meta.len()));
+    let format = format_of(&mut input, path, Some(meta.len()))?;
+    read_input_with_attributes(input, format).map_err(|e| e.with_path(path))
+}
+
 /// Reads a mesh file, choosing the format from the extension (case-insensitive) or, when the
 /// extension is missing or unknown, from the content ([`Format::sniff`]).
 ///
@@ -293,15 +394,24 @@ fn read_named<R: Read>(
     path: &Path,
     len: Option<u64>,
 ) -> Result<(TriangleSoup, ReadReport), ReadError> {
+    let format = format_of(&mut input, path, len)?;
+    read_input(input, format).map_err(|e| e.with_path(path))
+}
+
+/// The format `path` names, or else the one the content shows.
+fn format_of<R: Read>(
+    input: &mut Input<R>,
+    path: &Path,
+    len: Option<u64>,
+) -> Result<Format, ReadError> {
     let fail = |kind: ReadErrorKind| ReadError::new(Location::None, kind).with_path(path);
-    let format = match Format::from_path(path) {
+    Ok(match Format::from_path(path) {
         Some(f) => f,
         None => {
             let head = input.peek(512).map_err(|e| fail(e.kind().into()))?;
             Format::sniff(head, len).ok_or_else(|| fail(ReadErrorKind::UnknownFormat))?
         }
-    };
-    read_input(input, format).map_err(|e| e.with_path(path))
+    })
 }
 
 /// Checks what the readers would check, so that whatever is written can be read back.
@@ -358,6 +468,76 @@ pub fn write<W: Write>(writer: W, soup: &TriangleSoup, format: Format) -> Result
     Ok(())
 }
 
+/// [`write()`], with the attributes the format holds: OBJ writes `vt`/`vn` tables and `f
+/// v/t/n` corners (no colours: OBJ has no colour statement); PLY writes per-vertex `u v`,
+/// `nx ny nz` and `red green blue alpha` columns, a vertex split into one per distinct
+/// combination of values its corners have (a seam's copies are then separate vertices of the
+/// file); OFF and STL write positions only ([`Format::dropped_attributes`] says what is lost).
+///
+/// ```
+/// use envelope_io::{read_with_attributes, write_with_attributes, Format};
+/// use envelope_mesh::{Attributes, TriangleSoup, Wedges};
+/// let soup = TriangleSoup::from_raw(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], &[[0, 1, 2]]);
+/// let normals = Wedges { values: vec![[0.0, 0.0, 1.0]], corners: vec![[0, 0, 0]] };
+/// let attributes = Attributes { normals: Some(normals), ..Attributes::default() };
+/// let mut out = Vec::new();
+/// write_with_attributes(&mut out, &soup, &attributes, Format::Obj).unwrap();
+/// assert!(String::from_utf8(out.clone()).unwrap().ends_with("vn 0.0 0.0 1.0\nf 1//1 2//1 3//1\n"));
+/// let (back, again, _) = read_with_attributes(&out[..], Format::Obj).unwrap();
+/// assert_eq!((back, again), (soup, attributes));
+/// ```
+///
+/// # Errors
+/// As [`write()`]; [`WriteErrorKind::InvalidAttributes`] when the attributes do not fit the
+/// soup ([`Attributes::is_valid_for`]).
+pub fn write_with_attributes<W: Write>(
+    writer: W,
+    soup: &TriangleSoup,
+    attributes: &Attributes,
+    format: Format,
+) -> Result<(), WriteError> {
+    validate(soup)?;
+    validate_attributes(soup, attributes)?;
+    let mut w = BufWriter::with_capacity(1 << 16, writer);
+    match format {
+        Format::Obj => obj::write_with_attributes(&mut w, soup, attributes)?,
+        Format::Off => off::write(&mut w, soup)?,
+        Format::Ply(enc) => ply::write_with_attributes(&mut w, soup, attributes, enc)?,
+        Format::Stl(enc) => stl::write(&mut w, soup, enc)?,
+    }
+    w.flush()?;
+    Ok(())
+}
+
+fn validate_attributes(soup: &TriangleSoup, attributes: &Attributes) -> Result<(), WriteErrorKind> {
+    if attributes.is_valid_for(soup.num_faces()) {
+        Ok(())
+    } else {
+        Err(WriteErrorKind::InvalidAttributes {
+            faces: soup.num_faces() as u64,
+        })
+    }
+}
+
+/// [`write_path`] with attributes ([`write_with_attributes`]), atomically.
+///
+/// # Errors
+/// As [`write_path`] and [`write_with_attributes`].
+pub fn write_path_with_attributes(
+    path: impl AsRef<Path>,
+    soup: &TriangleSoup,
+    attributes: &Attributes,
+    format: Format,
+) -> Result<(), WriteError> {
+    let path = path.as_ref();
+    validate(soup)
+        .and_then(|()| validate_attributes(soup, attributes))
+        .map_err(|k| WriteError::from(k).with_path(path))?;
+    atomically(path, |file| {
+        write_with_attributes(file, soup, attributes, format)
+    })
+}
+
 static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// Writes `soup` to `path` atomically: into a temporary file in the same directory, synced,
@@ -383,8 +563,17 @@ pub fn write_path(
 ) -> Result<(), WriteError> {
     let path = path.as_ref();
     validate(soup).map_err(|k| WriteError::from(k).with_path(path))?;
+    atomically(path, |file| write(file, soup, format))
+}
+
+/// Runs `write` on a temporary file beside `path`, synced and renamed over `path` on success,
+/// removed on failure.
+fn atomically(
+    path: &Path,
+    write: impl FnOnce(&fs::File) -> Result<(), WriteError>,
+) -> Result<(), WriteError> {
     let (tmp, file) = create_temp(path).map_err(|e| WriteError::from(e).with_path(path))?;
-    let result = write(&file, soup, format)
+    let result = write(&file)
         .and_then(|()| file.sync_all().map_err(WriteError::from))
         .and_then(|()| fs::rename(&tmp, path).map_err(WriteError::from));
     if result.is_err() {

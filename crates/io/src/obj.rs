@@ -2,7 +2,11 @@
 //! change the triangle surface or the vertex numbering are skipped (and counted in the
 //! report); any other statement refuses the file.
 //!
-//! * Face corners may be `i`, `i/t`, `i//n` or `i/t/n`; only the vertex index `i` is kept.
+//! * Face corners may be `i`, `i/t`, `i//n` or `i/t/n`. [`crate::read`] keeps only the vertex
+//!   index `i` (and skips `vt` and `vn`); [`crate::read_with_attributes`] also reads the `vt`
+//!   (`u [v [w]]`, keeping u and v) and `vn` tables and each corner's references, checked
+//!   like vertex indices; a triangulated polygon's triangles keep their corners' references.
+//!   An attribute some corners lack is dropped with a note naming the first such face.
 //!   `fo` (the obsolete spelling of `f`) is read as `f`.
 //! * Indices are 1-based; negative indices count back from the last vertex defined so far.
 //!   Indices must name a vertex defined before the face (as every common writer does); an
@@ -10,7 +14,7 @@
 //! * Polygons with more than three corners are triangulated without overlaps
 //!   ([`envelope_predicates::polygon`]): repeated consecutive corners are dropped, a polygon
 //!   visiting a vertex twice or self-intersecting in every axis projection is refused.
-//! * Skipped: texture and normal data (`vt`, `vn`, `vp`), grouping and naming (`o`, `g`, `s`,
+//! * Skipped: texture and normal data (`vt`, `vn` unless read with attributes; `vp`), grouping and naming (`o`, `g`, `s`,
 //!   `mg`), materials and maps (`mtllib`, `usemtl`, `maplib`, `usemap`), lines and points (`l`,
 //!   `p`), and display attributes (`lod`, `bevel`, `c_interp`, `d_interp`, `shadow_obj`,
 //!   `trace_obj`, `ctech`, `stech`). None defines a vertex or a face.
@@ -20,11 +24,13 @@
 //! * A UTF-8 byte order mark at the start is skipped. `#` starts a comment; a `\` at the end of
 //!   a line joins the next line to it.
 //! * Extra vertex values (`w`, or the common `r g b` colour extension) are ignored.
+//! * The writer with attributes writes `vt` and `vn` tables as given and `f v/t/n` corners;
+//!   OBJ has no colour statement, so colours are not written.
 
 use std::collections::BTreeMap;
 use std::io::{self, Read, Write};
 
-use envelope_mesh::TriangleSoup;
+use envelope_mesh::{Attributes, TriangleSoup, Wedges};
 
 use crate::build::{Faces, check_vertex_count, checked_position, finish};
 use crate::error::{ReadError, ReadErrorKind, Word};
@@ -86,10 +92,78 @@ fn next_statement<R: Read>(lines: &mut Lines<R>) -> Result<bool, ReadError> {
 }
 
 pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport), ReadError> {
+    read_impl(input, false).map(|(soup, _, report)| (soup, report))
+}
+
+pub(crate) fn read_with_attributes<R: Read>(
+    input: Input<R>,
+) -> Result<(TriangleSoup, Attributes, ReadReport), ReadError> {
+    read_impl(input, true)
+}
+
+/// No texture-coordinate or normal reference at a corner.
+const NONE: u32 = u32::MAX;
+
+/// The `vt` and `vn` tables and each written face corner's references into them.
+#[derive(Default)]
+struct CornerRefs {
+    texcoords: Vec<[f64; 2]>,
+    normals: Vec<[f64; 3]>,
+    /// Per corner as written, in file order: 0-based (texture coordinate, normal), or `NONE`.
+    corners: Vec<[u32; 2]>,
+    /// Per kind, the first face with a corner lacking it, and whether any corner has it.
+    first_without: [Option<u64>; 2],
+    any_with: [bool; 2],
+}
+
+/// Parses up to `N` finite numbers; those after the first `needed` may be missing (then 0).
+fn attribute_values<const N: usize>(
+    toks: &mut dyn Iterator<Item = &[u8]>,
+    needed: usize,
+    what: &'static str,
+    element: u64,
+) -> Result<[f64; N], ReadErrorKind> {
+    let mut out = [0.0; N];
+    for (i, x) in out.iter_mut().enumerate() {
+        match toks.next() {
+            Some(t) => *x = parse_f64(t).ok_or(ReadErrorKind::MalformedNumber)?,
+            None if i < needed => {
+                return Err(ReadErrorKind::WrongValueCount {
+                    expected: N as u64,
+                    found: i as u64,
+                });
+            }
+            None => break,
+        }
+        if !x.is_finite() {
+            return Err(ReadErrorKind::AttributeValue { what, element });
+        }
+    }
+    Ok(out)
+}
+
+/// A 1-based or negative OBJ index into a table of `n` entries defined so far, 0-based.
+fn resolve_index(raw: i64, n: i64) -> Option<u32> {
+    let index = match raw {
+        r if r > 0 => r - 1,
+        r if r < 0 => n.saturating_add(r),
+        _ => -1,
+    };
+    (index >= 0 && index < n).then_some(index as u32)
+}
+
+fn read_impl<R: Read>(
+    input: Input<R>,
+    with_attributes: bool,
+) -> Result<(TriangleSoup, Attributes, ReadReport), ReadError> {
     let mut lines = Lines::new(input, Some(b'#'));
     let mut report = ReadReport::new(Format::Obj);
     let mut positions = Vec::new();
     let mut faces = Faces::new();
+    let mut refs = CornerRefs::default();
+    if with_attributes {
+        faces.track_corners();
+    }
     let mut poly: Vec<u32> = Vec::new();
     let mut face_no = 0u64;
     let mut ignored: BTreeMap<String, u64> = BTreeMap::new();
@@ -118,6 +192,20 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
                 check_vertex_count(n + 1).map_err(err)?;
                 positions.push(checked_position(p, n).map_err(err)?);
             }
+            // `vt u [v [w]]`: v defaults to 0 as the format says; w is not kept.
+            b"vt" if with_attributes => {
+                let n = refs.texcoords.len() as u64;
+                check_vertex_count(n + 1)
+                    .map_err(|_| err(ReadErrorKind::TooMany("texture coordinates")))?;
+                let uv = attribute_values::<2>(&mut toks, 1, "texture coordinate", n);
+                refs.texcoords.push(uv.map_err(err)?);
+            }
+            b"vn" if with_attributes => {
+                let n = refs.normals.len() as u64;
+                check_vertex_count(n + 1).map_err(|_| err(ReadErrorKind::TooMany("normals")))?;
+                let normal = attribute_values::<3>(&mut toks, 3, "normal", n);
+                refs.normals.push(normal.map_err(err)?);
+            }
             b"f" | b"fo" => {
                 poly.clear();
                 let n = positions.len() as i64;
@@ -128,27 +216,49 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
                             corner: Word::new(t),
                         })
                     };
-                    // `i`, `i/t`, `i//n`, `i/t/n`: the texture and normal references are not
-                    // used, but a corner that is none of these is refused, not guessed.
+                    // `i`, `i/t`, `i//n`, `i/t/n`: a corner that is none of these is refused,
+                    // not guessed.
                     let mut parts = t.split(|&b| b == b'/');
                     let idx = parts.next().unwrap_or_default();
                     let rest: Vec<&[u8]> = parts.collect();
                     let reference = |x: &[u8]| x.is_empty() || parse_i64(x).is_some();
                     let well_formed = rest.len() <= 2 && rest.iter().all(|x| reference(x));
                     let raw = parse_i64(idx).filter(|_| well_formed).ok_or_else(bad)?;
-                    let index = match raw {
-                        r if r > 0 => r - 1,
-                        r if r < 0 => n.saturating_add(r),
-                        _ => -1,
-                    };
-                    if index < 0 || index >= n {
-                        return Err(err(ReadErrorKind::ObjIndexOutOfRange {
+                    let index = resolve_index(raw, n).ok_or_else(|| {
+                        err(ReadErrorKind::ObjIndexOutOfRange {
                             face: face_no,
                             index: raw,
                             vertices: n as u64,
-                        }));
+                        })
+                    })?;
+                    poly.push(index);
+                    if with_attributes {
+                        let tables = [
+                            ("texture coordinate", refs.texcoords.len()),
+                            ("normal", refs.normals.len()),
+                        ];
+                        let mut corner = [NONE; 2];
+                        for (k, (what, count)) in tables.into_iter().enumerate() {
+                            match rest.get(k).and_then(|x| parse_i64(x)) {
+                                Some(raw) => {
+                                    corner[k] =
+                                        resolve_index(raw, count as i64).ok_or_else(|| {
+                                            err(ReadErrorKind::ObjAttributeIndexOutOfRange {
+                                                face: face_no,
+                                                what,
+                                                index: raw,
+                                                defined: count as u64,
+                                            })
+                                        })?;
+                                    refs.any_with[k] = true;
+                                }
+                                None => {
+                                    refs.first_without[k].get_or_insert(face_no);
+                                }
+                            }
+                        }
+                        refs.corners.push(corner);
                     }
-                    poly.push(index as u32);
                 }
                 faces
                     .push_polygon(&poly, face_no, loc, &mut report)
@@ -186,9 +296,48 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
     for (k, n) in ignored {
         report.note(format!("skipped {n} '{k}' statements"));
     }
-    let faces = faces.resolve(&positions)?;
+    let (faces, origins) = faces.resolve_with_origins(&positions)?;
     let loc = lines.location();
-    finish(positions, faces, report).map_err(|k| ReadError::new(loc, k))
+    let (soup, mut report) =
+        finish(positions, faces, report).map_err(|k| ReadError::new(loc, k))?;
+    let attributes = match origins {
+        Some(origins) => attributes(refs, &origins, &mut report),
+        None => Attributes::default(),
+    };
+    Ok((soup, attributes, report))
+}
+
+/// The wedges of the corner references; an attribute some corners lack is dropped, with a
+/// note naming the first face without it (the file is still read: the positions are whole).
+fn attributes(refs: CornerRefs, origins: &[[u64; 3]], report: &mut ReadReport) -> Attributes {
+    let corners = |k: usize| -> Vec<[u32; 3]> {
+        origins
+            .iter()
+            .map(|o| o.map(|c| refs.corners[c as usize][k]))
+            .collect()
+    };
+    let mut present = [false; 2];
+    for (k, name) in ["texture coordinates", "normals"].into_iter().enumerate() {
+        match (refs.any_with[k], refs.first_without[k]) {
+            (true, None) => present[k] = true,
+            (true, Some(face)) => report.note(format!(
+                "{name} dropped: face {face} has a corner without one while other corners have \
+                 them"
+            )),
+            (false, _) => {}
+        }
+    }
+    Attributes {
+        texcoords: present[0].then(|| Wedges {
+            corners: corners(0),
+            values: refs.texcoords,
+        }),
+        normals: present[1].then(|| Wedges {
+            corners: corners(1),
+            values: refs.normals,
+        }),
+        colors: None,
+    }
 }
 
 pub(crate) fn write<W: Write>(w: &mut W, soup: &TriangleSoup) -> io::Result<()> {
@@ -209,6 +358,53 @@ pub(crate) fn write<W: Write>(w: &mut W, soup: &TriangleSoup) -> io::Result<()> 
             f[1].0 as u64 + 1,
             f[2].0 as u64 + 1
         )?;
+    }
+    Ok(())
+}
+
+/// Writes the soup with `vt` and `vn` tables and `f v/t/n` corners (colours have no OBJ
+/// statement and are not written).
+pub(crate) fn write_with_attributes<W: Write>(
+    w: &mut W,
+    soup: &TriangleSoup,
+    attributes: &Attributes,
+) -> io::Result<()> {
+    let (tex, normals) = (&attributes.texcoords, &attributes.normals);
+    if tex.is_none() && normals.is_none() {
+        return write(w, soup);
+    }
+    writeln!(
+        w,
+        "# {} vertices, {} triangles",
+        soup.num_vertices(),
+        soup.num_faces()
+    )?;
+    for p in &soup.positions {
+        writeln!(w, "v {:?} {:?} {:?}", p.x, p.y, p.z)?;
+    }
+    for t in tex.iter().flat_map(|t| &t.values) {
+        writeln!(w, "vt {:?} {:?}", t[0], t[1])?;
+    }
+    for n in normals.iter().flat_map(|n| &n.values) {
+        writeln!(w, "vn {:?} {:?} {:?}", n[0], n[1], n[2])?;
+    }
+    for (f, face) in soup.faces.iter().enumerate() {
+        w.write_all(b"f")?;
+        for (k, v) in face.iter().enumerate() {
+            write!(w, " {}", v.0 as u64 + 1)?;
+            match (tex, normals) {
+                (Some(t), Some(n)) => write!(
+                    w,
+                    "/{}/{}",
+                    t.corners[f][k] as u64 + 1,
+                    n.corners[f][k] as u64 + 1
+                )?,
+                (Some(t), None) => write!(w, "/{}", t.corners[f][k] as u64 + 1)?,
+                (None, Some(n)) => write!(w, "//{}", n.corners[f][k] as u64 + 1)?,
+                (None, None) => {}
+            }
+        }
+        w.write_all(b"\n")?;
     }
     Ok(())
 }

@@ -14,20 +14,27 @@
 //!   `face` element's `vertex_indices` (or `vertex_index`) list, polygons triangulated
 //!   without overlaps as in OBJ; strips from the `tristrips` element's `vertex_indices` list, where `-1`
 //!   restarts a strip, windings alternate, and triangles with a repeated corner are dropped.
+//! * With attributes ([`crate::read_with_attributes`]): the vertex properties `u v` (or `s t`,
+//!   `texture_u texture_v`, `texture_s texture_t`), `nx ny nz` and `red green blue [alpha]`,
+//!   each used only when all its components are scalars; integer colours are divided by their
+//!   type's maximum (`uchar` by 255, exactly rounded), float colours kept as written, alpha 1
+//!   when absent. A corner's value is its vertex's. Face-level `texcoord` lists are not read.
 //! * Every value is read as declared: a `float` coordinate written in ascii is rounded to
 //!   `f32`, exactly as its binary encoding would be.
 //! * Before any data is read, the header's counts are checked against the remaining file size
 //!   (when known), so a header announcing billions of elements in a small file fails at once.
 //! * Data after the last announced element is an error.
 
-use std::io::{self, Read, Write};
+use std::io::Read;
 
-use envelope_mesh::TriangleSoup;
+use envelope_mesh::{Attributes, TriangleSoup, VertexId, Wedges};
 
 use crate::build::{Faces, check_vertex_count, checked_position, finish, vertex_index};
 use crate::error::{Location, ReadError, ReadErrorKind};
 use crate::input::{Input, Lines, Tokens, io_error, parse_f32, parse_f64, parse_i64, parse_u64};
 use crate::{Format, PlyEncoding, ReadReport};
+
+pub(crate) use crate::ply_write::{write, write_with_attributes};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Scalar {
@@ -191,11 +198,70 @@ fn read_header<R: Read>(lines: &mut Lines<R>) -> Result<Header, ReadError> {
     Ok(Header { encoding, elements })
 }
 
+/// The vertex element's attribute properties (indices into its properties), each found only
+/// when all its components are scalars.
+#[derive(Clone, Copy, Debug, Default)]
+struct VertexAttributes {
+    uv: Option<[usize; 2]>,
+    normal: Option<[usize; 3]>,
+    rgb: Option<[usize; 3]>,
+    alpha: Option<usize>,
+}
+
+/// The texture coordinate spellings, in the order they are looked for.
+const UV_NAMES: [[&[u8]; 2]; 4] = [
+    [b"u", b"v"],
+    [b"s", b"t"],
+    [b"texture_u", b"texture_v"],
+    [b"texture_s", b"texture_t"],
+];
+
+impl VertexAttributes {
+    fn find(e: &Element) -> Self {
+        let scalars = |names: &[&[u8]]| -> Option<Vec<usize>> {
+            names
+                .iter()
+                .map(|n| {
+                    e.find(&[n])
+                        .filter(|&i| matches!(e.props[i].kind, Kind::Scalar(_)))
+                })
+                .collect()
+        };
+        VertexAttributes {
+            uv: UV_NAMES
+                .iter()
+                .find_map(|names| scalars(names))
+                .map(|i| [i[0], i[1]]),
+            normal: scalars(&[b"nx", b"ny", b"nz"]).map(|i| [i[0], i[1], i[2]]),
+            rgb: scalars(&[b"red", b"green", b"blue"]).map(|i| [i[0], i[1], i[2]]),
+            alpha: scalars(&[b"alpha"]).map(|i| i[0]),
+        }
+    }
+
+    /// The property indices read.
+    fn used(&self) -> Vec<usize> {
+        let mut out: Vec<usize> = self.uv.iter().flatten().copied().collect();
+        out.extend(self.normal.iter().flatten());
+        if let Some(rgb) = self.rgb {
+            out.extend(rgb);
+            out.extend(self.alpha);
+        }
+        out
+    }
+}
+
 /// What the reader does with an element, decided from the header.
 enum Role {
-    Vertex { xyz: [usize; 3] },
-    Faces { list: usize },
-    Strips { list: usize },
+    Vertex {
+        xyz: [usize; 3],
+        attributes: VertexAttributes,
+    },
+    Faces {
+        list: usize,
+    },
+    Strips {
+        list: usize,
+    },
     Skip,
 }
 
@@ -237,7 +303,10 @@ fn roles<R: Read>(lines: &Lines<R>, h: &Header) -> Result<Vec<Role>, ReadError> 
                         _ => return Err(bad(lines, "the vertex element needs scalar x, y, z")),
                     }
                 }
-                Role::Vertex { xyz }
+                Role::Vertex {
+                    xyz,
+                    attributes: VertexAttributes::find(e),
+                }
             }
             b"face" => match index_list(e, &[b"vertex_indices", b"vertex_index"])? {
                 Some(list) => Role::Faces { list },
@@ -426,6 +495,19 @@ impl<R: Read> Source for Ascii<R> {
 }
 
 pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport), ReadError> {
+    read_impl(input, false).map(|(soup, _, report)| (soup, report))
+}
+
+pub(crate) fn read_with_attributes<R: Read>(
+    input: Input<R>,
+) -> Result<(TriangleSoup, Attributes, ReadReport), ReadError> {
+    read_impl(input, true)
+}
+
+fn read_impl<R: Read>(
+    input: Input<R>,
+    with_attributes: bool,
+) -> Result<(TriangleSoup, Attributes, ReadReport), ReadError> {
     let mut lines = Lines::new(input, None);
     let header = read_header(&mut lines)?;
     let roles = roles(&lines, &header)?;
@@ -458,6 +540,10 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
         poly: Vec::new(),
         nv,
         report: &mut report,
+        with_attributes,
+        texcoords: Vec::new(),
+        normals: Vec::new(),
+        colors: Vec::new(),
     };
     for (e, role) in header.elements.iter().zip(&roles) {
         let min = e.min_bytes(encoding);
@@ -500,10 +586,29 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
     };
     let faces = out.faces.resolve(&out.positions)?;
     let positions = out.positions;
+    let found = roles
+        .iter()
+        .find_map(|r| match r {
+            Role::Vertex { attributes, .. } if with_attributes => Some(*attributes),
+            _ => None,
+        })
+        .unwrap_or_default();
+    let attributes = Attributes {
+        texcoords: found.uv.map(|_| per_vertex(out.texcoords, &faces)),
+        normals: found.normal.map(|_| per_vertex(out.normals, &faces)),
+        colors: found.rgb.map(|_| per_vertex(out.colors, &faces)),
+    };
     for (e, role) in header.elements.iter().zip(&roles) {
         let name = String::from_utf8_lossy(&e.name);
+        let mut vertex_used = Vec::new();
         let used: &[usize] = match role {
-            Role::Vertex { xyz } => xyz,
+            Role::Vertex { xyz, attributes } => {
+                vertex_used.extend(xyz);
+                if with_attributes {
+                    vertex_used.extend(attributes.used());
+                }
+                &vertex_used
+            }
             Role::Faces { list } | Role::Strips { list } => std::slice::from_ref(list),
             Role::Skip => {
                 report.note(format!("skipped element '{name}' ({} items)", e.count));
@@ -521,7 +626,17 @@ pub(crate) fn read<R: Read>(input: Input<R>) -> Result<(TriangleSoup, ReadReport
             ));
         }
     }
-    finish(positions, faces, report).map_err(|k| ReadError::new(end_loc, k))
+    let (soup, report) =
+        finish(positions, faces, report).map_err(|k| ReadError::new(end_loc, k))?;
+    Ok((soup, attributes, report))
+}
+
+/// One value per vertex: a corner's value index is its vertex.
+fn per_vertex<const N: usize>(values: Vec<[f64; N]>, faces: &[[VertexId; 3]]) -> Wedges<N> {
+    Wedges {
+        values,
+        corners: faces.iter().map(|f| f.map(|v| v.0)).collect(),
+    }
 }
 
 struct Output<'a> {
@@ -530,6 +645,11 @@ struct Output<'a> {
     poly: Vec<u32>,
     nv: u64,
     report: &'a mut ReadReport,
+    /// Whether to read the vertex attributes into the three tables below (one per vertex).
+    with_attributes: bool,
+    texcoords: Vec<[f64; 2]>,
+    normals: Vec<[f64; 3]>,
+    colors: Vec<[f64; 4]>,
 }
 
 fn read_elements<S: Source>(
@@ -540,7 +660,14 @@ fn read_elements<S: Source>(
 ) -> Result<(), ReadError> {
     for (e, role) in header.elements.iter().zip(roles) {
         match *role {
-            Role::Vertex { xyz } => read_vertices(src, e, xyz, out)?,
+            Role::Vertex { xyz, attributes } => {
+                let attributes = if out.with_attributes {
+                    attributes
+                } else {
+                    VertexAttributes::default()
+                };
+                read_vertices(src, e, xyz, attributes, out)?;
+            }
             Role::Faces { list } => read_faces(src, e, list, false, out)?,
             Role::Strips { list } => read_faces(src, e, list, true, out)?,
             // An element without properties occupies no bytes, whatever its count.
@@ -561,26 +688,90 @@ fn read_elements<S: Source>(
     Ok(())
 }
 
+/// Where a vertex property's value goes.
+#[derive(Clone, Copy)]
+enum Target {
+    Position(usize),
+    Texcoord(usize),
+    Normal(usize),
+    Color(usize),
+    Skip,
+}
+
+/// What an integer colour component is divided by (its type's largest value: `uchar` 255,
+/// so 255 is 1 exactly); float components are kept as written.
+fn color_scale(t: Scalar) -> f64 {
+    match t {
+        Scalar::I8 => f64::from(i8::MAX),
+        Scalar::U8 => f64::from(u8::MAX),
+        Scalar::I16 => f64::from(i16::MAX),
+        Scalar::U16 => f64::from(u16::MAX),
+        Scalar::I32 => f64::from(i32::MAX),
+        Scalar::U32 => f64::from(u32::MAX),
+        Scalar::F32 | Scalar::F64 => 1.0,
+    }
+}
+
 fn read_vertices<S: Source>(
     src: &mut S,
     e: &Element,
     xyz: [usize; 3],
+    attributes: VertexAttributes,
     out: &mut Output<'_>,
 ) -> Result<(), ReadError> {
     const WHAT: &str = "vertex data";
+    let mut targets = vec![Target::Skip; e.props.len()];
+    for (k, &i) in xyz.iter().enumerate() {
+        targets[i] = Target::Position(k);
+    }
+    for (k, &i) in attributes.uv.iter().flatten().enumerate() {
+        targets[i] = Target::Texcoord(k);
+    }
+    for (k, &i) in attributes.normal.iter().flatten().enumerate() {
+        targets[i] = Target::Normal(k);
+    }
+    if let Some(rgb) = attributes.rgb {
+        for (k, &i) in rgb.iter().chain(&attributes.alpha).enumerate() {
+            targets[i] = Target::Color(k);
+        }
+    }
     for v in 0..e.count {
         src.begin_item();
         let mut p = [0.0; 3];
-        for (i, prop) in e.props.iter().enumerate() {
-            match prop.kind {
-                Kind::Scalar(t) if i == xyz[0] => p[0] = src.float(t, WHAT)?,
-                Kind::Scalar(t) if i == xyz[1] => p[1] = src.float(t, WHAT)?,
-                Kind::Scalar(t) if i == xyz[2] => p[2] = src.float(t, WHAT)?,
-                kind => src.skip_property(kind, WHAT)?,
+        let (mut uv, mut normal, mut color) = ([0.0; 2], [0.0; 3], [0.0, 0.0, 0.0, 1.0]);
+        for (prop, &target) in e.props.iter().zip(&targets) {
+            match (prop.kind, target) {
+                (Kind::Scalar(t), Target::Position(k)) => p[k] = src.float(t, WHAT)?,
+                (Kind::Scalar(t), Target::Texcoord(k)) => uv[k] = src.float(t, WHAT)?,
+                (Kind::Scalar(t), Target::Normal(k)) => normal[k] = src.float(t, WHAT)?,
+                (Kind::Scalar(t), Target::Color(k)) => {
+                    color[k] = src.float(t, WHAT)? / color_scale(t);
+                }
+                (kind, _) => src.skip_property(kind, WHAT)?,
             }
         }
         out.positions
             .push(checked_position(p, v).map_err(|k| src.error(k))?);
+        let finite = uv
+            .iter()
+            .chain(&normal)
+            .chain(&color)
+            .all(|x| x.is_finite());
+        if !finite {
+            return Err(src.error(ReadErrorKind::AttributeValue {
+                what: "vertex",
+                element: v,
+            }));
+        }
+        if attributes.uv.is_some() {
+            out.texcoords.push(uv);
+        }
+        if attributes.normal.is_some() {
+            out.normals.push(normal);
+        }
+        if attributes.rgb.is_some() {
+            out.colors.push(color);
+        }
     }
     Ok(())
 }
@@ -621,66 +812,6 @@ fn read_faces<S: Source>(
                     }
                 }
                 kind => src.skip_property(kind, what)?,
-            }
-        }
-    }
-    Ok(())
-}
-
-pub(crate) fn write<W: Write>(
-    w: &mut W,
-    soup: &TriangleSoup,
-    encoding: PlyEncoding,
-) -> io::Result<()> {
-    let enc = match encoding {
-        PlyEncoding::Ascii => "ascii",
-        PlyEncoding::BinaryLittleEndian => "binary_little_endian",
-        PlyEncoding::BinaryBigEndian => "binary_big_endian",
-    };
-    let index_type = if soup.num_vertices() <= i32::MAX as usize {
-        "int"
-    } else {
-        "uint"
-    };
-    write!(
-        w,
-        "ply\nformat {enc} 1.0\ncomment written by envelope-io\n\
-         element vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
-         element face {}\nproperty list uchar {index_type} vertex_indices\nend_header\n",
-        soup.num_vertices(),
-        soup.num_faces()
-    )?;
-    match encoding {
-        PlyEncoding::Ascii => {
-            for p in &soup.positions {
-                writeln!(w, "{:?} {:?} {:?}", p.x, p.y, p.z)?;
-            }
-            for f in &soup.faces {
-                writeln!(w, "3 {} {} {}", f[0].0, f[1].0, f[2].0)?;
-            }
-        }
-        PlyEncoding::BinaryLittleEndian | PlyEncoding::BinaryBigEndian => {
-            let be = encoding == PlyEncoding::BinaryBigEndian;
-            let mut rec = [0u8; 24];
-            for p in &soup.positions {
-                for (k, x) in p.to_array().into_iter().enumerate() {
-                    let b = if be { x.to_be_bytes() } else { x.to_le_bytes() };
-                    rec[8 * k..8 * k + 8].copy_from_slice(&b);
-                }
-                w.write_all(&rec)?;
-            }
-            let mut rec = [0u8; 13];
-            rec[0] = 3;
-            for f in &soup.faces {
-                for (k, v) in f.iter().enumerate() {
-                    let b = if be {
-                        v.0.to_be_bytes()
-                    } else {
-                        v.0.to_le_bytes()
-                    };
-                    rec[1 + 4 * k..5 + 4 * k].copy_from_slice(&b);
-                }
-                w.write_all(&rec)?;
             }
         }
     }

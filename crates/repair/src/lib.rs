@@ -47,11 +47,11 @@
 //!
 //! Indices in reports and errors are the input's, from 0 (see [`report`]).
 //!
-//! Attributes (normals, texture coordinates) do not exist yet. When they come they will be
-//! corner data beside the position index: the weld still keys on positions alone, and an
-//! attribute seam stays a seam in the corners' attributes; the face steps carry a face's
-//! corner attributes with it (a T-junction piece interpolating at the inserted vertex along
-//! its edge, a flip reversing them).
+//! Attributes (normals, texture coordinates, colours) are corner data beside the position
+//! index, which this crate does not see: the weld keys on positions alone, and
+//! [`repair_traced`] gives each output face's input face, from which `envelope::repair`
+//! carries a face's corner values (a flip permuting them, a T-junction piece interpolating
+//! at the inserted vertex along its edge); an attribute seam stays a seam in the corners.
 //!
 //! ```
 //! use envelope_mesh::generate;
@@ -121,6 +121,30 @@ pub fn repair(
     soup: &TriangleSoup,
     options: &RepairOptions,
 ) -> Result<(TriangleSoup, RepairReport), RepairError> {
+    repair_traced(soup, options).map(|(out, report, _)| (out, report))
+}
+
+/// [`repair`], with the input face each output face comes from (a kept, flipped or split
+/// face's own; the faces keep their corners' positions), so that per-corner attributes can
+/// follow their faces.
+///
+/// ```
+/// use envelope_mesh::{generate, FaceId};
+/// use envelope_repair::{repair_traced, RepairOptions};
+/// let mut soup = generate::icosphere(1, 1.0);
+/// soup.faces.push(soup.faces[0]); // a duplicate, dropped
+/// let (repaired, _, origin) = repair_traced(&soup, &RepairOptions::default())?;
+/// assert_eq!(origin.len(), repaired.num_faces());
+/// assert_eq!(origin[5], FaceId(5));
+/// # Ok::<(), envelope_repair::RepairError>(())
+/// ```
+///
+/// # Errors
+/// As [`repair`].
+pub fn repair_traced(
+    soup: &TriangleSoup,
+    options: &RepairOptions,
+) -> Result<(TriangleSoup, RepairReport, Vec<FaceId>), RepairError> {
     validate(soup)?;
     let mut report = RepairReport::new(soup.num_vertices(), soup.num_faces(), options.max_examples);
     let mut work = work::Work::new(soup);
@@ -138,10 +162,11 @@ pub fn repair(
     unreferenced::drop_unreferenced(&mut work, &mut report);
     report.output_vertices = work.positions.len();
     report.output_faces = work.faces.len();
+    let origin = work.face_origin.clone();
     let out = work.into_soup();
     #[cfg(any(test, fuzzing))]
     sanity_check(&out, &report);
-    Ok((out, report))
+    Ok((out, report, origin))
 }
 
 /// The boundary: finite coordinates and indices in range (a `Mesh` or a reader guarantees

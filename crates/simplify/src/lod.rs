@@ -88,6 +88,10 @@ pub struct LodOptions {
     pub verify: bool,
     /// For switching distances.
     pub screen: Screen,
+    /// Vertices of the original no level may remove or move, by id (empty: none), as
+    /// [`SimplifyOptions::keep`]; each level's own ids are found by position (levels keep
+    /// the original's positions bitwise).
+    pub keep: Vec<bool>,
 }
 
 impl LodOptions {
@@ -102,6 +106,7 @@ impl LodOptions {
             tube_segments: Some(8),
             verify: true,
             screen: Screen::default(),
+            keep: Vec::new(),
         }
     }
 }
@@ -171,6 +176,14 @@ pub fn lod_chain(
     }
     let mut levels: Vec<Level> = Vec::new();
     let mut cumulative = 0.0;
+    // The kept vertices' positions (bits), to find them again in each level.
+    let kept: std::collections::HashSet<[u64; 3]> = options
+        .keep
+        .iter()
+        .zip(&original.positions)
+        .filter(|(k, _)| **k)
+        .map(|(_, p)| p.to_array().map(f64::to_bits))
+        .collect();
     for (i, &requested) in eps.iter().enumerate() {
         let step = match (options.rule, i) {
             (LodRule::Cumulative, 0) | (LodRule::Sum, _) => requested,
@@ -181,10 +194,20 @@ pub fn lod_chain(
             LodRule::Sum => cumulative + requested,
         };
         let previous = levels.last().map_or(original, |l| &l.mesh);
+        let keep = if i == 0 || kept.is_empty() {
+            options.keep.clone()
+        } else {
+            previous
+                .positions
+                .iter()
+                .map(|p| kept.contains(&p.to_array().map(f64::to_bits)))
+                .collect()
+        };
         let step_options = SimplifyOptions {
             method: options.method,
             hole_filling: options.hole_filling,
             tube_segments: options.tube_segments,
+            keep,
             ..SimplifyOptions::new(EpsilonField::Constant(step))
         };
         let (mesh, report) = simplify(previous, &step_options, progress)?;
