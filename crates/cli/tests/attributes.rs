@@ -138,3 +138,49 @@ fn a_textured_obj_keeps_its_texture_coordinates_without_tears() {
     let (_, attributes, _) = read_path_with_attributes(&repaired).unwrap();
     assert!(attributes.texcoords.is_some());
 }
+
+/// `envelope batch` carries texture coordinates too: a simplified item and every level of a
+/// chain come out with `vt`.
+#[test]
+fn batch_items_keep_their_texture_coordinates() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("cyl.obj"), textured_cylinder()).unwrap();
+    let manifest = d.join("manifest.jsonl");
+    std::fs::write(
+        &manifest,
+        [
+            r#"{"id": "one", "input": "cyl.obj", "epsilon": "1%"}"#,
+            r#"{"id": "chain", "input": "cyl.obj", "lod": ["1%", "4%"]}"#,
+        ]
+        .join("\n"),
+    )
+    .unwrap();
+    let out = d.join("out");
+    let done = run(&[
+        "batch",
+        manifest.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(
+        done.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&done.stderr)
+    );
+    for file in [
+        "one/simplified.obj",
+        "chain/level-1.obj",
+        "chain/level-2.obj",
+    ] {
+        let (soup, attributes, _) = read_path_with_attributes(out.join(file)).unwrap();
+        let uv = attributes.texcoords.expect(file);
+        assert_eq!(uv.corners.len(), soup.num_faces(), "{file}");
+        assert!(
+            soup.num_faces() < 24 * 12 * 2,
+            "{file}: {}",
+            soup.num_faces()
+        );
+    }
+}

@@ -388,6 +388,20 @@ pub fn read_bytes(bytes: &[u8], path: &Path) -> Result<(TriangleSoup, ReadReport
     read_named(Input::new(bytes, len), path, len)
 }
 
+/// [`read_bytes`] with the per-corner attributes, as [`read_with_attributes`].
+///
+/// # Errors
+/// As [`read_bytes`].
+pub fn read_bytes_with_attributes(
+    bytes: &[u8],
+    path: &Path,
+) -> Result<(TriangleSoup, Attributes, ReadReport), ReadError> {
+    let len = Some(bytes.len() as u64);
+    let mut input = Input::new(bytes, len);
+    let format = format_of(&mut input, path, len)?;
+    read_input_with_attributes(input, format).map_err(|e| e.with_path(path))
+}
+
 /// The format from `path` or the content, then the reader; errors name `path`.
 fn read_named<R: Read>(
     mut input: Input<R>,

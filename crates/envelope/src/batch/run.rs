@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use envelope_io::{Format, read_bytes, write_path};
+use envelope_io::{Format, read_bytes_with_attributes, write_path_with_attributes};
 use envelope_verify::Verdict;
 use serde_json::json;
 use sha2::{Digest, Sha256};
@@ -119,8 +119,8 @@ fn work(
     stop: &AtomicBool,
     outcome: &mut Outcome,
 ) -> Result<(), Error> {
-    let (soup, _) = read_bytes(bytes, &item.input)?;
-    let mut mesh = Mesh::from_soup(soup);
+    let (soup, attributes, _) = read_bytes_with_attributes(bytes, &item.input)?;
+    let mut mesh = Mesh::from_parts(soup, attributes);
     fs::create_dir_all(staging).map_err(|e| write_error(staging, &e))?;
     if item.repair {
         // The repaired mesh has the file's point set: the certificate against it holds
@@ -147,8 +147,9 @@ fn work(
             std::ops::ControlFlow::Continue(())
         }
     };
-    let mut write = |name: String, m: &envelope_mesh::TriangleSoup| -> Result<(), Error> {
-        write_path(staging.join(&name), m, format)?;
+    // With the attributes the format holds (`envelope_io::Format::dropped_attributes`).
+    let mut write = |name: String, m: &Mesh| -> Result<(), Error> {
+        write_path_with_attributes(staging.join(&name), m.soup(), m.attributes(), format)?;
         outcome.outputs.push(name);
         Ok(())
     };
@@ -175,7 +176,7 @@ fn work(
                 Status::Violated => format!("simplified.failed.{ext}"),
                 _ => format!("simplified.{ext}"),
             };
-            write(name, done.mesh().soup())?;
+            write(name, done.mesh())?;
             let report = done.report();
             outcome.faces.push(done.mesh().num_faces());
             outcome.epsilon.push(report.epsilon_abs);
@@ -192,7 +193,10 @@ fn work(
             let mut status = Status::Ok;
             let mut violations = Vec::new();
             for level in &levels {
-                write(format!("level-{}.{ext}", level.index), &level.mesh)?;
+                write(
+                    format!("level-{}.{ext}", level.index),
+                    &Lod::level_mesh(&mesh, level),
+                )?;
                 outcome.faces.push(level.mesh.num_faces());
                 outcome.epsilon.push(level.cumulative);
                 if let Some(v) = &level.certified {
