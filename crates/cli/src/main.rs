@@ -107,7 +107,28 @@ enum Command {
     },
 }
 
+/// A reader that stops early (`envelope check m.off --json | head`) closes stdout, and
+/// `println!` then panics: end quietly instead, as other command-line tools do, with the
+/// status of SIGPIPE's default action (128 + 13). Outputs are unaffected (they are files,
+/// renamed into place only when complete).
+fn quiet_on_closed_stdout() {
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let payload = info.payload();
+        let message = payload
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| payload.downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(141);
+        }
+        default_hook(info);
+    }));
+}
+
 fn main() -> ExitCode {
+    quiet_on_closed_stdout();
     let cli = Cli::parse();
     // The command runs on a worker of the pool (`in_pool`): from outside the pool every
     // parallel batch of the local simplifier would put this thread to sleep and wake it.

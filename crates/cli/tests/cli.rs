@@ -172,3 +172,46 @@ fn unreadable_input_gives_exit_2_and_a_message_naming_the_problem() {
     // Wrong arguments.
     assert_eq!(envelope(&["check"]).status.code(), Some(2));
 }
+
+/// A reader that closes stdout early (`| head`) ends the program quietly with status 141,
+/// not with a panic: a check whose JSON is far larger than a pipe's buffer, read for a few
+/// bytes.
+#[test]
+fn closed_stdout_ends_quietly() {
+    use std::io::Read;
+    use std::process::Stdio;
+    let dir = tempfile::tempdir().unwrap();
+    // 20,000 separate triangles each doubled: as many duplicate-face examples to print.
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    for i in 0..20_000u32 {
+        let x = f64::from(i);
+        positions.extend([[x, 0.0, 0.0], [x + 0.5, 0.0, 0.0], [x, 0.5, 0.0]]);
+        faces.extend([[3 * i, 3 * i + 1, 3 * i + 2], [3 * i, 3 * i + 1, 3 * i + 2]]);
+    }
+    let path = write(
+        dir.path(),
+        "doubled.off",
+        &TriangleSoup::from_raw(&positions, &faces),
+        Format::Off,
+    );
+    let mut child = Command::new(env!("CARGO_BIN_EXE_envelope"))
+        .args(["check", "--json", "--examples", "10000"])
+        .arg(&path)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 16];
+    child
+        .stdout
+        .as_mut()
+        .unwrap()
+        .read_exact(&mut first)
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(out.status.code(), Some(141), "{err}");
+}
