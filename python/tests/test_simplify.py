@@ -144,7 +144,7 @@ def test_self_intersecting_input_keeps_its_crossings(sphere):
     out = envelope.simplify(both_v, both_f, "1%", threads=1)
     assert out.is_certified
     assert len(out.faces) < len(both_f)
-    kept = out.report["kept_around_intersections"]
+    kept = out.report["kept"]
     assert kept is not None and kept["intersecting_pairs"] > 0
     assert kept["kept_faces"] >= 2
     assert len(out.certificate.kept_intersections) > 0

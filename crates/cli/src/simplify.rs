@@ -398,9 +398,13 @@ fn print_summary(args: &Args, r: &SimplifyReport) {
         println!("peak memory {:.1} MiB", mb as f64 / (1024.0 * 1024.0));
     }
     if let Some(k) = &r.kept {
+        let why = match k.intersecting_pairs {
+            0 => "envelopes not provable everywhere".to_owned(),
+            n => format!("self-intersecting input ({n} intersecting pairs)"),
+        };
         println!(
-            "self-intersecting input: {} intersecting pairs; {} faces kept as they are ({} rounds of growth), {} vertices they share kept",
-            k.intersecting_pairs, k.kept_faces, k.rounds, k.shared_vertices
+            "{why}: {} faces kept as they are ({} rounds of envelopes after the first), {} vertices they share kept",
+            k.kept_faces, k.rounds, k.shared_vertices
         );
     }
     match &r.verify {

@@ -395,7 +395,7 @@ fn self_intersecting_input_is_simplified_around_its_crossing() {
     assert!(stdout.contains("kept from the input"), "{stdout}");
     let r: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
-    let kept = &r["kept_around_intersections"];
+    let kept = &r["kept"];
     assert!(kept["intersecting_pairs"].as_u64().unwrap() > 0, "{r:#}");
     assert!(r["output_faces"].as_u64().unwrap() < 2 * 1280 / 2, "{r:#}");
     let verify = |strict: bool| {

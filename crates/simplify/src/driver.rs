@@ -14,8 +14,10 @@
 //!   certify             (optional) two-sided Hausdorff <= max epsilon, no self-intersection,
 //!                       same genus / components / border loops
 //!
-//! a self-intersecting input (only CROSSINGS classes): the same steps on the rest, around
-//!   KeptRegion          module kept: the faces of intersecting pairs, kept as they are
+//! a self-intersecting input (only CROSSINGS classes), or envelopes not proved: the same
+//! steps on the rest, around
+//!   KeptRegion          module kept: the faces of intersecting pairs (or none), kept as
+//!                       they are
 //!   build_envelopes     for the rest; named contact faces kept too until proved (<= 4 rounds)
 //!   Barriers            + the kept faces as walls (touched only at shared vertices), the
 //!                       shared vertices kept
@@ -342,8 +344,8 @@ pub struct SimplifyReport {
     pub envelope: EnvelopeReport,
     /// The certificate of the output, when asked for.
     pub verify: Option<VerifyReport>,
-    /// For a self-intersecting input, what was kept as it was around its intersecting pairs
-    /// (`None`: the input meets itself nowhere).
+    /// What was kept as it was, around a self-intersecting input's intersecting pairs and
+    /// where its envelopes could not be proved (`None`: nothing).
     pub kept: Option<KeptReport>,
     /// The simplification method that ran ([`SimplifyStep`]): `"local"` by default.
     pub method: &'static str,
@@ -390,7 +392,7 @@ impl SimplifyReport {
                 "seconds": e.seconds,
             },
             "verify": self.verify.as_ref().map(VerifyReport::to_json),
-            "kept_around_intersections": self.kept.as_ref().map(|k| json!({
+            "kept": self.kept.as_ref().map(|k| json!({
                 "intersecting_pairs": k.intersecting_pairs,
                 "kept_faces": k.kept_faces,
                 "rounds": k.rounds,
@@ -635,25 +637,23 @@ pub fn simplify_with(
     let used = referenced(soup);
     if crossing {
         drop(env);
-        return simplify_around_crossings(
-            soup,
-            &topo_in,
-            tree.as_ref(),
-            &used,
-            problems,
-            options,
-            step,
-            progress,
-            start,
+        // Undecided (too many overlapping boxes) stays refused.
+        let Some(pairs) = envelope_check::intersecting_pairs(soup, tree.as_ref()) else {
+            return Err(DriverError::Unacceptable(problems));
+        };
+        let start_with = Start::Pairs(pairs, problems);
+        return simplify_keeping(
+            soup, &topo_in, &used, start_with, options, step, progress, start,
         );
     }
     let env = env?;
-    // An invariant of every command: no output from envelopes whose proof failed.
+    // An invariant of every command: no output from envelopes whose proof failed. Where
+    // it fails, the faces it names are kept as they are and the rest tried again.
     if !env.proof.holds() {
-        return Err(DriverError::UnprovedEnvelopes {
-            contacts: env.proof.contacts.len() + env.proof.tube_contacts.len(),
-            repair_rounds: env.proof.repair_rounds,
-        });
+        let start_with = Start::Unproved(env);
+        return simplify_keeping(
+            soup, &topo_in, &used, start_with, options, step, progress, start,
+        );
     }
     let between = simplify_between(
         soup,
@@ -941,13 +941,14 @@ fn simplify_between(
     })
 }
 
-/// How much of a self-intersecting input was kept as it was ([`SimplifyReport::kept`]).
+/// How much of the input was kept as it was ([`SimplifyReport::kept`]): around its
+/// intersecting pairs, and where its envelopes could not be proved.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct KeptReport {
     /// Intersecting face pairs of the input (T-junction and coincident pairs among them).
     pub intersecting_pairs: usize,
-    /// Input faces kept unchanged: the faces of those pairs, the rings around them and what
-    /// keeps the rest a manifold.
+    /// Input faces kept unchanged: the faces of those pairs, those the envelope proof named
+    /// and the faces around them, and what keeps the rest a manifold.
     pub kept_faces: usize,
     /// Envelope builds after the first: each time the rest's envelopes could not be proved,
     /// the faces the proof named were kept too (or one ring around the kept ones).
@@ -956,34 +957,58 @@ pub struct KeptReport {
     pub shared_vertices: usize,
 }
 
-/// A self-intersecting input (its only error classes are [`CROSSINGS`]): the faces around its
-/// intersecting pairs kept as they are (module `kept`), the rest simplified between its own
-/// envelopes, the two joined again and certified with the input's own intersections allowed.
+/// Where [`simplify_keeping`] starts.
+enum Start {
+    /// A self-intersecting input (its only error classes are [`CROSSINGS`]): its intersecting
+    /// pairs, and the classes to refuse it with when nothing is left to simplify.
+    Pairs(Vec<(FaceId, FaceId)>, Vec<(DegeneracyClass, usize)>),
+    /// An input whose envelopes could not be proved: those envelopes.
+    Unproved(Envelopes),
+}
+
+/// Some faces kept as they are (module `kept`): the faces of a self-intersecting input's
+/// intersecting pairs, and the faces an envelope proof names where it fails; the rest
+/// simplified between its own proved envelopes, the two joined again and certified with the
+/// input's own intersections allowed.
 #[allow(clippy::too_many_arguments)]
-fn simplify_around_crossings(
+fn simplify_keeping(
     soup: &TriangleSoup,
     topo_in: &Topology,
-    tree: Option<&Bvh>,
     used: &[bool],
-    problems: Vec<(DegeneracyClass, usize)>,
+    start_with: Start,
     options: &SimplifyOptions,
     step: &dyn SimplifyStep,
     progress: &mut dyn Progress,
     start: Instant,
 ) -> Result<(TriangleSoup, SimplifyReport), DriverError> {
-    // Undecided (too many overlapping boxes) stays refused.
-    let Some(pairs) = envelope_check::intersecting_pairs(soup, tree) else {
-        return Err(DriverError::Unacceptable(problems));
+    let (pairs, problems, mut first) = match start_with {
+        Start::Pairs(pairs, problems) => (pairs, Some(problems), None),
+        Start::Unproved(env) => (Vec::new(), None, Some(env)),
     };
     let mut region = KeptRegion::around(soup, &pairs);
     let mut rounds = 0;
+    let mut last = (0, 0);
     let (region, env, env_seconds) = loop {
         go_on(progress)?;
         let t = Instant::now();
         if region.rest.num_faces() == 0 {
-            return Err(DriverError::Unacceptable(problems));
+            return Err(match problems {
+                Some(problems) if rounds == 0 => DriverError::Unacceptable(problems),
+                _ => DriverError::UnprovedEnvelopes {
+                    contacts: last.0,
+                    repair_rounds: last.1,
+                },
+            });
         }
-        let env = envelopes_for(&region.rest, options, None)?;
+        // The first round of an unproved input is its own envelopes (nothing kept yet).
+        let env = match first.take() {
+            Some(env) => env,
+            None => envelopes_for(&region.rest, options, None)?,
+        };
+        last = (
+            env.proof.contacts.len() + env.proof.tube_contacts.len(),
+            env.proof.repair_rounds,
+        );
         if env.proof.holds() {
             break (region, env, t.elapsed().as_secs_f64());
         }

@@ -1,4 +1,5 @@
-//! Self-intersecting input: the faces kept as they are around its intersecting pairs.
+//! Faces kept as they are: around a self-intersecting input's intersecting pairs, and where
+//! the envelopes cannot be proved.
 //!
 //! The envelopes of section 3 cannot be proved free of intersections where the input meets
 //! itself, and the paper refuses such input (7.1). Instead the faces of every intersecting
@@ -9,6 +10,10 @@
 //! and the two parts join as they did. Every intersecting pair of the output is then a pair
 //! of unchanged input faces that met in the input already, which the certificate checks
 //! (`envelope_verify::Options::allow_input_intersections`).
+//!
+//! The same serves an input that meets itself nowhere but whose envelopes cannot be proved
+//! (parts closer together than the offsets can resolve): the faces the proof names are kept,
+//! the rest tried again, and nothing is ever made from unproved envelopes.
 //!
 //! Choices the papers leave open (they refuse such input):
 //! * no margin at first: the kept faces are barriers, so the rest needs none for the proof;

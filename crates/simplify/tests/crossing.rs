@@ -117,3 +117,36 @@ fn spheres_touching_at_a_duplicated_vertex() {
     assert!(out.num_faces() < soup.num_faces() / 2);
     assert_eq!(report.verify.unwrap().verdict, Verdict::Holds);
 }
+
+/// Envelopes that cannot be proved in one place (two parallel sheets 2^-50 apart, beside a
+/// sphere): the sheets' faces are kept as they are, the sphere is simplified.
+#[test]
+fn unprovable_part_is_kept_and_the_rest_simplified() {
+    let d = 8.881784197001252e-16;
+    let sheets = TriangleSoup::from_raw(
+        &[
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [1., 1., 0.],
+            [0., 1., 0.],
+            [0., 0., d],
+            [1., 0., d],
+            [1., 1., d],
+            [0., 1., d],
+        ],
+        &[[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]],
+    );
+    let sphere = generate::icosphere(3, 1.0);
+    let soup = union(&sphere, &sheets, DVec3::new(3.0, 0.0, 0.0));
+    assert!(intersecting_pairs(&soup, None).unwrap().is_empty());
+    let (out, report) = simplify(&soup, &options(0.02, Placement::Subset), &mut ()).unwrap();
+    let kept = report.kept.expect("kept where unproved");
+    assert_eq!((kept.intersecting_pairs, kept.kept_faces), (0, 4));
+    assert!(out.num_faces() < sphere.num_faces() / 3);
+    assert_eq!(report.verify.unwrap().verdict, Verdict::Holds);
+    // The sheets alone: everything would be kept, so nothing is made.
+    assert!(matches!(
+        simplify(&sheets, &options(0.02, Placement::Subset), &mut ()),
+        Err(DriverError::UnprovedEnvelopes { .. })
+    ));
+}
