@@ -650,7 +650,7 @@ pub fn simplify_with(
     // An invariant of every command: no output from envelopes whose proof failed. Where
     // it fails, the faces it names are kept as they are and the rest tried again.
     if !env.proof.holds() {
-        let start_with = Start::Unproved(env);
+        let start_with = Start::Unproved(Box::new(env));
         return simplify_keeping(
             soup, &topo_in, &used, start_with, options, step, progress, start,
         );
@@ -963,7 +963,7 @@ enum Start {
     /// pairs, and the classes to refuse it with when nothing is left to simplify.
     Pairs(Vec<(FaceId, FaceId)>, Vec<(DegeneracyClass, usize)>),
     /// An input whose envelopes could not be proved: those envelopes.
-    Unproved(Envelopes),
+    Unproved(Box<Envelopes>),
 }
 
 /// Some faces kept as they are (module `kept`): the faces of a self-intersecting input's
@@ -1002,7 +1002,7 @@ fn simplify_keeping(
         }
         // The first round of an unproved input is its own envelopes (nothing kept yet).
         let env = match first.take() {
-            Some(env) => env,
+            Some(env) => *env,
             None => envelopes_for(&region.rest, options, None)?,
         };
         last = (

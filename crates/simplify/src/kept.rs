@@ -18,10 +18,10 @@
 //! Choices the papers leave open (they refuse such input):
 //! * no margin at first: the kept faces are barriers, so the rest needs none for the proof;
 //! * when the rest's envelopes cannot be proved, the rest faces the proof names in its
-//!   contacts are kept too with the faces around them (or, when it names only tube faces,
-//!   one ring of faces around the kept ones), and the envelopes are built again, at most
-//!   [`MAX_ROUNDS`] times: the rest near a crossing is close to the other sheet there, and a
-//!   thin part elsewhere needs the same;
+//!   contacts are kept too, then one ring of faces around every kept one, and the envelopes
+//!   are built again, at most [`MAX_ROUNDS`] times: the rest near a crossing is close to the
+//!   other sheet there (and so are the border tubes along its cut), and a thin part
+//!   elsewhere needs the same;
 //! * faces are added to the kept set until every shared vertex has one fan of rest faces, so
 //!   the rest is a manifold with border (a vertex the kept faces cut into two fans would be
 //!   non-manifold there).
@@ -59,22 +59,17 @@ impl KeptRegion {
         Self::new(soup, kept_face)
     }
 
-    /// This region with the input faces `more` and the faces around them kept too (faces of
-    /// the rest the envelope proof named, and their neighbours, which are as close to what
-    /// the proof found), or, when `more` is empty, with one ring of faces around the kept
-    /// ones.
+    /// This region with the input faces `more` kept too (faces of the rest the envelope
+    /// proof named) and then one ring of faces around all kept ones: the faces next to a
+    /// named one are as close to what the proof found, and a cut border near another sheet
+    /// (whose border tube the proof may find there) moves away from it.
     pub(crate) fn grown(&self, soup: &TriangleSoup, more: &[FaceId]) -> Self {
         let mut kept_face = self.kept_face.clone();
+        for f in more {
+            kept_face[f.index()] = true;
+        }
         let faces_of = VertexFaces::new(soup.num_vertices(), &soup.faces);
-        let around: Vec<bool> = if more.is_empty() {
-            touched_vertices(soup, &kept_face)
-        } else {
-            let mut named = vec![false; soup.num_faces()];
-            for f in more {
-                named[f.index()] = true;
-            }
-            touched_vertices(soup, &named)
-        };
+        let around = touched_vertices(soup, &kept_face);
         for (v, _) in around.iter().enumerate().filter(|(_, t)| **t) {
             for &f in faces_of.of(v) {
                 kept_face[f as usize] = true;
@@ -219,12 +214,13 @@ mod tests {
             assert!(next.num_kept() > r.num_kept());
             r = next;
         }
-        // Named faces are kept with their neighbours, nothing far from them.
+        // Named faces are kept with their neighbours, and a ring around the rest.
         let r = KeptRegion::around(&soup, &pairs);
         let named = r.rest_faces[r.rest_faces.len() / 2];
         let g = r.grown(&soup, &[named]);
         assert!(g.kept_face[named.index()]);
-        assert!(g.num_kept() > r.num_kept() + 1 && g.num_kept() < r.num_kept() + 20);
+        let ring = r.grown(&soup, &[]);
+        assert!(g.num_kept() > ring.num_kept() + 1 && g.num_kept() < ring.num_kept() + 20);
     }
 
     #[test]
