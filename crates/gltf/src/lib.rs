@@ -91,6 +91,8 @@ pub struct Primitive {
     attributes: Attributes,
     morph_targets: usize,
     skinned: bool,
+    /// The file gave NORMAL: a replacement without normals gets them recomputed.
+    had_normals: bool,
 }
 
 impl Primitive {
@@ -306,7 +308,8 @@ impl Scene {
         transform::world_diagonal(self)
     }
 
-    /// Replaces the triangles of `primitives()[index]` (a triangle primitive) when written.
+    /// Replaces the triangles of `primitives()[index]` (a triangle primitive): from now on
+    /// it shows them, and they are written in place of the file's.
     ///
     /// # Errors
     /// [`GltfError::BadReplacement`] when `index` is not a triangle primitive, an index is
@@ -322,6 +325,9 @@ impl Scene {
                 reason: format!("there are only {} primitives", self.primitives.len()),
             })?;
         write::check_geometry(p, &geometry)?;
+        let p = &mut self.primitives[index];
+        p.soup = geometry.soup.clone();
+        p.attributes = geometry.attributes.clone();
         self.replaced[index] = Some(geometry);
         Ok(())
     }

@@ -285,6 +285,7 @@ fn read_primitive(
         attributes: Attributes::default(),
         morph_targets: prim.morph_targets().count(),
         skinned: false,
+        had_normals: prim.get(&gltf::Semantic::Normals).is_some(),
     };
     if !matches!(
         mode,

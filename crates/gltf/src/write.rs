@@ -78,6 +78,7 @@ pub(crate) fn from_meshes(meshes: &[(TriangleSoup, Attributes)]) -> Result<Scene
             attributes: Attributes::default(),
             morph_targets: 0,
             skinned: false,
+            had_normals: false,
         })
         .collect();
     let instances = (0..n)
@@ -95,9 +96,7 @@ pub(crate) fn from_meshes(meshes: &[(TriangleSoup, Attributes)]) -> Result<Scene
             soup: soup.clone(),
             attributes: attributes.clone(),
         };
-        scene.replace(i, g.clone())?;
-        scene.primitives[i].soup = g.soup;
-        scene.primitives[i].attributes = g.attributes;
+        scene.replace(i, g)?;
     }
     Ok(scene)
 }
@@ -319,7 +318,7 @@ pub(crate) fn document(scene: &Scene, embed: bool) -> Result<(Vec<u8>, Vec<u8>),
         bin: &mut new_bin,
         buffer: scene.buffers.len(),
     };
-    let had_normals = |p: &Primitive| p.attributes.normals.is_some();
+    let had_normals = |p: &Primitive| p.had_normals;
     let mut lod_nodes = Vec::new();
     for group in &scene.lods {
         let prims: Vec<&Primitive> = scene
