@@ -536,12 +536,7 @@ type Refs = fn(&mut Value, &mut dyn FnMut(&mut Value));
 
 /// Keeps the referenced entries of `doc[key]` (all of them unless `safe`), renumbering the
 /// references through `refs`.
-fn keep_referenced(
-    doc: &mut Value,
-    key: &str,
-    safe: bool,
-    refs: Refs,
-) {
+fn keep_referenced(doc: &mut Value, key: &str, safe: bool, refs: Refs) {
     let n = doc.get(key).and_then(Value::as_array).map_or(0, Vec::len);
     let mut used = vec![!safe; n];
     refs(doc, &mut |v| {
