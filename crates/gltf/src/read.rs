@@ -139,7 +139,7 @@ fn check_views(doc: &gltf::Document, buffers: &[Vec<u8>]) -> Result<(), GltfErro
     for view in doc.views() {
         let buffer = view.buffer().index();
         let offset = view.offset() as u64;
-        let end = offset + view.length() as u64;
+        let end = offset.saturating_add(view.length() as u64);
         let length = buffers[buffer].len() as u64;
         if end > length {
             return Err(GltfError::ViewOutOfBuffer {
@@ -205,10 +205,13 @@ fn elements<'a>(
     let size = a.data_type().size() * dims(a.dimensions());
     let stride = view.stride().unwrap_or(size);
     let count = a.count();
+    // Saturating: a huge count or offset is refused below, never wrapped.
     let end = if count == 0 {
         a.offset() as u64
     } else {
-        (a.offset() as u64) + (stride as u64) * (count as u64 - 1) + size as u64
+        (a.offset() as u64)
+            .saturating_add((stride as u64).saturating_mul(count as u64 - 1))
+            .saturating_add(size as u64)
     };
     if end > bytes.len() as u64 || stride < size {
         return Err(GltfError::AccessorOutOfView {
