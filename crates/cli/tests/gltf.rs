@@ -144,7 +144,11 @@ fn refusals_name_the_element_and_write_nothing() {
     std::fs::write(&magic, &bytes).unwrap();
     let out = envelope(&["simplify", s(&magic), s(&output), "--epsilon", "1%"]);
     assert_eq!(out.status.code(), Some(2), "{}", text(&out));
-    assert!(text(&out).contains("glTF JSON"), "{}", text(&out));
+    assert!(
+        text(&out).contains("not a GLB file: bytes 0..4"),
+        "{}",
+        text(&out)
+    );
 
     let draco = dir.path().join("draco.gltf");
     std::fs::write(

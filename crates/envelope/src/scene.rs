@@ -377,3 +377,53 @@ pub(crate) fn rounded_certified(
         .map_err(Error::from)?;
     Ok(Some(Rounded(mesh, certificate)))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 3x3 grid in z = 0 (f32-exact), its centre raised to `z`.
+    fn grid(z: f64) -> Mesh {
+        let mut positions = Vec::new();
+        for j in 0..3 {
+            for i in 0..3 {
+                positions.push([f64::from(i), f64::from(j), 0.0]);
+            }
+        }
+        positions[4][2] = z;
+        let mut triangles = Vec::new();
+        for j in 0..2 {
+            for i in 0..2 {
+                let v = j * 3 + i;
+                triangles.push([v, v + 1, v + 4]);
+                triangles.push([v, v + 4, v + 3]);
+            }
+        }
+        Mesh::new(positions, triangles).unwrap()
+    }
+
+    #[test]
+    fn rounding_that_breaks_the_certificate_is_caught() {
+        let eps = 0.1;
+        let input = grid(0.0);
+        // Within 0.1 in f64; its f32 rounding (0.100000001...) is not.
+        let z = 0.1 - 1e-12;
+        assert!(f64::from(z as f32) > eps);
+        let approx = grid(z);
+        let c = oracle::verify(&input, &approx, Epsilon::absolute(eps)).unwrap();
+        assert!(c.holds());
+        assert!(
+            rounded_certified(&input, &approx, Some(&c), eps)
+                .unwrap()
+                .is_none()
+        );
+        // A position that is already f32 keeps the engine's certificate.
+        let exact = grid(0.0625);
+        let c = oracle::verify(&input, &exact, Epsilon::absolute(eps)).unwrap();
+        let r = rounded_certified(&input, &exact, Some(&c), eps)
+            .unwrap()
+            .unwrap();
+        assert_eq!(r.into_parts().0, exact);
+        assert!(round_to_f32(approx.soup()).1);
+    }
+}

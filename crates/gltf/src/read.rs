@@ -38,10 +38,17 @@ pub const KNOWN_EXTENSIONS: &[&str] = &[
 /// A scene from the bytes of a `.glb` or `.gltf`; `base` is the folder external buffers
 /// are relative to (`None`: only GLB and data URIs are loaded).
 pub(crate) fn read(bytes: &[u8], base: Option<&Path>) -> Result<Scene, GltfError> {
+    // A GLB starts with its magic, a .gltf with `{` (after white space or a byte order
+    // mark); anything else is named as a bad GLB magic.
+    let text = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
     let (json_bytes, bin) = if crate::container::is_glb(bytes) {
         split_glb(bytes)?
+    } else if text.trim_ascii_start().starts_with(b"{") {
+        (text, None)
     } else {
-        (bytes, None)
+        return Err(split_glb(bytes)
+            .err()
+            .unwrap_or(GltfError::Json("empty file".into())));
     };
     let json: Value =
         serde_json::from_slice(json_bytes).map_err(|e| GltfError::Json(e.to_string()))?;

@@ -293,7 +293,15 @@ fn refusals_name_the_element() {
     let mut magic = good.clone();
     magic[..4].copy_from_slice(b"gLTF");
     let err = Scene::from_slice(&magic, None).unwrap_err();
-    assert!(matches!(err, GltfError::Json(_)), "{err}"); // not GLB: read as JSON text
+    assert!(
+        matches!(err, GltfError::BadMagic { found } if &found == b"gLTF"),
+        "{err}"
+    );
+    assert!(err.to_string().contains("bytes 0..4"), "{err}");
+    let err = Scene::from_slice(b"  [1, 2]", None).unwrap_err();
+    assert!(matches!(err, GltfError::BadMagic { .. }), "{err}");
+    let err = Scene::from_slice(b" {\"asset\": 1}", None).unwrap_err();
+    assert!(matches!(err, GltfError::Json(_)), "{err}");
 
     let mut quantized = json.clone();
     quantized["accessors"][0]["componentType"] = 5122.into();
