@@ -359,3 +359,40 @@ fn bad_magic_glb_is_refused() {
         Err(GltfError::BadVersion(3))
     ));
 }
+
+#[test]
+fn gltf_with_side_and_data_uri_buffers() {
+    let (mut json, bin) = triangle_doc();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("tri data.bin"), &bin).unwrap();
+    json["buffers"][0]["uri"] = "tri%20data.bin".into();
+    let path = dir.path().join("tri.gltf");
+    std::fs::write(&path, serde_json::to_vec(&json).unwrap()).unwrap();
+    let side = Scene::read_path(&path).unwrap();
+    assert_eq!(side.primitives()[0].soup().num_faces(), 1);
+    // Without a folder to resolve it against, the side file is refused by name.
+    let err = Scene::from_slice(&serde_json::to_vec(&json).unwrap(), None).unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("buffers[0]: uri \"tri%20data.bin\""),
+        "{err}"
+    );
+    for uri in ["http://example.com/a.bin", "/etc/passwd"] {
+        json["buffers"][0]["uri"] = uri.into();
+        let err =
+            Scene::from_slice(&serde_json::to_vec(&json).unwrap(), Some(dir.path())).unwrap_err();
+        assert!(err.to_string().contains("not a relative path"), "{err}");
+    }
+    // The .gltf writer embeds the buffer as a data URI, which reads back the same.
+    let embedded = side.to_gltf().unwrap();
+    assert!(String::from_utf8_lossy(&embedded).contains("data:application/octet-stream;base64,"));
+    let back = Scene::from_slice(&embedded, None).unwrap();
+    assert_eq!(back.primitives()[0].soup(), side.primitives()[0].soup());
+    json["buffers"][0]["uri"] = "data:application/octet-stream;base64,@@@@".into();
+    let err = Scene::from_slice(&serde_json::to_vec(&json).unwrap(), None).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("buffers[0]: the data URI's base64 is malformed"),
+        "{err}"
+    );
+}
