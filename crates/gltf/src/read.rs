@@ -60,6 +60,7 @@ pub(crate) fn read(bytes: &[u8], base: Option<&Path>) -> Result<Scene, GltfError
             }
         }
     }
+    check_position_refs(&json)?;
     // The typed view validates every reference; the required extensions are checked above
     // (the typed model only knows those it was built with).
     let mut typed = json.clone();
@@ -93,6 +94,32 @@ pub(crate) fn read(bytes: &[u8], base: Option<&Path>) -> Result<Scene, GltfError
         p.skinned = instances.iter().any(|i| i.mesh == p.mesh && i.skinned);
     }
     Ok(Scene::from_parts(json, buffers, primitives, instances))
+}
+
+/// Every POSITION names an accessor that exists: the typed validator's primitive hook
+/// indexes the accessors with it before its own reference check (a panic on such input,
+/// found by the fuzz target `read_gltf`).
+fn check_position_refs(json: &Value) -> Result<(), GltfError> {
+    let accessors = json
+        .get("accessors")
+        .and_then(Value::as_array)
+        .map_or(0, Vec::len);
+    let meshes = json.get("meshes").and_then(Value::as_array);
+    for (m, mesh) in meshes.into_iter().flatten().enumerate() {
+        let prims = mesh.get("primitives").and_then(Value::as_array);
+        for (p, prim) in prims.into_iter().flatten().enumerate() {
+            let pos = prim.get("attributes").and_then(|a| a.get("POSITION"));
+            if let Some(i) = pos.and_then(Value::as_u64)
+                && i >= accessors as u64
+            {
+                return Err(GltfError::Invalid {
+                    path: format!("meshes[{m}].primitives[{p}].attributes.POSITION"),
+                    reason: format!("accessors[{i}] does not exist ({accessors} accessors)"),
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 fn load_buffers(
@@ -538,7 +565,13 @@ fn instances(doc: &gltf::Document) -> Result<Vec<Instance>, GltfError> {
                     ),
                 });
             }
-            let world = parent * local(&node);
+            let world = parent * local(&node)?;
+            if !world.is_finite() {
+                return Err(GltfError::Invalid {
+                    path: format!("nodes[{}]", node.index()),
+                    reason: "its world transform overflows f64".into(),
+                });
+            }
             if let Some(mesh) = node.mesh() {
                 out.push(Instance {
                     node: node.index(),
@@ -554,10 +587,23 @@ fn instances(doc: &gltf::Document) -> Result<Vec<Instance>, GltfError> {
     Ok(out)
 }
 
-/// A node's own transform in f64 (the matrix as written, or T * R * S).
-fn local(node: &gltf::Node) -> DMat4 {
-    match node.transform() {
+/// A node's own transform in f64 (the matrix as written, or T * R * S), refused when a
+/// value is not finite in f32 or the rotation has length 0.
+fn local(node: &gltf::Node) -> Result<DMat4, GltfError> {
+    let fail = |what: &str, reason: &str| GltfError::Invalid {
+        path: format!("nodes[{}].{what}", node.index()),
+        reason: reason.into(),
+    };
+    let finite = |what: &str, v: &[f32]| {
+        if v.iter().all(|x| x.is_finite()) {
+            Ok(())
+        } else {
+            Err(fail(what, "a value is not finite as f32"))
+        }
+    };
+    Ok(match node.transform() {
         gltf::scene::Transform::Matrix { matrix } => {
+            finite("matrix", matrix.as_flattened())?;
             DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from)))
         }
         gltf::scene::Transform::Decomposed {
@@ -565,13 +611,16 @@ fn local(node: &gltf::Node) -> DMat4 {
             rotation,
             scale,
         } => {
+            finite("translation", &translation)?;
+            finite("rotation", &rotation)?;
+            finite("scale", &scale)?;
             let f = |a: [f32; 3]| DVec3::from_array(a.map(f64::from));
             let r = rotation.map(f64::from);
-            DMat4::from_scale_rotation_translation(
-                f(scale),
-                DQuat::from_xyzw(r[0], r[1], r[2], r[3]).normalize(),
-                f(translation),
-            )
+            let q = DQuat::from_xyzw(r[0], r[1], r[2], r[3]);
+            if !(q.length() > 0.0) || !q.length().is_finite() {
+                return Err(fail("rotation", "the quaternion has length 0"));
+            }
+            DMat4::from_scale_rotation_translation(f(scale), q.normalize(), f(translation))
         }
-    }
+    })
 }

@@ -396,3 +396,51 @@ fn gltf_with_side_and_data_uri_buffers() {
         "{err}"
     );
 }
+
+/// Fuzz finding (read_gltf): a POSITION naming a missing accessor made the typed validator
+/// index out of bounds; it is refused, named.
+#[test]
+fn fuzz_position_of_a_missing_accessor() {
+    let (mut json, bin) = triangle_doc();
+    json["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 7.into();
+    let msg = refusal(&json, &bin);
+    assert!(
+        msg.contains("meshes[0].primitives[0].attributes.POSITION: accessors[7] does not exist"),
+        "{msg}"
+    );
+    json.as_object_mut().unwrap().remove("accessors");
+    json["meshes"][0]["primitives"][0]
+        .as_object_mut()
+        .unwrap()
+        .remove("indices");
+    json["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 0.into();
+    let msg = refusal(&json, &bin);
+    assert!(
+        msg.contains("accessors[0] does not exist (0 accessors)"),
+        "{msg}"
+    );
+}
+
+/// Fuzz finding (read_gltf): a rotation of 3.8e42 is infinite in f32, and made the world
+/// transform NaN; non-finite transforms and zero quaternions are refused, named.
+#[test]
+fn fuzz_non_finite_node_transform() {
+    let (mut json, bin) = triangle_doc();
+    json["nodes"][0]["rotation"] = json!([0.0, 0.0, 3.8268e42, 0.92]);
+    let msg = refusal(&json, &bin);
+    assert!(
+        msg.contains("nodes[0].rotation: a value is not finite as f32"),
+        "{msg}"
+    );
+    json["nodes"][0]["rotation"] = json!([0.0, 0.0, 0.0, 0.0]);
+    assert!(refusal(&json, &bin).contains("nodes[0].rotation: the quaternion has length 0"));
+    // Nine nested scales of 1e38 overflow f64 (each is finite in f32).
+    json["nodes"][0].as_object_mut().unwrap().remove("rotation");
+    let mut nodes: Vec<Value> = (0..9)
+        .map(|i| json!({"children": [i + 1], "scale": [1e38, 1.0, 1.0]}))
+        .collect();
+    nodes.push(json!({"mesh": 0}));
+    json["nodes"] = Value::Array(nodes);
+    let msg = refusal(&json, &bin);
+    assert!(msg.contains("its world transform overflows"), "{msg}");
+}
