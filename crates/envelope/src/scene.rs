@@ -51,6 +51,19 @@ pub fn load_scene(path: impl AsRef<Path>) -> Result<Scene, Error> {
 /// Writes a scene as `.glb` or `.gltf` (by the extension; the `.gltf` embeds its buffer),
 /// through a temporary file renamed into place.
 ///
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("scene.glb");
+/// std::fs::write(&path, envelope::advanced::gltf::sample::scene(1, 8, 4)).unwrap();
+/// let scene = envelope::load_scene(&path)?;
+/// envelope::save_scene(&scene, dir.path().join("copy.gltf"))?;
+/// let copy = envelope::load_scene(dir.path().join("copy.gltf"))?;
+/// assert_eq!(copy.primitives()[0].soup(), scene.primitives()[0].soup());
+/// let err = envelope::load_scene(dir.path().join("missing.glb")).unwrap_err();
+/// assert!(err.to_string().contains("missing.glb"));
+/// # Ok::<(), envelope::Error>(())
+/// ```
+///
 /// # Errors
 /// [`Error::Gltf`].
 pub fn save_scene(scene: &Scene, path: impl AsRef<Path>) -> Result<(), Error> {
