@@ -1,6 +1,6 @@
 //! glTF scenes through the program: `simplify`, `lod` and `verify` on generated `.glb`
 //! files, refusals naming the element, and an independent loader's verdict (cgltf's
-//! validator through `gltfpack`, required when CI=true).
+//! validator through `gltfpack`, required when CI=true; trimesh when installed).
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -183,7 +183,8 @@ fn refusals_name_the_element_and_write_nothing() {
 }
 
 /// An independent reader of the output: cgltf's validator (gltfpack exits non-zero on a file
-/// it refuses) and trimesh's loader with its face counts. Missing tools fail under CI=true.
+/// it refuses; required under CI=true, which installs it) and, when installed, trimesh's
+/// loader with its face counts.
 fn external_checks(path: &Path, faces: &[(&str, usize)]) {
     let ci = std::env::var("CI").is_ok_and(|v| v == "true");
     let tmp = tempfile::tempdir().unwrap();
@@ -213,10 +214,10 @@ fn external_checks(path: &Path, faces: &[(&str, usize)]) {
                 );
             }
         }
-        Ok(out) if text(&out).contains("No module named 'trimesh'") => {
-            assert!(!ci, "trimesh is required under CI=true");
-        }
+        // CI installs trimesh only for the Python step (python/tests/test_gltf.py runs this
+        // check there, required); here a missing trimesh is skipped.
+        Ok(out) if text(&out).contains("No module named 'trimesh'") => {}
         Ok(out) => panic!("trimesh could not load {}: {}", path.display(), text(&out)),
-        Err(e) => assert!(!ci, "python3 is required under CI=true: {e}"),
+        Err(_) => {} // no python3: the Python step of CI requires it
     }
 }

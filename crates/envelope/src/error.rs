@@ -100,6 +100,16 @@ impl Error {
     }
 }
 
+impl From<GltfError> for Error {
+    /// A scene in memory (no file to name).
+    fn from(source: GltfError) -> Self {
+        Error::Gltf {
+            path: PathBuf::new(),
+            source,
+        }
+    }
+}
+
 impl From<DriverError> for Error {
     fn from(e: DriverError) -> Self {
         match e {

@@ -58,7 +58,8 @@ pub struct PrimitiveLevels {
 /// let chains = SceneLod::new(vec![Epsilon::percent(1.0), Epsilon::percent(3.0)])
 ///     .threads(1)
 ///     .run(&scene)?;
-/// let lod = chains.lod_scene()?;
+/// let written = chains.lod_scene()?.to_glb()?; // levels are added when written
+/// let lod = envelope::advanced::gltf::Scene::from_slice(&written, None)?;
 /// assert!(lod.json()["extensionsUsed"].to_string().contains("MSFT_lod"));
 /// assert_eq!(chains.level_scene(2)?.primitives()[0].soup().num_faces(),
 ///            chains.primitives()[0].levels[1].faces);
