@@ -20,7 +20,7 @@
 //!   passes [`envelope_mesh::check_coordinate`]; indices are unsigned scalars below the
 //!   vertex count; no accessor read is sparse or without a bufferView; NORMAL (`FLOAT` VEC3),
 //!   TEXCOORD_0 and COLOR_0 (`FLOAT` or normalized `UNSIGNED_BYTE`/`UNSIGNED_SHORT`) are read
-//!   exactly into per-corner [`Wedges`] (the corners are the primitive's indices, the values
+//!   exactly into per-corner [`Wedges`](envelope_mesh::Wedges) (the corners are the primitive's indices, the values
 //!   its vertex table);
 //! * the soup of a primitive welds vertices at bitwise-equal positions (glTF splits vertices
 //!   along texture and normal seams; the simplifier needs the surface connected); the seams

@@ -617,7 +617,8 @@ fn local(node: &gltf::Node) -> Result<DMat4, GltfError> {
             let f = |a: [f32; 3]| DVec3::from_array(a.map(f64::from));
             let r = rotation.map(f64::from);
             let q = DQuat::from_xyzw(r[0], r[1], r[2], r[3]);
-            if !(q.length() > 0.0) || !q.length().is_finite() {
+            let length = q.length();
+            if length == 0.0 || !length.is_finite() {
                 return Err(fail("rotation", "the quaternion has length 0"));
             }
             DMat4::from_scale_rotation_translation(f(scale), q.normalize(), f(translation))
