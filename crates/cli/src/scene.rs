@@ -275,6 +275,13 @@ pub(crate) fn lod(job: &LodJob<'_>) -> Result<ExitCode, String> {
 
 /// `verify` on two scenes: triangle primitives paired in order.
 pub(crate) fn verify(orig: &Path, approx: &Path, epsilon: &Length) -> Result<ExitCode, String> {
+    if is_gltf_path(orig) != is_gltf_path(approx) {
+        return Err(format!(
+            "ORIG {} and APPROX {}: compare two glTF scenes (.glb, .gltf) or two meshes",
+            orig.display(),
+            approx.display()
+        ));
+    }
     let a = envelope::load_scene(orig).map_err(|e| e.to_string())?;
     let b = envelope::load_scene(approx).map_err(|e| e.to_string())?;
     let tri = |s: &envelope::Scene| {

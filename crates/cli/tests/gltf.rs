@@ -180,6 +180,13 @@ fn refusals_name_the_element_and_write_nothing() {
     ]);
     assert_eq!(out.status.code(), Some(2), "{}", text(&out));
     assert!(!output.exists() && !obj.exists());
+    let out = envelope(&["verify", s(&good_path), s(&obj), "--epsilon", "1%"]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
+    assert!(
+        text(&out).contains("compare two glTF scenes"),
+        "{}",
+        text(&out)
+    );
 }
 
 /// An independent reader of the output: cgltf's validator (gltfpack exits non-zero on a file

@@ -6,7 +6,9 @@
 //! refusal is a [`GltfError`] naming the byte offset, JSON path, buffer, bufferView or
 //! accessor and the mesh and primitive using it:
 //! * the GLB container (magic, version, lengths, chunk order and alignment), the JSON, and
-//!   every reference in the document (the `gltf` crate's validator);
+//!   every reference in the document and the rules the `gltf` crate's validator checks
+//!   (among them: POSITION accessors carry `min` and `max`, as the specification requires);
+//!   node transforms finite in f32 with non-zero quaternions, and nodes forming trees;
 //! * `extensionsRequired`: only extensions that cannot change the geometry are accepted
 //!   ([`KNOWN_EXTENSIONS`]); Draco, meshopt and quantization are refused, named;
 //! * buffers: the GLB BIN chunk, base64 `data:` URIs, or files relative to the `.gltf`
