@@ -444,3 +444,54 @@ fn fuzz_non_finite_node_transform() {
     let msg = refusal(&json, &bin);
     assert!(msg.contains("its world transform overflows"), "{msg}");
 }
+
+#[test]
+fn replacement_attributes_are_written_per_corner() {
+    use envelope_mesh::Wedges;
+    let mut scene = Scene::from_slice(&sample::scene(1, 8, 4), None).unwrap();
+    let tet = f32_soup(&generate::tetrahedron());
+    // A texture seam: face 0 gives vertex 0 another uv than the other faces do.
+    let texcoords = Wedges {
+        values: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5], [0.25, 0.75]],
+        corners: vec![[4, 1, 2], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+    };
+    let colors = Wedges {
+        values: vec![[1.0, 0.0, 0.0, 1.0], [0.0, 0.5, 1.0, 0.25]],
+        corners: vec![[0, 0, 0], [1, 1, 1], [0, 1, 0], [1, 0, 1]],
+    };
+    let normals = Wedges {
+        values: vec![[0.0, 0.0, 2.0]],
+        corners: vec![[0, 0, 0]; 4],
+    };
+    let attributes = Attributes {
+        texcoords: Some(texcoords.clone()),
+        normals: Some(normals),
+        colors: Some(colors.clone()),
+    };
+    scene
+        .replace(
+            0,
+            Geometry {
+                soup: tet.clone(),
+                attributes,
+            },
+        )
+        .unwrap();
+    let back = Scene::from_slice(&scene.to_glb().unwrap(), None).unwrap();
+    let p = &back.primitives()[0];
+    assert_eq!(p.soup(), &tet);
+    let a = p.attributes();
+    for f in 0..4 {
+        for k in 0..3 {
+            assert_eq!(
+                a.texcoords.as_ref().unwrap().value(f, k),
+                texcoords.value(f, k)
+            );
+            assert_eq!(a.colors.as_ref().unwrap().value(f, k), colors.value(f, k));
+            // Written normalized, as glTF requires unit normals.
+            assert_eq!(a.normals.as_ref().unwrap().value(f, k), [0.0, 0.0, 1.0]);
+        }
+    }
+    // The seams split vertices: more glTF vertices than positions.
+    assert!(a.texcoords.as_ref().unwrap().values.len() > tet.num_vertices());
+}
