@@ -25,6 +25,7 @@ use serde_json::json;
 
 use crate::outputs::{Plan, Staging};
 use crate::ranges::{self, Length, Lengths};
+use crate::scene::{LodJob, ScopeArg};
 use crate::simplify::{Bar, FillArg, MethodArg};
 
 /// The paper's bunny epsilons (Table 1, Figure 11): 1/64 % ... 1 % of the diagonal.
@@ -45,7 +46,8 @@ pub(crate) struct Args {
     /// Input mesh (OBJ, OFF, PLY, STL); must pass `envelope check`.
     input: PathBuf,
     /// Output directory: created if missing (its parent must exist); files in it are
-    /// replaced only when the command completes.
+    /// replaced only when the command completes. For a glTF IN (.glb, .gltf): the output
+    /// file OUT.glb or OUT.gltf, the levels as MSFT_lod nodes.
     out_dir: PathBuf,
     /// Comma-separated epsilons, each > 0 (`1/64%`, `0.5%`, or absolute lengths), increasing.
     #[arg(long, default_value = DEFAULT_EPSILONS, value_parser = ranges::lengths, allow_hyphen_values = true)]
@@ -75,6 +77,13 @@ pub(crate) struct Args {
     /// Skip the certificates against the original.
     #[arg(long)]
     no_verify: bool,
+    /// glTF input: what a relative epsilon is a part of (each primitive's diagonal, or the
+    /// scene's in world space).
+    #[arg(long, value_enum, default_value_t = ScopeArg::default_())]
+    epsilon_scope: ScopeArg,
+    /// glTF input: also write each level as its own file, OUT-level-K.EXT beside OUT.
+    #[arg(long)]
+    per_level_files: bool,
     /// No progress bar and no table.
     #[arg(long)]
     quiet: bool,
@@ -121,16 +130,19 @@ pub(crate) fn plan_chain(plan: &mut Plan, out_dir: &Path, levels: usize) -> Resu
 }
 
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
+    if crate::scene::is_scene(&args.input) {
+        return lod_scene(args);
+    }
+    if args.per_level_files {
+        return Err("--per-level-files is for glTF scenes (each level is already a file)".into());
+    }
     let mut plan = Plan::new(&[("IN", &args.input)]);
     plan_chain(&mut plan, &args.out_dir, args.epsilons.0.len())?;
     let mesh = envelope::load(&args.input).map_err(|e| e.to_string())?;
     let label = args.input.display().to_string();
     let (mesh, repair) = crate::repair::maybe(mesh, args.repair, &label, args.quiet)?;
     let settings = Settings {
-        rule: match args.rule {
-            RuleArg::Cumulative => LodRule::Cumulative,
-            RuleArg::Sum => LodRule::Sum,
-        },
+        rule: rule(args.rule),
         envelope: args.envelope.method(),
         hole_filling: args.hole_filling.hole_filling(),
         certify: !args.no_verify,
@@ -151,6 +163,43 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
             repair,
         },
     )
+}
+
+fn rule(r: RuleArg) -> LodRule {
+    match r {
+        RuleArg::Cumulative => LodRule::Cumulative,
+        RuleArg::Sum => LodRule::Sum,
+    }
+}
+
+/// A glTF scene: one file with MSFT_lod levels (`crate::scene`).
+fn lod_scene(args: &Args) -> Result<ExitCode, String> {
+    crate::scene::check_flags(
+        &args.out_dir,
+        &[
+            ("--repair", args.repair),
+            (
+                "--no-verify (f32 outputs need the certificate)",
+                args.no_verify,
+            ),
+        ],
+    )?;
+    crate::scene::lod(&LodJob {
+        input: &args.input,
+        output: &args.out_dir,
+        epsilons: &args.epsilons.0,
+        scope: args.epsilon_scope,
+        per_level_files: args.per_level_files,
+        rule: rule(args.rule),
+        envelope: args.envelope.method(),
+        hole_filling: args.hole_filling.hole_filling(),
+        screen: Screen {
+            pixels: args.pixels,
+            resolution: args.resolution,
+            fov_degrees: args.fov,
+        },
+        quiet: args.quiet,
+    })
 }
 
 /// Runs a chain on `original` and writes its files, table and summary.

@@ -22,6 +22,7 @@ mod outputs;
 mod pipeline;
 mod ranges;
 mod repair;
+mod scene;
 mod simplify;
 mod verify;
 
@@ -75,7 +76,9 @@ enum Command {
     /// Levels of detail with nested vertex sets and switching distances (Cohen et al. 7.2).
     ///
     /// Writes OUTDIR/level-0.off (the input), level-1.off, ... and summary.json, all at the
-    /// end; OUTDIR is created if missing (its parent must exist).
+    /// end; OUTDIR is created if missing (its parent must exist). A glTF IN (.glb, .gltf)
+    /// gives one file OUT.glb with the levels as MSFT_lod nodes (and, with
+    /// --per-level-files, OUT-level-K.glb).
     Lod(lod::Args),
     /// Fill the holes and tunnels an L-infinity cube of side 2*alpha cannot pass (El-Sana and
     /// Varshney 1997) and write OUT atomically.

@@ -350,8 +350,13 @@ impl Staging {
 
     /// Writes `text` to what becomes `path` at the commit.
     pub(crate) fn text(&mut self, path: &Path, text: &str) -> Result<(), String> {
+        self.bytes(path, text.as_bytes())
+    }
+
+    /// Writes `bytes` to what becomes `path` at the commit.
+    pub(crate) fn bytes(&mut self, path: &Path, bytes: &[u8]) -> Result<(), String> {
         let (_, mut file) = self.create(path)?;
-        file.write_all(text.as_bytes())
+        file.write_all(bytes)
             .and_then(|()| file.sync_all())
             .map_err(|e| format!("{}: {e}", path.display()))
     }

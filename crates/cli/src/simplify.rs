@@ -26,6 +26,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use crate::outputs::{Plan, Staging};
 use crate::ranges::{self, Length};
+use crate::scene::{ScopeArg, SimplifyJob};
 
 /// Which epsilon method.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -155,10 +156,11 @@ impl PlacementArg {
 /// Arguments of `envelope simplify`.
 #[derive(clap::Args)]
 pub(crate) struct Args {
-    /// Input mesh (OBJ, OFF, PLY, STL); must pass `envelope check`.
+    /// Input mesh (OBJ, OFF, PLY, STL); must pass `envelope check`. A glTF scene (.glb,
+    /// .gltf): every triangle primitive is simplified, certified after rounding to f32.
     input: PathBuf,
-    /// Output mesh; the format follows the extension (.obj, .off, .ply, .stl). Its directory
-    /// must exist; it must not be IN.
+    /// Output mesh; the format follows the extension (.obj, .off, .ply, .stl; .glb or .gltf
+    /// for a glTF input). Its directory must exist; it must not be IN.
     output: PathBuf,
     /// Epsilon, > 0: `0.5%` or `1/64%` of the bounding-box diagonal, or an absolute length.
     /// With --viewpoint: the epsilon at the vertex nearest the viewpoint.
@@ -198,6 +200,10 @@ pub(crate) struct Args {
     /// `repair` lists the changes.
     #[arg(long, conflicts_with = "epsilon_file")]
     repair: bool,
+    /// glTF input: what a relative --epsilon is a part of (and an absolute one a length in):
+    /// each primitive's own diagonal, or the whole scene's in world space.
+    #[arg(long, value_enum, default_value_t = ScopeArg::default_())]
+    epsilon_scope: ScopeArg,
     /// Skip the certificate of the output.
     #[arg(long)]
     no_verify: bool,
@@ -438,6 +444,9 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
                 .into(),
         );
     }
+    if crate::scene::is_scene(&args.input) {
+        return simplify_scene(args);
+    }
     let mut inputs = vec![("IN", args.input.as_path())];
     if let Some(path) = &args.epsilon_file {
         inputs.push(("--epsilon-file", path));
@@ -507,5 +516,36 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         }
         Some(Verdict::Undecided) => ExitCode::from(3),
         _ => ExitCode::SUCCESS,
+    })
+}
+
+/// A glTF scene (`crate::scene`).
+fn simplify_scene(args: &Args) -> Result<ExitCode, String> {
+    crate::scene::check_flags(
+        &args.output,
+        &[
+            ("--epsilon-file", args.epsilon_file.is_some()),
+            ("--viewpoint", args.viewpoint.is_some()),
+            ("--repair", args.repair),
+            (
+                "--no-verify (f32 outputs need the certificate)",
+                args.no_verify,
+            ),
+        ],
+    )?;
+    let Some(epsilon) = &args.epsilon else {
+        return Err("--epsilon is required for a glTF scene".into());
+    };
+    crate::scene::simplify(&SimplifyJob {
+        input: &args.input,
+        output: &args.output,
+        epsilon,
+        scope: args.epsilon_scope,
+        method: args.method.method(),
+        envelope: args.envelope.method(),
+        hole_filling: args.hole_filling.hole_filling(),
+        placement: args.placement.placement(),
+        report: args.report.as_deref(),
+        quiet: args.quiet,
     })
 }

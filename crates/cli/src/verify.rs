@@ -65,6 +65,15 @@ pub(crate) struct Args {
 }
 
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
+    if crate::scene::is_scene(&args.orig) || crate::scene::is_scene(&args.approx) {
+        if args.relative || args.json || args.repair || args.envelope_of {
+            return Err(
+                "--relative, --json, --repair and --envelope-of are not available for glTF scenes"
+                    .into(),
+            );
+        }
+        return crate::scene::verify(&args.orig, &args.approx, &args.epsilon);
+    }
     let (orig, _) = read_path(&args.orig).map_err(|e| e.to_string())?;
     let label = args.orig.display().to_string();
     let (orig, repair) =

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use envelope_genus::GenusError;
+use envelope_gltf::GltfError;
 use envelope_io::{ReadError, WriteError};
 use envelope_repair::RepairError;
 use envelope_simplify::DriverError;
@@ -56,6 +57,22 @@ pub enum Error {
     /// A batch manifest line that cannot be run.
     #[error(transparent)]
     Manifest(#[from] ManifestError),
+    /// A glTF scene could not be read or written (the message names the file's element).
+    #[error("{}{source}", prefix(.path))]
+    Gltf {
+        /// The file (empty when the scene was in memory).
+        path: PathBuf,
+        /// What is wrong, and where.
+        source: GltfError,
+    },
+    /// A primitive of a scene could not be simplified: the primitive and why.
+    #[error("{label}: {source}")]
+    Primitive {
+        /// `meshes[m].primitives[p]` and the mesh's name.
+        label: String,
+        /// Why.
+        source: Box<Error>,
+    },
     /// A file or folder other than a mesh could not be read or written.
     #[error("{}: {source}", .path.display())]
     Io {
@@ -66,11 +83,29 @@ pub enum Error {
     },
 }
 
+fn prefix(path: &std::path::Path) -> String {
+    if path.as_os_str().is_empty() {
+        String::new()
+    } else {
+        format!("{}: ", path.display())
+    }
+}
+
 impl Error {
     pub(crate) fn io(path: &std::path::Path, e: &std::io::Error) -> Error {
         Error::Io {
             path: path.to_path_buf(),
             source: std::io::Error::new(e.kind(), e.to_string()),
+        }
+    }
+}
+
+impl From<GltfError> for Error {
+    /// A scene in memory (no file to name).
+    fn from(source: GltfError) -> Self {
+        Error::Gltf {
+            path: PathBuf::new(),
+            source,
         }
     }
 }

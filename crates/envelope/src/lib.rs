@@ -12,6 +12,9 @@
 //!   input.
 //! * [`repair`]: repair that never moves the surface ([`Repaired`], [`RepairReport`]).
 //! * [`Genus`]: fill holes and tunnels smaller than alpha (El-Sana and Varshney 1997).
+//! * [`Scene`], [`load_scene`], [`save_scene`]: glTF 2.0 scenes (`.gltf`, `.glb`);
+//!   [`SceneSimplifier`] and [`SceneLod`] simplify every triangle primitive, certified after
+//!   rounding to f32 ([`EpsilonScope`]: per primitive or for the whole scene).
 //! * [`batch`]: many meshes from a JSON Lines manifest, resumable, in shards.
 //! * [`Error`]: one error type; [`Event`]: what a progress callback is told.
 //!
@@ -30,6 +33,8 @@ mod mesh;
 mod oracle;
 mod progress;
 mod repair;
+mod scene;
+mod scene_lod;
 mod simplified;
 mod simplifier;
 mod threads;
@@ -46,6 +51,7 @@ pub use envelope_simplify::{
 pub use envelope_verify::{Certificate, OneSided, Verdict, Witness};
 
 pub use attributes::{carry_attributes, seam_vertices};
+pub use envelope_gltf::{GltfError, Scene};
 pub use epsilon::Epsilon;
 pub use error::Error;
 pub use files::{load, load_with_report, save};
@@ -55,13 +61,20 @@ pub use mesh::{Mesh, MeshError};
 pub use oracle::{check, verify};
 pub use progress::{Event, Stage};
 pub use repair::{Repaired, repair};
+pub use scene::{
+    EpsilonScope, PrimitiveReport, SceneSimplifier, SimplifiedScene, load_scene, save_scene,
+};
+pub use scene_lod::{LevelReport, PrimitiveLevels, SceneLevels, SceneLod};
 pub use simplified::Simplified;
 pub use simplifier::Simplifier;
 
 /// The default of every setting, defined once: the builders here and the command line take
 /// them from this module.
 pub mod defaults {
-    use super::{EnvelopeMethod, HoleFilling, Method, Placement};
+    use super::{EnvelopeMethod, EpsilonScope, HoleFilling, Method, Placement};
+
+    /// A scene's epsilon is relative to each primitive's own diagonal.
+    pub const EPSILON_SCOPE: EpsilonScope = EpsilonScope::Primitive;
 
     /// The local algorithm (5.2).
     pub const METHOD: Method = Method::Local;
@@ -94,6 +107,7 @@ pub mod advanced {
     pub use envelope_check as check;
     pub use envelope_genus as genus;
     pub use envelope_global as global;
+    pub use envelope_gltf as gltf;
     pub use envelope_io as io;
     pub use envelope_mesh as mesh;
     pub use envelope_offset as offset;
