@@ -425,14 +425,20 @@ impl Barriers {
     /// assert!(!pinned.blocks(candidate, [false; 3]));
     /// ```
     #[must_use]
-    pub fn with_pins(mut self, pins: &[DVec3]) -> Self {
+    pub fn with_pins(self, pins: &[DVec3]) -> Self {
+        self.pinned_at(pins, BarrierKind::Envelope)
+    }
+
+    /// Marks the corners of the `kind` triangles that lie at one of `pins` (the same f64
+    /// point) as pins.
+    fn pinned_at(mut self, pins: &[DVec3], kind: BarrierKind) -> Self {
         let key = |p: DVec3| p.to_array().map(f64::to_bits);
         let set: std::collections::HashSet<[u64; 3]> = pins.iter().map(|&p| key(p)).collect();
         if set.is_empty() {
             return self;
         }
         for (i, t) in self.triangles.iter().enumerate() {
-            if self.kinds[i] == BarrierKind::Envelope {
+            if self.kinds[i] == kind {
                 self.pinned[i] = (0..3)
                     .filter(|&k| set.contains(&key(t[k])))
                     .fold(0, |m, k| m | 1 << k);
@@ -477,20 +483,8 @@ impl Barriers {
     /// may share a vertex (or an edge) with them, which the rest keeps (never removed nor
     /// moved), and must meet them nowhere else, so no intersection is made.
     #[must_use]
-    pub fn with_wall_pins(mut self, pins: &[DVec3]) -> Self {
-        let key = |p: DVec3| p.to_array().map(f64::to_bits);
-        let set: std::collections::HashSet<[u64; 3]> = pins.iter().map(|&p| key(p)).collect();
-        if set.is_empty() {
-            return self;
-        }
-        for (i, t) in self.triangles.iter().enumerate() {
-            if self.kinds[i] == BarrierKind::Wall {
-                self.pinned[i] = (0..3)
-                    .filter(|&k| set.contains(&key(t[k])))
-                    .fold(0, |m, k| m | 1 << k);
-            }
-        }
-        self
+    pub fn with_wall_pins(self, pins: &[DVec3]) -> Self {
+        self.pinned_at(pins, BarrierKind::Wall)
     }
 
     /// Number of barrier triangles (envelopes and tubes).
