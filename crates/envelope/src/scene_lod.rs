@@ -177,7 +177,8 @@ impl SceneLod {
                 lod = lod.threads(n);
             }
             for level in lod.run(&input).map_err(name)? {
-                let approx = Mesh::from_soup(level.mesh);
+                // The level with the attributes carried from the input (`Lod::level_mesh`).
+                let approx = Lod::level_mesh(&input, &level);
                 let certified = level.certified.map(|v| v.certificate);
                 let rounded =
                     rounded_certified(&input, &approx, certified.as_ref(), level.cumulative)

@@ -156,6 +156,14 @@ fn lod_file_has_msft_lod_and_level_nodes() {
         level2.primitives()[1].soup().num_faces(),
         chains.primitives()[1].levels[1].faces
     );
+    // The sphere's texture coordinates reach every level, one per corner.
+    let sphere = &level2.primitives()[0];
+    let uv = sphere
+        .attributes()
+        .texcoords
+        .as_ref()
+        .expect("level texcoords");
+    assert_eq!(uv.corners.len(), sphere.soup().num_faces());
     assert!(chains.level_scene(3).is_err());
 }
 
