@@ -759,7 +759,6 @@ struct Between {
 
 impl Between {
     /// The report of a run whose output is `out`.
-    #[allow(clippy::too_many_arguments)]
     fn report(
         self,
         soup: &TriangleSoup,
@@ -837,7 +836,6 @@ fn envelope_report(env: &Envelopes, options: &SimplifyOptions, seconds: f64) -> 
 /// and the kept faces of a self-intersecting input with the vertices they share kept), the
 /// half-edge mesh of `soup`, and the step run on it. `used`: the referenced vertices of the
 /// whole input (whose requested epsilons bound the output).
-#[allow(clippy::too_many_arguments)]
 fn simplify_between(
     soup: &TriangleSoup,
     topo_in: &Topology,
@@ -970,7 +968,6 @@ enum Start {
 /// intersecting pairs, and the faces an envelope proof names where it fails; the rest
 /// simplified between its own proved envelopes, the two joined again and certified with the
 /// input's own intersections allowed.
-#[allow(clippy::too_many_arguments)]
 fn simplify_keeping(
     soup: &TriangleSoup,
     topo_in: &Topology,

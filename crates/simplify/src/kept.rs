@@ -56,7 +56,8 @@ impl KeptRegion {
             kept_face[a.index()] = true;
             kept_face[b.index()] = true;
         }
-        Self::new(soup, kept_face)
+        let faces_of = VertexFaces::new(soup.num_vertices(), &soup.faces);
+        Self::new(soup, &faces_of, kept_face)
     }
 
     /// This region with the input faces `more` kept too (faces of the rest the envelope
@@ -69,32 +70,23 @@ impl KeptRegion {
             kept_face[f.index()] = true;
         }
         let faces_of = VertexFaces::new(soup.num_vertices(), &soup.faces);
-        let around = touched_vertices(soup, &kept_face);
-        for (v, _) in around.iter().enumerate().filter(|(_, t)| **t) {
-            for &f in faces_of.of(v) {
-                kept_face[f as usize] = true;
-            }
-        }
-        Self::new(soup, kept_face)
+        let touched = touched_vertices(soup, &kept_face);
+        keep_faces_at(&mut kept_face, &faces_of, &touched);
+        Self::new(soup, &faces_of, kept_face)
     }
 
-    fn new(soup: &TriangleSoup, mut kept_face: Vec<bool>) -> Self {
+    fn new(soup: &TriangleSoup, faces_of: &VertexFaces, mut kept_face: Vec<bool>) -> Self {
         let n = soup.num_vertices();
-        let faces_of = VertexFaces::new(n, &soup.faces);
         // Until every vertex on both sides has one fan of rest faces.
         loop {
             let touched = touched_vertices(soup, &kept_face);
-            let split: Vec<usize> = (0..n)
-                .filter(|&v| touched[v] && rest_fans(soup, faces_of.of(v), &kept_face, v) > 1)
+            let split: Vec<bool> = (0..n)
+                .map(|v| touched[v] && rest_fans(soup, faces_of.of(v), &kept_face, v) > 1)
                 .collect();
-            if split.is_empty() {
+            if !split.contains(&true) {
                 break;
             }
-            for v in split {
-                for &f in faces_of.of(v) {
-                    kept_face[f as usize] = true;
-                }
-            }
+            keep_faces_at(&mut kept_face, faces_of, &split);
         }
         let pick = |keep: bool| TriangleSoup {
             positions: soup.positions.clone(),
@@ -108,22 +100,13 @@ impl KeptRegion {
         };
         let (kept, rest) = (pick(true), pick(false));
         let rest_faces = soup.face_ids().filter(|f| !kept_face[f.index()]).collect();
-        let mut on_kept = vec![false; n];
-        let mut on_rest = vec![false; n];
-        for (f, &k) in soup.faces.iter().zip(&kept_face) {
+        let on_kept = touched_vertices(soup, &kept_face);
+        let mut shared = vec![false; n];
+        for f in &rest.faces {
             for v in f {
-                if k {
-                    on_kept[v.index()] = true;
-                } else {
-                    on_rest[v.index()] = true;
-                }
+                shared[v.index()] = on_kept[v.index()];
             }
         }
-        let shared = on_kept
-            .iter()
-            .zip(&on_rest)
-            .map(|(a, b)| *a && *b)
-            .collect();
         KeptRegion {
             kept_face,
             rest,
@@ -136,6 +119,15 @@ impl KeptRegion {
     /// Number of kept faces.
     pub(crate) fn num_kept(&self) -> usize {
         self.kept.num_faces()
+    }
+}
+
+/// Keeps every face around each vertex `v` with `at[v]`.
+fn keep_faces_at(kept_face: &mut [bool], faces_of: &VertexFaces, at: &[bool]) {
+    for (v, _) in at.iter().enumerate().filter(|(_, a)| **a) {
+        for &f in faces_of.of(v) {
+            kept_face[f as usize] = true;
+        }
     }
 }
 
