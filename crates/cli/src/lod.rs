@@ -84,6 +84,15 @@ pub(crate) struct Args {
     /// glTF input: also write each level as its own file, OUT-level-K.EXT beside OUT.
     #[arg(long)]
     per_level_files: bool,
+    /// Also write OUTDIR/correspondence-K.json for each level K: for each face of level K,
+    /// the faces of level K-1 it covers (Cohen et al. 8.1, decided exactly on the step's
+    /// envelope prisms), and a bound of its distance to level K-1.
+    #[arg(long)]
+    correspondences: bool,
+    /// With --correspondences: also the faces of level 0 each face covers (`to_original`,
+    /// composed through the levels between).
+    #[arg(long, requires = "correspondences")]
+    to_original: bool,
     /// No progress bar and no table.
     #[arg(long)]
     quiet: bool,
@@ -107,6 +116,8 @@ pub(crate) struct Settings {
     pub(crate) hole_filling: HoleFilling,
     pub(crate) certify: bool,
     pub(crate) screen: Screen,
+    /// Write `correspondence-K.json` files (`Some(true)`: with the map to level 0).
+    pub(crate) correspondences: Option<bool>,
 }
 
 impl Default for Settings {
@@ -118,13 +129,23 @@ impl Default for Settings {
             hole_filling: defaults::hole_filling(),
             certify: defaults::CERTIFY,
             screen: Screen::default(),
+            correspondences: None,
         }
     }
 }
 
-/// Checks OUTDIR and the files a chain of `levels` levels writes there.
-pub(crate) fn plan_chain(plan: &mut Plan, out_dir: &Path, levels: usize) -> Result<(), String> {
+/// Checks OUTDIR and the files a chain of `levels` levels writes there (with
+/// `correspondence-K.json` files when `correspondences`).
+pub(crate) fn plan_chain(
+    plan: &mut Plan,
+    out_dir: &Path,
+    levels: usize,
+    correspondences: bool,
+) -> Result<(), String> {
     let mut names: Vec<String> = (0..=levels).map(|i| format!("level-{i}.off")).collect();
+    if correspondences {
+        names.extend((1..=levels).map(correspondence_name));
+    }
     names.push("summary.json".into());
     plan.dir("OUTDIR", out_dir, &names)
 }
@@ -137,7 +158,12 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         return Err("--per-level-files is for glTF scenes (each level is already a file)".into());
     }
     let mut plan = Plan::new(&[("IN", &args.input)]);
-    plan_chain(&mut plan, &args.out_dir, args.epsilons.0.len())?;
+    plan_chain(
+        &mut plan,
+        &args.out_dir,
+        args.epsilons.0.len(),
+        args.correspondences,
+    )?;
     let mesh = envelope::load(&args.input).map_err(|e| e.to_string())?;
     let label = args.input.display().to_string();
     let (mesh, repair) = crate::repair::maybe(mesh, args.repair, &label, args.quiet)?;
@@ -151,6 +177,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
             resolution: args.resolution,
             fov_degrees: args.fov,
         },
+        correspondences: args.correspondences.then_some(args.to_original),
     };
     run_chain(
         &mesh,
@@ -178,6 +205,7 @@ fn lod_scene(args: &Args) -> Result<ExitCode, String> {
         &args.out_dir,
         &[
             ("--repair", args.repair),
+            ("--correspondences", args.correspondences),
             (
                 "--no-verify (f32 outputs need the certificate)",
                 args.no_verify,
@@ -255,6 +283,7 @@ pub(crate) fn run_chain(mesh: &Mesh, chain: Chain<'_>) -> Result<ExitCode, Strin
         .envelope_method(s.envelope)
         .hole_filling(s.hole_filling)
         .certify(s.certify)
+        .correspondences(s.correspondences.is_some())
         .screen(s.screen)
         .progress(|e| bar.tell(e))
         .run_with(mesh, &mut on_level);
@@ -300,6 +329,9 @@ pub(crate) fn run_chain(mesh: &Mesh, chain: Chain<'_>) -> Result<ExitCode, Strin
     if let Some(r) = chain.repair {
         summary["repair"] = r;
     }
+    if let Some(to_original) = chain.settings.correspondences {
+        write_correspondences(&mut staging, dir, &levels, to_original)?;
+    }
     let summary_path = dir.join("summary.json");
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     staging.text(&summary_path, &(text + "\n"))?;
@@ -327,6 +359,40 @@ pub(crate) fn run_chain(mesh: &Mesh, chain: Chain<'_>) -> Result<ExitCode, Strin
         Some(Verdict::Undecided) => ExitCode::from(3),
         _ => ExitCode::SUCCESS,
     })
+}
+
+fn correspondence_name(level: usize) -> String {
+    format!("correspondence-{level}.json")
+}
+
+/// Stages `correspondence-K.json` for every level: `level`, `coarse_faces`, `fine_faces`,
+/// `covers`, `by_nearest`, `error` (`envelope::Correspondence`), and with `to_original` the
+/// same against level 0 under `to_original`.
+fn write_correspondences(
+    staging: &mut Staging,
+    dir: &Path,
+    levels: &[Level],
+    to_original: bool,
+) -> Result<(), String> {
+    let mut composed: Option<envelope::Correspondence> = None;
+    for l in levels {
+        let Some(c) = &l.correspondence else {
+            return Err(format!("level {} has no correspondence", l.index));
+        };
+        let mut v = c.to_json();
+        v["level"] = l.index.into();
+        if to_original {
+            let down = match &composed {
+                Some(finer) => c.then(finer),
+                None => c.clone(),
+            };
+            v["to_original"] = down.to_json();
+            composed = Some(down);
+        }
+        let text = serde_json::to_string(&v).map_err(|e| e.to_string())?;
+        staging.text(&dir.join(correspondence_name(l.index)), &(text + "\n"))?;
+    }
+    Ok(())
 }
 
 fn print_table(original: &TriangleSoup, levels: &[Level], diagonal: f64) {

@@ -86,3 +86,64 @@ fn decreasing_epsilons_are_refused() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("increasing"));
 }
+
+/// `--correspondences --to-original`: one file per level, every finer face covered, the
+/// composed map onto level 0, and the lists within the face counts.
+#[test]
+fn correspondence_files_cover_every_finer_face() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("torus.off");
+    write_path(&input, &generate::torus(1.0, 0.35, 32, 16), Format::Off).unwrap();
+    let out_dir = dir.path().join("lod");
+    let out = envelope()
+        .args(["lod", input.to_str().unwrap(), out_dir.to_str().unwrap()])
+        .args([
+            "--epsilons",
+            "1%,2%,4%",
+            "--correspondences",
+            "--to-original",
+        ])
+        .output()
+        .unwrap();
+    assert_ok(&out);
+    let summary: serde_json::Value = read_json(&out_dir.join("summary.json"));
+    let level_faces = |i: usize| -> u64 {
+        if i == 0 {
+            summary["level_0"]["faces"].as_u64().unwrap()
+        } else {
+            summary["levels"][i - 1]["faces"].as_u64().unwrap()
+        }
+    };
+    let covered = |v: &serde_json::Value, fine: u64| {
+        let mut hit = vec![false; fine as usize];
+        for list in v["covers"].as_array().unwrap() {
+            for f in list.as_array().unwrap() {
+                hit[f.as_u64().unwrap() as usize] = true;
+            }
+        }
+        hit.iter().all(|&h| h)
+    };
+    for i in 1..=3 {
+        let c: serde_json::Value = read_json(&out_dir.join(format!("correspondence-{i}.json")));
+        assert_eq!(c["level"], i);
+        assert_eq!(c["coarse_faces"], level_faces(i));
+        assert_eq!(c["fine_faces"], level_faces(i - 1));
+        assert_eq!(c["covers"].as_array().unwrap().len() as u64, level_faces(i));
+        assert!(covered(&c, level_faces(i - 1)), "level {i}");
+        assert_eq!(c["by_nearest"].as_array().unwrap().len(), 0, "closed torus");
+        let step = summary["levels"][i - 1]["epsilon_step"].as_f64().unwrap();
+        for e in c["error"].as_array().unwrap() {
+            assert!(e.as_f64().unwrap() <= step * (1.0 + 1e-9));
+        }
+        let down = &c["to_original"];
+        assert_eq!(down["fine_faces"], level_faces(0));
+        assert!(covered(down, level_faces(0)), "level {i} to level 0");
+    }
+    // Without --correspondences there are none; --to-original alone is refused (exit 2).
+    let out = envelope()
+        .args(["lod", input.to_str().unwrap(), out_dir.to_str().unwrap()])
+        .args(["--epsilons", "1%", "--to-original"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -46,7 +46,7 @@ pub use envelope_mesh::{Attributes, Wedges};
 pub use envelope_offset::EnvelopeMethod;
 pub use envelope_repair::{RepairError, RepairReport, Step as RepairStep};
 pub use envelope_simplify::{
-    HoleFilling, Level, LodRule, Placement, Screen, SimplifyReport, VerifyReport,
+    Correspondence, HoleFilling, Level, LodRule, Placement, Screen, SimplifyReport, VerifyReport,
 };
 pub use envelope_verify::{Certificate, OneSided, Verdict, Witness};
 

@@ -24,6 +24,7 @@ pub struct Lod<'a> {
     hole_filling: HoleFilling,
     tube_segments: Option<u32>,
     certify: bool,
+    correspondences: bool,
     screen: Screen,
     threads: Option<usize>,
     progress: Option<Box<Callback<'a>>>,
@@ -41,6 +42,7 @@ impl<'a> Lod<'a> {
             hole_filling: defaults::hole_filling(),
             tube_segments: Some(defaults::TUBE_SEGMENTS),
             certify: defaults::CERTIFY,
+            correspondences: false,
             screen: Screen::default(),
             threads: None,
             progress: None,
@@ -51,6 +53,28 @@ impl<'a> Lod<'a> {
     #[must_use]
     pub fn rule(mut self, rule: LodRule) -> Self {
         self.rule = rule;
+        self
+    }
+
+    /// Whether each level gets its [`Correspondence`](crate::Correspondence) to the level
+    /// before (Cohen et al. 8.1: which faces of the finer level each face covers), in
+    /// [`Level::correspondence`]; costs one more envelope build per level. Off by default.
+    ///
+    /// ```
+    /// use envelope::{Epsilon, Lod};
+    /// let cup = envelope::Mesh::demo();
+    /// let levels = Lod::new(vec![Epsilon::percent(0.5), Epsilon::percent(1.0)])
+    ///     .correspondences(true)
+    ///     .run(&cup)?;
+    /// let c = levels[1].correspondence.as_ref().unwrap();
+    /// assert_eq!(c.coarse_faces, levels[1].mesh.num_faces());
+    /// assert_eq!(c.fine_faces, levels[0].mesh.num_faces());
+    /// assert!(c.is_onto());
+    /// # Ok::<(), envelope::Error>(())
+    /// ```
+    #[must_use]
+    pub fn correspondences(mut self, on: bool) -> Self {
+        self.correspondences = on;
         self
     }
 
@@ -123,6 +147,7 @@ impl<'a> Lod<'a> {
             hole_filling: self.hole_filling,
             tube_segments: self.tube_segments,
             verify: self.certify,
+            correspondences: self.correspondences,
             screen: self.screen,
             // Seam vertices stay where they are, so texture charts do not tear.
             keep: crate::seam_vertices(mesh),

@@ -257,8 +257,17 @@ fn segment_triangle_point(p: DVec3, q: DVec3, t: [DVec3; 3]) -> Option<DVec3> {
         .then(|| p + e * w.clamp(0.0, 1.0))
 }
 
-/// Euclidean distance from `p` to triangle `t` (Ericson, f64).
-fn point_triangle_distance(p: DVec3, t: [DVec3; 3]) -> f64 {
+/// Euclidean distance from `p` to triangle `t` (Ericson's closest point, f64).
+///
+/// ```
+/// use envelope_prism::clip::point_triangle_distance;
+/// use glam::DVec3;
+/// let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
+/// assert_eq!(point_triangle_distance(DVec3::new(0.25, 0.25, 2.0), t), 2.0);
+/// assert_eq!(point_triangle_distance(DVec3::new(-3.0, 0.0, 4.0), t), 5.0);
+/// ```
+#[must_use]
+pub fn point_triangle_distance(p: DVec3, t: [DVec3; 3]) -> f64 {
     let [a, b, c] = t;
     let (ab, ac, ap) = (b - a, c - a, p - a);
     let (d1, d2) = (ab.dot(ap), ac.dot(ap));

@@ -11,7 +11,8 @@
 //!   [`Prism::intersects_triangle`], [`Prism::tetrahedra`].
 //! * [`Patch`]: one bilinear side, [`Patch::side`] (the exact side function, derived in the
 //!   crate README) and [`Patch::intersects_segment`].
-//! * [`PolyhedralPrism`] / [`Split`]: section 8.1, sides split into triangles.
+//! * [`PolyhedralPrism`] / [`Split`]: section 8.1, sides split into triangles (the
+//!   correspondences between levels of `envelope-simplify` stand on them).
 //! * [`details`]: kernel-generic variants (run them on `Checked<Filtered, Exact>` in tests).
 //! * [`clip`]: the one inexact part, section 4.1's clipping of a triangle against the prism
 //!   in f64 (the analytical epsilon of `envelope-offset`, which follows it with its exact

@@ -698,7 +698,7 @@ pub const CROSSINGS: [DegeneracyClass; 4] = [
 ];
 
 /// The envelopes of `soup` for `options` (with its topology and face tree when known).
-fn envelopes_for(
+pub(crate) fn envelopes_for(
     soup: &TriangleSoup,
     options: &SimplifyOptions,
     shared: Option<(&Topology, &Bvh)>,

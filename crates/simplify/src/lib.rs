@@ -4,8 +4,9 @@
 //! The front door is the driver: [`simplify`] (and [`simplify_with`], which takes another
 //! [`SimplifyStep`]) does the whole job (input check, envelopes, border tubes and walls, the
 //! local algorithm, an optional certificate) and reports it in a [`SimplifyReport`];
-//! [`lod_chain`] makes nested levels of detail (7.2). Their options and reports are at the
-//! crate root.
+//! [`lod_chain`] makes nested levels of detail (7.2), and [`correspondence`] says which
+//! faces of a finer level each face of a coarser one covers (8.1). Their options and reports
+//! are at the crate root.
 //!
 //! [`policy`] is for those who write their own policies or simplification steps: the
 //! barriers, the validity filter of 5.1 shared with the global simplifier, hole fillers,
@@ -14,12 +15,13 @@
 //!
 //! Inside, the modules form a chain: `grid`, `barriers`, `fiber`, `filter`, `rules`,
 //! `walls`, `fill`, then `local` (the algorithm, one idea per file), `kept` (the faces kept
-//! around a self-intersecting input's crossings), `driver`, `lod`.
+//! around a self-intersecting input's crossings), `driver`, `lod`, `correspond`.
 //! Decisions are exact predicates (`envelope-predicates`); aspect ratios and queue
 //! priorities are f64 numbers that only order the work.
 #![forbid(unsafe_code)]
 
 mod barriers;
+mod correspond;
 mod driver;
 mod fiber;
 mod fill;
@@ -32,6 +34,7 @@ pub mod policy;
 mod rules;
 mod walls;
 
+pub use correspond::{Correspondence, correspondence};
 pub use driver::{
     CROSSINGS, DriverError, EnvelopeReport, KeptReport, LocalStep, Progress, SimplifyOptions,
     SimplifyReport, SimplifyStep, Stage, StepInput, StepOutcome, VerifyReport, input_problems,

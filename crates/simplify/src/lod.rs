@@ -26,8 +26,9 @@ use envelope_mesh::TriangleSoup;
 use envelope_offset::{EnvelopeMethod, EpsilonField};
 use serde_json::{Value, json};
 
-use crate::driver::simplify;
+use crate::correspond::{Correspondence, correspondence};
 use crate::driver::{DriverError, Progress, SimplifyOptions, SimplifyReport, VerifyReport};
+use crate::driver::{envelopes_for, simplify};
 use crate::local::HoleFilling;
 
 /// How each level's step epsilon relates to the requested epsilons (see the module docs).
@@ -92,6 +93,9 @@ pub struct LodOptions {
     /// [`SimplifyOptions::keep`]; each level's own ids are found by position (levels keep
     /// the original's positions bitwise).
     pub keep: Vec<bool>,
+    /// Compute each level's [`Correspondence`] to the level before (section 8.1), on the
+    /// step's envelopes built again (the cost of one more envelope build per level).
+    pub correspondences: bool,
 }
 
 impl LodOptions {
@@ -107,6 +111,7 @@ impl LodOptions {
             verify: true,
             screen: Screen::default(),
             keep: Vec::new(),
+            correspondences: false,
         }
     }
 }
@@ -130,6 +135,9 @@ pub struct Level {
     pub certified: Option<VerifyReport>,
     /// Viewing distance from which this level may be shown ([`Screen::switching_distance`]).
     pub switching_distance: f64,
+    /// Which faces of the level before each face of this one covers, when asked
+    /// ([`LodOptions::correspondences`]).
+    pub correspondence: Option<Correspondence>,
 }
 
 impl Level {
@@ -211,6 +219,19 @@ pub fn lod_chain(
             ..SimplifyOptions::new(EpsilonField::Constant(step))
         };
         let (mesh, report) = simplify(previous, &step_options, progress)?;
+        let correspondence = if options.correspondences {
+            // The driver's envelopes are gone with its working state; the build is
+            // deterministic, so building them again gives the same prisms.
+            let envelopes = envelopes_for(previous, &step_options, None)?;
+            let mut c = correspondence(previous, &envelopes, &mesh);
+            if report.kept.is_some() {
+                // Made within the envelopes of the part not kept, not these: no bound.
+                c.error.clear();
+            }
+            Some(c)
+        } else {
+            None
+        };
         let certified = options.verify.then(|| {
             let t = std::time::Instant::now();
             let c = envelope_verify::certify(
@@ -233,6 +254,7 @@ pub fn lod_chain(
             report,
             certified,
             switching_distance: options.screen.switching_distance(cumulative),
+            correspondence,
         };
         on_level(&level);
         levels.push(level);
