@@ -201,6 +201,7 @@ def lod(
     pixels: float = DEFAULTS["pixels"],
     resolution: float = DEFAULTS["resolution"],
     fov_degrees: float = DEFAULTS["fov_degrees"],
+    correspondences: Optional[bool] = None,
     threads: Optional[int] = None,
     progress: Optional[Progress] = None,
 ) -> list[Level]:
@@ -211,7 +212,11 @@ def lod(
     step and the bound is their running sum. Switching distances are for a screen of
     ``resolution`` pixels and ``fov_degrees`` tolerating ``pixels`` of error.
     ``epsilons`` is a list or one comma-separated string. ``progress`` hears
-    ``{"kind": "level", "index": i, "count": n}`` before each level's stages.
+    ``{"kind": "level", "index": i, "count": n}`` before each level's stages. With
+    ``correspondences=True`` each level's ``correspondence`` says which faces of the level
+    before each of its faces covers (Cohen et al. 8.1; ``covers[f]`` sorted face indices,
+    every finer face covered), with a bound of each face's distance to that level
+    (``error``).
 
     >>> import envelope
     >>> levels = envelope.lod(*envelope.demo(), ["0.5%", "1%"], threads=1)
@@ -231,6 +236,7 @@ def lod(
         pixels=pixels,
         resolution=resolution,
         fov_degrees=fov_degrees,
+        correspondences=correspondences,
         threads=threads,
         progress=progress,
     )

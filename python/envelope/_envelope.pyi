@@ -155,6 +155,8 @@ class Level:
     def certificate(self) -> Optional[Certificate]: ...
     @property
     def is_certified(self) -> bool: ...
+    @property
+    def correspondence(self) -> Optional[dict[str, Any]]: ...
     def to_dict(self) -> dict[str, Any]: ...
 
 class GenusResult:
@@ -196,6 +198,7 @@ def lod(
     pixels: Optional[float] = None,
     resolution: Optional[float] = None,
     fov_degrees: Optional[float] = None,
+    correspondences: Optional[bool] = None,
     threads: Optional[int] = None,
     progress: Optional[_Progress] = None,
 ) -> list[Level]: ...

@@ -24,6 +24,20 @@ def test_lod_levels(cup):
     assert all(tuple(p) in previous for p in levels[1].vertices.tolist())
 
 
+def test_lod_correspondences_cover_every_finer_face(cup):
+    levels = envelope.lod(*cup, "1/2%,1%", certify=False, correspondences=True, threads=1)
+    fine = len(cup[1])
+    for level in levels:
+        c = level.correspondence
+        assert c["coarse_faces"] == len(level.faces) == len(c["covers"])
+        assert c["fine_faces"] == fine
+        covered = {f for faces in c["covers"] for f in faces}
+        assert covered == set(range(fine))
+        assert all(e <= level.step * (1 + 1e-9) for e in c["error"])
+        fine = len(level.faces)
+    assert envelope.lod(*cup, "1%", certify=False, threads=1)[0].correspondence is None
+
+
 def test_lod_sum_rule_and_screen(cup):
     levels = envelope.lod(*cup, "1/4%,1/4%", rule="sum", certify=False, pixels=2.0, threads=1)
     assert levels[1].bound == pytest.approx(2 * levels[0].bound)

@@ -45,6 +45,11 @@ pub(crate) struct Level {
     /// The certificate holds.
     #[pyo3(get)]
     is_certified: bool,
+    /// Which faces of the level before each face covers (Cohen et al. 8.1), as the command
+    /// line's `correspondence-K.json` (`covers`, `by_nearest`, `error`, ...); `None` unless
+    /// asked for with `correspondences=True`.
+    #[pyo3(get)]
+    correspondence: Option<Py<PyDict>>,
     json: Value,
 }
 
@@ -71,7 +76,8 @@ impl Level {
 #[pyfunction]
 #[pyo3(signature = (
     vertices, faces, epsilons, *, rule=None, envelope=None, hole_filling=None, certify=None,
-    pixels=None, resolution=None, fov_degrees=None, threads=None, progress=None,
+    pixels=None, resolution=None, fov_degrees=None, correspondences=None, threads=None,
+    progress=None,
 ))]
 pub(crate) fn lod(
     py: Python<'_>,
@@ -85,6 +91,7 @@ pub(crate) fn lod(
     pixels: Option<f64>,
     resolution: Option<f64>,
     fov_degrees: Option<f64>,
+    correspondences: Option<bool>,
     threads: Option<i64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Vec<Level>> {
@@ -95,6 +102,9 @@ pub(crate) fn lod(
         .screen(options::screen(pixels, resolution, fov_degrees)?);
     if let Some(certify) = certify {
         chain = chain.certify(certify);
+    }
+    if let Some(on) = correspondences {
+        chain = chain.correspondences(on);
     }
     if let Some(n) = options::threads(threads) {
         chain = chain.threads(n);
@@ -121,6 +131,11 @@ pub(crate) fn lod(
                 report: json_dict(py, &l.report.to_json())?.unbind(),
                 certificate: Certificate::py_option(py, certificate)?,
                 is_certified: certificate.is_some_and(envelope::Certificate::holds),
+                correspondence: l
+                    .correspondence
+                    .as_ref()
+                    .map(|c| json_dict(py, &c.to_json()).map(Bound::unbind))
+                    .transpose()?,
                 json: l.to_json(diagonal),
             })
         })
