@@ -53,7 +53,7 @@ pub fn faces_vs_epsilon_svg(
     let mut out = String::new();
     {
         let backend = SVGBackend::with_string(&mut out, (size.width(), size.height()));
-        draw(backend.into_drawing_area(), title, series)?;
+        draw(backend.into_drawing_area(), title, series, SVG_FONTS)?;
     }
     Ok(out)
 }
@@ -81,9 +81,18 @@ pub fn faces_vs_epsilon_png(
         .into_drawing_area(),
         title,
         series,
+        BITMAP_FONTS,
     )?;
     canvas.to_png()
 }
+
+/// Font sizes in pixels: `(labels, title)`.
+type Fonts = (f64, f64);
+/// Real fonts in an SVG viewer.
+const SVG_FONTS: Fonts = (13.0, 22.0);
+/// For the bitmap font: `plotters` sizes boxes (legend, margins) by its own estimate, about
+/// 0.45 em per character; at these sizes that matches the font's 8 pixels at scales 1 and 2.
+const BITMAP_FONTS: Fonts = (18.0, 36.0);
 
 /// The points of `s` a log axis can show.
 fn usable(s: &Series) -> Vec<(f64, f64)> {
@@ -95,14 +104,16 @@ fn usable(s: &Series) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// A log axis range around `values` with some room on both sides (a decade around 1 when
-/// there is no value).
+/// A log axis range around `values`: from a power of ten (`plotters` labels a log axis only
+/// from its first power of ten on) to a little above the largest (0.1..10 when there is no
+/// value).
 fn axis(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     let (lo, hi) = values.fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
     if lo > hi {
         return 0.1..10.0;
     }
-    lo / 1.6..hi * 1.6
+    // Just below the power of ten, so that rounding in powf cannot skip its label.
+    0.999 * 10f64.powf((lo / 1.2).log10().floor())..hi * 1.6
 }
 
 /// An axis tick: about three significant digits.
@@ -114,6 +125,7 @@ fn draw<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
     title: &str,
     series: &[Series],
+    (label, heading): Fonts,
 ) -> Result<(), RenderError> {
     let fail = |e: DrawingAreaErrorKind<DB::ErrorType>| RenderError::Plot(e.to_string());
     root.fill(&WHITE).map_err(fail)?;
@@ -121,7 +133,7 @@ fn draw<DB: DrawingBackend>(
     let xs = axis(points.iter().flatten().map(|p| p.0));
     let ys = axis(points.iter().flatten().map(|p| p.1));
     let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 24))
+        .caption(title, ("sans-serif", heading))
         .margin(16)
         .x_label_area_size(44)
         .y_label_area_size(72)
@@ -133,8 +145,10 @@ fn draw<DB: DrawingBackend>(
         .y_desc("faces")
         .x_label_formatter(&tick)
         .y_label_formatter(&tick)
-        .label_style(("sans-serif", 13))
-        .axis_desc_style(("sans-serif", 14))
+        .x_labels(12)
+        .y_labels(12)
+        .label_style(("sans-serif", label))
+        .axis_desc_style(("sans-serif", label))
         .light_line_style(RGBColor(240, 240, 240))
         .bold_line_style(RGBColor(215, 215, 215))
         .draw()
@@ -163,7 +177,7 @@ fn draw<DB: DrawingBackend>(
     if !series.is_empty() {
         chart
             .configure_series_labels()
-            .label_font(("sans-serif", 13))
+            .label_font(("sans-serif", label))
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(180, 180, 180))
             .position(SeriesLabelPosition::UpperRight)
@@ -178,9 +192,9 @@ struct CanvasBackend<'a> {
     canvas: &'a mut Canvas,
 }
 
-/// The bitmap font's scale for a `plotters` font size in pixels.
+/// The bitmap font's scale for a `plotters` font size in pixels (see [`BITMAP_FONTS`]).
 fn font_scale(size: f64) -> u32 {
-    ((size / 12.0).floor() as u32).max(1)
+    ((size / 18.0).round() as u32).max(1)
 }
 
 impl DrawingBackend for CanvasBackend<'_> {
