@@ -204,7 +204,7 @@ pub(crate) fn stage_lod_pictures(
 ) -> Result<(), String> {
     let diagonal = original.diagonal();
     let percent = |e: f64| 100.0 * e / diagonal;
-    // Short enough for a 256-pixel panel: the levels' order is the strip's.
+    // Short enough for a 240-pixel panel: the levels' order is the strip's.
     let mut captions = vec![format!("input  {} faces", thousands(original.num_faces()))];
     captions.extend(levels.iter().map(|l| {
         format!(
@@ -231,7 +231,7 @@ pub(crate) fn stage_lod_pictures(
         same_scale: true,
     };
     let fail = |e: envelope_render::RenderError| format!("{}: picture: {e}", dir.display());
-    let panel = Size::new(256, 256).map_err(fail)?;
+    let panel = Size::new(240, 240).map_err(fail)?;
     let strip = render_strip(&panels, &style, panel).map_err(fail)?;
     staging.bytes(&dir.join(LOD_PICTURES[0]), &strip.to_png().map_err(fail)?)?;
 

@@ -31,6 +31,6 @@ fn demo_writes_a_certified_chain() {
         .read_info()
         .unwrap();
     // The input and its seven levels side by side.
-    assert_eq!((reader.info().width, reader.info().height), (8 * 256, 256));
+    assert_eq!((reader.info().width, reader.info().height), (8 * 240, 240));
     assert!(out_dir.join("faces-vs-epsilon.svg").is_file());
 }

@@ -110,8 +110,8 @@ fn lod_picture_writes_the_strip_and_the_plots() {
         .output()
         .unwrap();
     assert_ok(&run);
-    // Level 0 and two levels, 256 pixels each.
-    assert_eq!(png_size(&out_dir.join("lod.png")), (3 * 256, 256));
+    // Level 0 and two levels, 240 pixels each.
+    assert_eq!(png_size(&out_dir.join("lod.png")), (3 * 240, 240));
     let svg = std::fs::read_to_string(out_dir.join("faces-vs-epsilon.svg")).unwrap();
     assert!(
         svg.starts_with("<svg") && svg.contains("sphere.off"),
