@@ -1,15 +1,8 @@
 //! An RGB picture in memory, its size limits, and its PNG encoding.
 
 use crate::error::RenderError;
+use crate::limits::{MAX_SIDE, MIN_SIDE};
 use crate::text;
-
-/// The smallest side of a picture, in pixels.
-pub const MIN_SIDE: u32 = 16;
-/// The largest side of a picture (or of one panel), in pixels.
-pub const MAX_SIDE: u32 = 8192;
-/// The most pixels a whole picture (a strip of panels) may have: 64 Mi, so one picture stays
-/// under a few hundred MiB while it is drawn.
-pub const MAX_PIXELS: u64 = 1 << 26;
 
 /// A picture's width and height, each in `MIN_SIDE..=MAX_SIDE`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,7 +1,7 @@
 //! The one error type of the crate: what a caller gave that cannot be drawn, or an encoder
 //! that failed.
 
-use crate::canvas::{MAX_PIXELS, MAX_SIDE, MIN_SIDE};
+use crate::limits::{MAX_PIXELS, MAX_SIDE, MIN_SIDE};
 
 /// Why a picture or a plot was not made.
 ///

@@ -19,12 +19,14 @@
 mod camera;
 mod canvas;
 mod error;
+mod limits;
 pub mod plot;
 pub mod ramp;
 mod raster;
 pub mod text;
 
 pub use camera::{Projection, Up, View};
-pub use canvas::{Canvas, MAX_PIXELS, MAX_SIDE, MIN_SIDE, Size};
+pub use canvas::{Canvas, Size};
 pub use error::RenderError;
+pub use limits::{MAX_PIXELS, MAX_SIDE, MIN_SIDE};
 pub use raster::{Panel, Style, render, render_strip};

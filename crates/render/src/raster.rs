@@ -10,8 +10,9 @@ use envelope_mesh::TriangleSoup;
 use glam::DVec3;
 
 use crate::camera::{Camera, Projected, View};
-use crate::canvas::{Canvas, MAX_PIXELS, Size};
+use crate::canvas::{Canvas, Size};
 use crate::error::RenderError;
+use crate::limits::MAX_PIXELS;
 use crate::ramp::{normalize, viridis};
 use crate::text::{self, GLYPH};
 
