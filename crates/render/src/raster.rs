@@ -111,11 +111,16 @@ pub fn render_strip(
             &panels.iter().map(|p| p.mesh).collect::<Vec<_>>(),
         )
     });
+    let ts = text_scale(size);
+    let bars: Vec<u32> = panels.iter().map(|p| bar_column(p, ts)).collect();
+    // Under one camera every mesh area has the same size, so that the meshes line up.
+    let widest = bars.iter().copied().max().unwrap_or(0);
     let mut picture = Canvas::blank(width as u32, size.height(), BACKGROUND);
     for (i, panel) in panels.iter().enumerate() {
         let camera = shared.unwrap_or_else(|| Camera::fit(&style.view, &[panel.mesh]));
+        let bar = if style.same_scale { widest } else { bars[i] };
         let left = i as i64 * i64::from(size.width());
-        picture.blit(&draw_panel(panel, style, &camera, size), left, 0);
+        picture.blit(&draw_panel(panel, style, &camera, size, bar), left, 0);
         if i > 0 {
             // A hairline between panels.
             picture.fill_rect(left, 0, 1, i64::from(size.height()), [220, 220, 224]);
@@ -161,8 +166,29 @@ fn text_scale(size: Size) -> u32 {
     }
 }
 
-/// One panel: the mesh area, the colour bar (with values) and the caption.
-fn draw_panel(panel: &Panel<'_>, style: &Style, camera: &Camera, size: Size) -> Canvas {
+/// The labels of a panel's colour bar, `(top, bottom)`, when it has one.
+fn bar_labels(panel: &Panel<'_>) -> Option<(String, String)> {
+    let (lo, hi) = panel.scalars.and_then(finite_range)?;
+    Some((text::short(hi), text::short(lo)))
+}
+
+/// The width of a panel's colour-bar column (bar, gap, labels, margin); 0 without one.
+fn bar_column(panel: &Panel<'_>, ts: u32) -> u32 {
+    bar_labels(panel).map_or(0, |(a, b)| {
+        let label = text::width(&a, ts).max(text::width(&b, ts));
+        (10 + 3 + 4) * ts + label
+    })
+}
+
+/// One panel: the mesh area, the colour bar (with values) in the right `bar_column` pixels,
+/// and the caption.
+fn draw_panel(
+    panel: &Panel<'_>,
+    style: &Style,
+    camera: &Camera,
+    size: Size,
+    bar_column: u32,
+) -> Canvas {
     let ts = text_scale(size);
     let (w, h) = (size.width(), size.height());
     let mut canvas = Canvas::blank(w, h, BACKGROUND);
@@ -172,11 +198,7 @@ fn draw_panel(panel: &Panel<'_>, style: &Style, camera: &Camera, size: Size) -> 
         (GLYPH + 6) * ts
     };
     let range = panel.scalars.and_then(finite_range);
-    let labels = range.map(|(lo, hi)| (text::short(hi), text::short(lo)));
-    let bar_column = labels.as_ref().map_or(0, |(a, b)| {
-        let label = text::width(a, ts).max(text::width(b, ts));
-        (10 + 3 + 4) * ts + label
-    });
+    let labels = bar_labels(panel);
     // The mesh keeps at least a quarter of the panel when the labels are long.
     let mesh_w = w.saturating_sub(bar_column).max(w / 4).max(1);
     let mesh_h = h.saturating_sub(caption_band).max(h / 4).max(1);

@@ -287,3 +287,27 @@ fn the_svg_plot_is_well_formed_and_names_every_series() {
         faces_vs_epsilon_svg("faces against epsilon", &series, size).unwrap()
     );
 }
+
+#[test]
+fn one_camera_lines_panels_up_even_beside_a_colour_bar() {
+    let sphere = icosphere(2, 1.0);
+    let values: Vec<f64> = sphere.positions.iter().map(|p| p.y).collect();
+    let plain = Panel {
+        mesh: &sphere,
+        caption: "",
+        scalars: None,
+    };
+    let coloured = Panel {
+        scalars: Some(&values),
+        ..plain
+    };
+    let style = Style {
+        same_scale: true,
+        ..front()
+    };
+    let c = render_strip(&[plain, coloured], &style, Size::new(100, 80).unwrap()).unwrap();
+    // The first covered pixel of the middle row, from each panel's left edge.
+    let first = |left: u32| (0..100).find(|&x| c.pixel(left + x, 40) != Some(WHITE));
+    assert_eq!(first(1), first(101));
+    assert!(first(1).is_some());
+}
