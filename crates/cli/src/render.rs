@@ -40,10 +40,11 @@ pub(crate) enum ColorBy {
 
 /// Arguments of `envelope render`.
 #[derive(clap::Args)]
+#[command(override_usage = "envelope render [OPTIONS] MESH... OUT.png")]
 pub(crate) struct Args {
     /// Mesh files (OBJ, OFF, PLY, STL), one panel each, left to right; the last path is the
     /// picture to write (.png).
-    #[arg(required = true, num_args = 2.., value_name = "MESH... OUT.png")]
+    #[arg(required = true, num_args = 2.., value_name = "PATH")]
     paths: Vec<PathBuf>,
     /// Camera direction AZ,EL in degrees: azimuth in [-360, 360] (positive turns toward the
     /// mesh's right), elevation in [-90, 90] (positive looks from above); 0,0 is the front.
