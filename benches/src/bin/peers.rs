@@ -26,9 +26,11 @@
 //! cargo run --release -p envelope-benches --bin peers -- [--quick] [--meshes a,b]
 //!     [--epsilons 1/64%,1%] [--tools envelope,envelope-collapse,cgal,openmesh,meshopt] [--timeout S]
 //!     [--repeat N] [--oracle-cpu S] [--oracle-gib G] [--json PATH] [--keep DIR] [--envelope PATH]
+//!     [--plot PATH.svg]
 //! ```
 //! Prints one markdown table; writes the raw results as JSON (default
-//! `benches/results/peers-<unix time>.json`). See `benches/README.md`.
+//! `benches/results/peers-<unix time>.json`) and, with `--plot`, faces against epsilon, one
+//! line per mesh and tool (`envelope-render`). See `benches/README.md`.
 
 use std::ffi::OsString;
 use std::fmt::Write as _;
@@ -131,6 +133,8 @@ struct Args {
     /// Runs of every tool per row, taken in turn (tool 1, tool 2, ..., tool 1, ...); the
     /// table shows the median seconds.
     repeat: usize,
+    /// `--plot`: where to write faces against epsilon as SVG.
+    plot: Option<PathBuf>,
 }
 
 fn main() -> ExitCode {
@@ -161,7 +165,7 @@ fn usage() -> ExitCode {
         "usage: peers [--quick] [--meshes a,b|all] [--max-faces N] [--from NAME] [--until NAME] [--epsilons 1/64%,...,1%] \
          [--tools envelope,envelope-collapse,envelope-hybrid,cgal,openmesh,meshopt] [--timeout S] [--repeat N] [--oracle-cpu S] [--oracle-gib G] \
          [--json PATH] [--keep DIR] [--envelope PATH] [--placement auto|subset|slide|collapse] \
-         [--method local|global|hybrid]\n\
+         [--method local|global|hybrid] [--plot PATH.svg]\n\
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
     );
     ExitCode::FAILURE
@@ -196,6 +200,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
         from: None,
         until: None,
         repeat: 1,
+        plot: None,
     };
     let mut it = argv.iter();
     let list = |v: Option<&String>| -> Option<Vec<String>> {
@@ -231,6 +236,7 @@ fn parse_args(argv: &[String]) -> Option<Args> {
             "--oracle-cpu" => a.oracle_cpu = it.next()?.parse().ok().filter(|&t: &u64| t > 0)?,
             "--oracle-gib" => a.oracle_gib = it.next()?.parse().ok().filter(|&g: &u64| g > 0)?,
             "--json" => a.json = Some(PathBuf::from(it.next()?)),
+            "--plot" => a.plot = Some(PathBuf::from(it.next()?)),
             "--keep" => a.keep = Some(PathBuf::from(it.next()?)),
             "--envelope" => a.envelope = Some(PathBuf::from(it.next()?)),
             "--placement" => {
@@ -658,6 +664,37 @@ fn kind_name(debug: &str) -> &'static str {
     }
 }
 
+/// `--plot`: faces against epsilon, one series per mesh and tool (runs that did not end
+/// well are left out), written beside `path` and renamed into place.
+fn write_plot(path: &Path, rows: &[Row]) -> Result<(), String> {
+    use envelope_render::plot::{Series, faces_vs_epsilon_svg};
+    let mut series: Vec<Series> = Vec::new();
+    for row in rows {
+        let percent = parse_epsilon(&row.eps_label).map_or(f64::NAN, |(_, f)| 100.0 * f);
+        for (tool, run) in &row.runs {
+            let Some(faces) = run.faces.filter(|_| run.status == Status::Ok) else {
+                continue;
+            };
+            let name = format!("{} {}", row.mesh, tool.name());
+            let point = (percent, faces as f64);
+            match series.iter_mut().find(|s| s.name == name) {
+                Some(s) => s.points.push(point),
+                None => series.push(Series {
+                    name,
+                    points: vec![point],
+                }),
+            }
+        }
+    }
+    let size = envelope_render::Size::new(960, 640).map_err(|e| e.to_string())?;
+    let svg =
+        faces_vs_epsilon_svg("faces against epsilon", &series, size).map_err(|e| e.to_string())?;
+    let tmp = path.with_extension("svg.tmp");
+    fs::write(&tmp, svg)
+        .and_then(|()| fs::rename(&tmp, path))
+        .map_err(|e| format!("{}: {e}", path.display()))
+}
+
 /// All tools' runs for one (mesh, epsilon).
 struct Row {
     mesh: String,
@@ -793,6 +830,10 @@ fn run(args: &Args) -> Result<(), String> {
         .map_err(|e| e.to_string())?;
     w.flush().map_err(|e| e.to_string())?;
     eprintln!("raw results: {}", json_path.display());
+    if let Some(path) = &args.plot {
+        write_plot(path, &rows)?;
+        eprintln!("plot: {}", path.display());
+    }
     if args.keep.is_none() {
         let _ = fs::remove_dir_all(&dir);
     }

@@ -96,6 +96,10 @@ pub(crate) struct Args {
     /// No progress bar and no table.
     #[arg(long)]
     quiet: bool,
+    /// Also write OUTDIR/lod.png (level 0 and each level, one camera, +Y up) and the chain's
+    /// faces against epsilon as OUTDIR/faces-vs-epsilon.svg and .png.
+    #[arg(long)]
+    picture: bool,
 }
 
 /// Everything a chain needs besides the mesh.
@@ -107,6 +111,8 @@ pub(crate) struct Chain<'a> {
     pub(crate) quiet: bool,
     /// The repair report (`--repair`), for summary.json.
     pub(crate) repair: Option<serde_json::Value>,
+    /// Write the pictures (`crate::render::LOD_PICTURES`), with this axis up.
+    pub(crate) picture: Option<envelope_render::Up>,
 }
 
 /// How a chain is built, besides its epsilons.
@@ -135,18 +141,22 @@ impl Default for Settings {
 }
 
 /// Checks OUTDIR and the files a chain of `levels` levels writes there (with
-/// `correspondence-K.json` files when `correspondences`).
+/// `correspondence-K.json` files and the pictures, when asked).
 pub(crate) fn plan_chain(
     plan: &mut Plan,
     out_dir: &Path,
     levels: usize,
     correspondences: bool,
+    picture: bool,
 ) -> Result<(), String> {
     let mut names: Vec<String> = (0..=levels).map(|i| format!("level-{i}.off")).collect();
     if correspondences {
         names.extend((1..=levels).map(correspondence_name));
     }
     names.push("summary.json".into());
+    if picture {
+        names.extend(crate::render::LOD_PICTURES.map(String::from));
+    }
     plan.dir("OUTDIR", out_dir, &names)
 }
 
@@ -163,6 +173,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         &args.out_dir,
         args.epsilons.0.len(),
         args.correspondences,
+        args.picture,
     )?;
     let mesh = envelope::load(&args.input).map_err(|e| e.to_string())?;
     let label = args.input.display().to_string();
@@ -188,6 +199,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
             settings,
             quiet: args.quiet,
             repair,
+            picture: args.picture.then_some(envelope_render::Up::Y),
         },
     )
 }
@@ -206,6 +218,7 @@ fn lod_scene(args: &Args) -> Result<ExitCode, String> {
         &[
             ("--repair", args.repair),
             ("--correspondences", args.correspondences),
+            ("--picture", args.picture),
             (
                 "--no-verify (f32 outputs need the certificate)",
                 args.no_verify,
@@ -335,6 +348,10 @@ pub(crate) fn run_chain(mesh: &Mesh, chain: Chain<'_>) -> Result<ExitCode, Strin
     let summary_path = dir.join("summary.json");
     let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
     staging.text(&summary_path, &(text + "\n"))?;
+    if let Some(up) = chain.picture {
+        let label = &chain.input_label;
+        crate::render::stage_lod_pictures(&mut staging, dir, label, original, &levels, up)?;
+    }
     staging.commit()?;
 
     if !chain.quiet {
@@ -344,6 +361,15 @@ pub(crate) fn run_chain(mesh: &Mesh, chain: Chain<'_>) -> Result<ExitCode, Strin
             levels.len(),
             dir.display()
         );
+        if chain.picture.is_some() {
+            let [strip, svg, png] = crate::render::LOD_PICTURES.map(|n| dir.join(n));
+            println!(
+                "picture: {}; plot: {}, {}",
+                strip.display(),
+                svg.display(),
+                png.display()
+            );
+        }
     }
     let worst = levels
         .iter()

@@ -21,6 +21,7 @@ mod lod;
 mod outputs;
 mod pipeline;
 mod ranges;
+mod render;
 mod repair;
 mod scene;
 mod simplify;
@@ -100,8 +101,14 @@ enum Command {
     /// left is printed; OUT is written), 2 unreadable, bad arguments, or refused (the element
     /// that cannot be repaired without moving the surface is named; OUT untouched).
     Repair(repair::Args),
+    /// Pictures of meshes side by side, drawn on the CPU (no GPU, no system fonts): flat
+    /// shading, optional wireframe and per-vertex colours, a caption each; written as PNG.
+    ///
+    /// Exit 0 written, 2 bad arguments or unreadable input (OUT untouched).
+    Render(render::Args),
     /// Run the main job on a built-in model (a cup: curved wall, sharp bottom crease, open
-    /// rim): its chain of levels of detail at 1/64% ... 1%, certified, into ./envelope-demo/.
+    /// rim): its chain of levels of detail at 1/64% ... 1%, certified, into ./envelope-demo/,
+    /// with a picture of the chain (lod.png) and its faces against epsilon.
     Demo {
         /// Output directory: created if missing (its parent must exist); files in it are
         /// replaced only when the command completes.
@@ -149,6 +156,7 @@ fn main() -> ExitCode {
         Command::Pipeline(args) => pipeline::run(&args),
         Command::Batch(args) => batch::run(&args),
         Command::Repair(args) => repair::run(&args),
+        Command::Render(args) => render::run(&args),
         Command::Demo { out_dir } => run_demo(&out_dir),
     })
     .map_err(|e| e.to_string())
@@ -166,7 +174,7 @@ fn main() -> ExitCode {
 /// (`envelope::Mesh::demo`).
 fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
     let epsilons = ranges::lengths(lod::DEFAULT_EPSILONS)?.0;
-    lod::plan_chain(&mut outputs::Plan::new(&[]), out_dir, epsilons.len(), false)?;
+    lod::plan_chain(&mut outputs::Plan::new(&[]), out_dir, epsilons.len(), false, true)?;
     let model = envelope::Mesh::demo();
     println!(
         "built-in model: a cup, {} faces, {} vertices (curved fluted wall, sharp bottom crease, open rim)",
@@ -182,6 +190,8 @@ fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
             settings: lod::Settings::default(),
             quiet: false,
             repair: None,
+            // The cup stands on its bottom along +Z.
+            picture: Some(envelope_render::Up::Z),
         },
     )
 }

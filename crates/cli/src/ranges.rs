@@ -51,6 +51,32 @@ pub(crate) fn tube_segments(s: &str) -> Result<u32, String> {
     }
 }
 
+/// `render --view`: azimuth within one turn either way, elevation from below to above.
+pub(crate) const AZIMUTH: f64 = 360.0;
+/// `render --view`: looking straight up or down at most.
+pub(crate) const ELEVATION: f64 = 90.0;
+
+/// `render --view AZ,EL`: azimuth in [-360, 360], elevation in [-90, 90] degrees.
+pub(crate) fn view(s: &str) -> Result<envelope_render::View, String> {
+    let syntax = format!(
+        "must be AZ,EL in degrees: azimuth in [-{AZIMUTH}, {AZIMUTH}], elevation in [-{ELEVATION}, {ELEVATION}] (e.g. 30,20)"
+    );
+    let (az, el) = s.split_once(',').ok_or_else(|| syntax.clone())?;
+    let az = float_in(az, (-AZIMUTH, true), (AZIMUTH, true), "").map_err(|_| syntax.clone())?;
+    let el = float_in(el, (-ELEVATION, true), (ELEVATION, true), "").map_err(|_| syntax.clone())?;
+    envelope_render::View::new(az, el).map_err(|_| syntax)
+}
+
+/// `render --size WxH`: each side a whole number of pixels in 16..=8192.
+pub(crate) fn size(s: &str) -> Result<envelope_render::Size, String> {
+    let (lo, hi) = (envelope_render::MIN_SIDE, envelope_render::MAX_SIDE);
+    let syntax =
+        format!("must be WxH, each a whole number of pixels in {lo}..={hi} (e.g. 640x480)");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| syntax.clone())?;
+    let side = |t: &str| number::<u32>(t, "a whole number").map_err(|_| syntax.clone());
+    envelope_render::Size::new(side(w)?, side(h)?).map_err(|_| syntax.clone())
+}
+
 /// A finite float in the interval `lo..hi` (closed or open at each end as given), or a
 /// message stating it.
 fn float_in(s: &str, lo: (f64, bool), hi: (f64, bool), unit: &str) -> Result<f64, String> {
@@ -228,6 +254,14 @@ mod tests {
             assert!(!e.contains("epsilon"), "{bad}: {e}");
         }
         assert!(lengths("1%, 2").is_ok() && lengths("1%,,2").is_err());
+        assert!(view("30,20").is_ok() && view("-360,-90").is_ok() && view("0,90").is_ok());
+        for bad in ["30", "30,91", "361,0", "nan,0", "1,2,3", ""] {
+            assert!(view(bad).is_err(), "{bad}");
+        }
+        assert!(size("16x8192").is_ok() && size("640X480").is_ok());
+        for bad in ["15x100", "100x8193", "100", "x", "-5x10", "1e3x100"] {
+            assert!(size(bad).is_err(), "{bad}");
+        }
     }
 
     #[test]

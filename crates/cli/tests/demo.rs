@@ -24,4 +24,13 @@ fn demo_writes_a_certified_chain() {
         assert_eq!(l["genus"], 0);
     }
     assert!(levels[6]["faces"].as_u64().unwrap() < 500);
+    let picture = out_dir.join("lod.png");
+    assert!(stdout.contains(&picture.display().to_string()), "{stdout}");
+    let bytes = std::fs::read(&picture).unwrap();
+    let reader = png::Decoder::new(std::io::Cursor::new(bytes))
+        .read_info()
+        .unwrap();
+    // The input and its seven levels side by side.
+    assert_eq!((reader.info().width, reader.info().height), (8 * 240, 240));
+    assert!(out_dir.join("faces-vs-epsilon.svg").is_file());
 }
