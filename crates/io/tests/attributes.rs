@@ -60,6 +60,7 @@ fn seamed_grid() -> (TriangleSoup, Attributes) {
         texcoords: Some(uv),
         normals: Some(normals),
         colors: Some(colors),
+        quality: None,
     };
     (soup, attributes)
 }
@@ -360,6 +361,7 @@ mod round_trips {
                     values: colours.iter().map(|c| c.map(|k| f64::from(k) / 255.0)).collect(),
                     corners,
                 }),
+                quality: None,
             };
             for format in [Format::Obj, Format::Ply(PlyEncoding::Ascii), Format::Ply(PlyEncoding::BinaryBigEndian)] {
                 let mut bytes = Vec::new();

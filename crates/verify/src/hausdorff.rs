@@ -33,6 +33,15 @@
 //!   distance is 0, proved without any predicate (simplifiers keep many input triangles).
 //!   Only bit equality is used, so `-0.0` against `0.0` merely misses the shortcut.
 //!
+//! * **Per-face bounds** (the error map, only when asked). A face's upper bound is the
+//!   largest bound of the pieces that settled it: each proved piece's certified value (the
+//!   exact close calls and cuts give `eps` itself), `0` for a shared triangle, and, for the
+//!   pieces left when the face has a witness or runs out of budget, a certified bound without
+//!   further subdivision. Refinement stops as soon as a piece is proved, so the bound is
+//!   sound but may be loose (it is at most `eps` wherever the direction holds). Its lower
+//!   bound is the certified distance of the face's farthest exact corner candidate (or its
+//!   witness): one more nearest-triangle search per face, spent only when asked.
+//!
 //! Speed without changing what is proved: faces are processed in fixed chunks, each chunk
 //! sequentially, so the nearest-triangle search of a face starts from the triangle found for
 //! the previous face (spatial coherence prunes the BVH descent; the search result is only an
@@ -50,7 +59,7 @@ use crate::numeric::{
     orient3d_with_bound, rational, rpoint, sq_dist_exact, sqrt_down, sqrt_up, square_down,
     square_up, sub,
 };
-use crate::{OneSided, Verdict, Witness};
+use crate::{FaceBound, OneSided, Verdict, Witness};
 
 /// Subdivision depth limit (barycentric numerators stay in `u64`).
 const MAX_LEVEL: u32 = 60;
@@ -971,14 +980,33 @@ impl Summary {
     }
 }
 
+/// The certified bounds of one face from its result (see the module docs).
+fn face_bound(target: &Target, r: &FaceResult) -> FaceBound {
+    let mut lower = r
+        .lower_candidate
+        .map_or(0.0, |(_, p)| target.certified_lower(p));
+    if let Some(w) = &r.witness {
+        lower = lower.max(w.distance);
+    }
+    FaceBound {
+        lower,
+        upper: r.upper,
+    }
+}
+
+/// A face's index and its bounds.
+type IndexedBound = (usize, FaceBound);
+
 /// Decides whether every point of the triangles `faces` of `positions` lies within `eps` of
-/// `target`, with a certified interval for the one-sided Hausdorff distance.
+/// `target`, with a certified interval for the one-sided Hausdorff distance; with
+/// `per_face`, also the certified bounds of each face (in face order).
 pub(crate) fn one_sided(
     positions: &[DVec3],
     faces: &[[u32; 3]],
     target: &Target,
     tol: &Tolerance,
-) -> OneSided {
+    per_face: bool,
+) -> (OneSided, Option<Vec<FaceBound>>) {
     // Two passes, so that a violated direction does not spend the full budget on faces
     // that stay undecided (ties along curves; fuzzed meshes of degenerate triangles took
     // seconds): the first pass gives each face a small budget and sets aside the faces it
@@ -990,13 +1018,14 @@ pub(crate) fn one_sided(
         tol,
         tiny_budget: FIRST_PASS_TINY,
     };
-    let (mut sum, deferred) = faces
+    let (mut sum, deferred, mut bounds) = faces
         .par_chunks(CHUNK)
         .enumerate()
         .map(|(c, chunk)| {
             let mut scratch = Scratch::default();
             let mut sum = Summary::default();
             let mut deferred = Vec::new();
+            let mut bounds: Vec<IndexedBound> = Vec::new();
             for (k, f) in chunk.iter().enumerate() {
                 let tri = f.map(|v| positions[v as usize]);
                 let index = c * CHUNK + k;
@@ -1004,20 +1033,27 @@ pub(crate) fn one_sided(
                 if r.undecided && r.witness.is_none() {
                     deferred.push((index, r));
                 } else {
+                    if per_face {
+                        bounds.push((index, face_bound(target, &r)));
+                    }
                     sum.add(r);
                 }
             }
-            (sum, deferred)
+            (sum, deferred, bounds)
         })
         .reduce(
-            || (Summary::default(), Vec::new()),
-            |(a, mut da), (b, db)| {
+            || (Summary::default(), Vec::new(), Vec::new()),
+            |(a, mut da, mut ba), (b, db, bb)| {
                 da.extend(db);
-                (a.merge(b), da)
+                ba.extend(bb);
+                (a.merge(b), da, ba)
             },
         );
     if sum.witness.is_some() {
-        for (_, r) in deferred {
+        for (index, r) in deferred {
+            if per_face {
+                bounds.push((index, face_bound(target, &r)));
+            }
             sum.add(r);
         }
     } else if !deferred.is_empty() {
@@ -1026,17 +1062,31 @@ pub(crate) fn one_sided(
             tol,
             tiny_budget: MAX_FACE_TINY,
         };
-        let again = deferred
+        let (again, again_bounds) = deferred
             .par_iter()
-            .map(|&(index, _)| {
-                let f = faces[index];
+            .map(|(index, first_result)| {
+                let f = faces[*index];
                 let tri = f.map(|v| positions[v as usize]);
+                let r = full.face(FaceId::from_index(*index), tri, &mut Scratch::default());
+                let bound = per_face.then(|| {
+                    let b = face_bound(target, &r);
+                    // Both passes' upper bounds are certified: the smaller holds.
+                    let upper = b.upper.min(first_result.upper);
+                    vec![(*index, FaceBound { upper, ..b })]
+                });
                 let mut s = Summary::default();
-                s.add(full.face(FaceId::from_index(index), tri, &mut Scratch::default()));
-                s
+                s.add(r);
+                (s, bound.unwrap_or_default())
             })
-            .reduce(Summary::default, Summary::merge);
+            .reduce(
+                || (Summary::default(), Vec::new()),
+                |(a, mut ba), (b, bb)| {
+                    ba.extend(bb);
+                    (a.merge(b), ba)
+                },
+            );
         sum = sum.merge(again);
+        bounds.extend(again_bounds);
         // Every sub-triangle examined counts, the first pass's included.
         sum.subdivisions += deferred.iter().map(|(_, r)| r.subdivisions).sum::<u64>();
     }
@@ -1067,14 +1117,30 @@ pub(crate) fn one_sided(
     } else {
         Verdict::Holds
     };
-    OneSided {
+    let per_face = per_face.then(|| {
+        // Every face is in `bounds` exactly once: settled in the first pass, or deferred and
+        // then settled by one of the two branches above.
+        let mut out = vec![
+            FaceBound {
+                lower: 0.0,
+                upper: f64::INFINITY,
+            };
+            faces.len()
+        ];
+        for (index, b) in bounds {
+            out[index] = b;
+        }
+        out
+    });
+    let one = OneSided {
         verdict,
         lower,
         upper,
         witness,
         undecided_regions: undecided,
         subdivisions,
-    }
+    };
+    (one, per_face)
 }
 
 /// A plane through three points, exactly: `side(q)` is the sign-carrying determinant.
