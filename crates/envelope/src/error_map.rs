@@ -12,7 +12,7 @@ use crate::{Attributes, Epsilon, Error, Mesh, Wedges};
 /// [`verify`](crate::verify) that also keeps the certified bounds of every face, both ways,
 /// and of every vertex of `approx` ([`Certificate::map`]; see
 /// [`envelope_verify`'s error maps](envelope_verify#error-maps) for what they guarantee). The
-/// verdict is the same; the map costs one more nearest-triangle search per face.
+/// verdict is the same; the map costs a few times the plain verification.
 ///
 /// ```
 /// use envelope::{Epsilon, Verdict};

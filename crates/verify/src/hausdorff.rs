@@ -37,10 +37,12 @@
 //!   largest bound of the pieces that settled it: each proved piece's certified value (the
 //!   exact close calls and cuts give `eps` itself), `0` for a shared triangle, and, for the
 //!   pieces left when the face has a witness or runs out of budget, a certified bound without
-//!   further subdivision. Refinement stops as soon as a piece is proved, so the bound is
-//!   sound but may be loose (it is at most `eps` wherever the direction holds). Its lower
-//!   bound is the certified distance of the face's farthest exact corner candidate (or its
-//!   witness): one more nearest-triangle search per face, spent only when asked.
+//!   further subdivision. Its lower bound is the certified distance of the face's farthest
+//!   exact corner candidate (or its witness). Refinement stops as soon as a piece is proved
+//!   within `eps`, so the upper bound is just below `eps` wherever some piece needed
+//!   subdividing; `Search::tighten` then decides the face again at tolerances between its
+//!   bounds (bisection, a few rounds): a proof lowers the upper bound, a witness raises the
+//!   lower one, each by the same exact machinery. All of it is spent only when asked.
 //!
 //! Speed without changing what is proved: faces are processed in fixed chunks, each chunk
 //! sequentially, so the nearest-triangle search of a face starts from the triangle found for
@@ -981,16 +983,55 @@ impl Summary {
 }
 
 /// The certified bounds of one face from its result (see the module docs).
-fn face_bound(target: &Target, r: &FaceResult) -> FaceBound {
+fn face_bound(search: &Search<'_>, face: FaceId, tri: [DVec3; 3], r: &FaceResult) -> FaceBound {
+    let target = search.target;
     let mut lower = r
         .lower_candidate
         .map_or(0.0, |(_, p)| target.certified_lower(p));
     if let Some(w) = &r.witness {
         lower = lower.max(w.distance);
     }
-    FaceBound {
-        lower,
-        upper: r.upper,
+    let mut upper = r.upper;
+    search.tighten(face, tri, &mut lower, &mut upper);
+    FaceBound { lower, upper }
+}
+
+/// Bisection rounds of [`Search::tighten`].
+const MAP_ROUNDS: u32 = 3;
+
+impl Search<'_> {
+    /// For the error map only: narrows a face's certified `[lower, upper]` (`upper` at most
+    /// `eps`) by deciding the same face again at tolerances between them, with the same
+    /// proofs and witnesses: a proof at `e` makes its bound (at most `e`) the new upper
+    /// bound, a witness its distance (more than `e`) the new lower bound. At most
+    /// [`MAP_ROUNDS`] rounds, each with the first pass's budget; stops when the bounds are
+    /// within a quarter of each other (plus `eps / 256`), or at an undecided round.
+    fn tighten(&self, face: FaceId, tri: [DVec3; 3], lower: &mut f64, upper: &mut f64) {
+        if !(*upper > 0.0 && *upper <= self.tol.eps) {
+            return;
+        }
+        let floor = self.tol.eps * 2f64.powi(-8);
+        for _ in 0..MAP_ROUNDS {
+            if *upper <= 1.25 * *lower + floor {
+                return;
+            }
+            let e = 0.5 * (*lower + *upper);
+            if !(e > 0.0 && e < *upper) {
+                return;
+            }
+            let tol = Tolerance::new(e, self.tol.resolution);
+            let search = Search {
+                target: self.target,
+                tol: &tol,
+                tiny_budget: FIRST_PASS_TINY,
+            };
+            let r = search.face(face, tri, &mut Scratch::default());
+            match &r.witness {
+                Some(w) => *lower = lower.max(w.distance),
+                None if !r.undecided => *upper = upper.min(r.upper),
+                None => return,
+            }
+        }
     }
 }
 
@@ -1034,7 +1075,10 @@ pub(crate) fn one_sided(
                     deferred.push((index, r));
                 } else {
                     if per_face {
-                        bounds.push((index, face_bound(target, &r)));
+                        bounds.push((
+                            index,
+                            face_bound(&first, FaceId::from_index(index), tri, &r),
+                        ));
                     }
                     sum.add(r);
                 }
@@ -1052,7 +1096,11 @@ pub(crate) fn one_sided(
     if sum.witness.is_some() {
         for (index, r) in deferred {
             if per_face {
-                bounds.push((index, face_bound(target, &r)));
+                let tri = faces[index].map(|v| positions[v as usize]);
+                bounds.push((
+                    index,
+                    face_bound(&first, FaceId::from_index(index), tri, &r),
+                ));
             }
             sum.add(r);
         }
@@ -1069,7 +1117,7 @@ pub(crate) fn one_sided(
                 let tri = f.map(|v| positions[v as usize]);
                 let r = full.face(FaceId::from_index(*index), tri, &mut Scratch::default());
                 let bound = per_face.then(|| {
-                    let b = face_bound(target, &r);
+                    let b = face_bound(&full, FaceId::from_index(*index), tri, &r);
                     // Both passes' upper bounds are certified: the smaller holds.
                     let upper = b.upper.min(first_result.upper);
                     vec![(*index, FaceBound { upper, ..b })]

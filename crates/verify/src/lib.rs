@@ -52,11 +52,13 @@
 //! * the largest vertex value is at least the proved lower bound `approx_to_orig.lower`
 //!   (the farthest face's bound covers the farthest point).
 //!
-//! Refinement stops once a piece is proved within `epsilon`, so the bounds may be loose
-//! (a face proved in one piece gets the bound of its corners against one triangle; an exact
-//! tie gives `epsilon` itself): a map tells where the error may be large, the lower bounds
-//! where it is. Without [`Options::map`] none of this is computed; with it, each face costs one
-//! more nearest-triangle search (its lower bound).
+//! The branch and bound stops refining once a piece is proved within `epsilon`, which leaves
+//! a face's bound just below `epsilon` wherever it had to subdivide; for the map, each face
+//! within `epsilon` is then decided again at tolerances between its lower and upper bounds
+//! (three bisection rounds at most, stopping once they are within a quarter of each other):
+//! a proof lowers its upper bound, an exact witness raises its lower bound. Bounds can stay
+//! apart (an undecided round, a tie at `epsilon`). Without [`Options::map`] none of this is
+//! computed; with it, verification takes a few times longer.
 //!
 //! ```
 //! use envelope_mesh::generate::icosphere;
@@ -111,8 +113,8 @@ pub struct Options {
     /// self-intersections unchanged: such a pair meets exactly as it did in `orig`.
     pub allow_input_intersections: bool,
     /// Keep the certified bounds of every face, both ways, and of every vertex of `approx`
-    /// ([`Certificate::map`], see [Error maps](crate#error-maps)). Off by default: it costs
-    /// one nearest-triangle search per face.
+    /// ([`Certificate::map`], see [Error maps](crate#error-maps)). Off by default: it
+    /// decides each face again at up to three tighter tolerances.
     pub map: bool,
 }
 
