@@ -174,7 +174,13 @@ fn main() -> ExitCode {
 /// (`envelope::Mesh::demo`).
 fn run_demo(out_dir: &Path) -> Result<ExitCode, String> {
     let epsilons = ranges::lengths(lod::DEFAULT_EPSILONS)?.0;
-    lod::plan_chain(&mut outputs::Plan::new(&[]), out_dir, epsilons.len(), false, true)?;
+    lod::plan_chain(
+        &mut outputs::Plan::new(&[]),
+        out_dir,
+        epsilons.len(),
+        false,
+        true,
+    )?;
     let model = envelope::Mesh::demo();
     println!(
         "built-in model: a cup, {} faces, {} vertices (curved fluted wall, sharp bottom crease, open rim)",

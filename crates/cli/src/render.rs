@@ -76,10 +76,20 @@ pub(crate) struct Args {
     same_scale: bool,
 }
 
-/// The per-vertex quality of `mesh`, one value per vertex, when its file has one.
-// Wired to `Attributes::quality` (PLY vertex property `quality`) when that lands.
-fn quality(_mesh: &Mesh) -> Option<Vec<f64>> {
-    None
+/// The per-vertex quality of `mesh` (PLY vertex property `quality`, such as the bound of
+/// `envelope verify --map`), one value per vertex, when its file has one: a vertex's largest
+/// corner value, NaN (drawn uncoloured, outside the ramp's range) where no face uses it.
+fn quality(mesh: &Mesh) -> Option<Vec<f64>> {
+    let q = mesh.attributes().quality.as_ref()?;
+    let mut out = vec![f64::NAN; mesh.num_vertices()];
+    for (f, tri) in mesh.triangles().enumerate() {
+        for (k, &v) in tri.iter().enumerate() {
+            let [x] = q.value(f, k);
+            let slot = &mut out[v as usize];
+            *slot = if slot.is_nan() { x } else { slot.max(x) };
+        }
+    }
+    Some(out)
 }
 
 pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {

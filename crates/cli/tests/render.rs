@@ -134,3 +134,64 @@ fn lod_without_picture_writes_none() {
     assert!(out_dir.join("summary.json").is_file());
     assert!(!out_dir.join("lod.png").exists());
 }
+
+/// All pixels of a PNG as RGB triples.
+fn png_pixels(path: &Path) -> Vec<[u8; 3]> {
+    let file = std::fs::File::open(path).unwrap();
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+        .read_info()
+        .unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let channels = info.color_type.samples();
+    buf[..info.buffer_size()]
+        .chunks(channels)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect()
+}
+
+/// The error map of `verify --map` renders coloured by its quality: the colour bar's ends
+/// are the ramp's, which the uncoloured render of the same file lacks.
+#[test]
+fn an_error_map_renders_by_quality() {
+    let dir = tempfile::tempdir().unwrap();
+    let orig = dir.path().join("sphere.off");
+    write_path(&orig, &generate::icosphere(3, 1.0), Format::Off).unwrap();
+    let approx = dir.path().join("approx.off");
+    let map = dir.path().join("map.ply");
+    let path = |p: &Path| p.to_str().unwrap().to_string();
+    assert_ok(
+        &envelope()
+            .args(["simplify", &path(&orig), &path(&approx), "--epsilon", "2%"])
+            .output()
+            .unwrap(),
+    );
+    assert_ok(
+        &envelope()
+            .args(["verify", &path(&orig), &path(&approx), "--epsilon", "2%"])
+            .args(["--map", &path(&map)])
+            .output()
+            .unwrap(),
+    );
+    let render = |by: &str, out: &Path| {
+        envelope()
+            .args(["render", &path(&map), &path(out), "--size", "160x120"])
+            .args(["--color-by", by])
+            .output()
+            .unwrap()
+    };
+    let (coloured, plain) = (dir.path().join("q.png"), dir.path().join("n.png"));
+    assert_ok(&render("quality", &coloured));
+    assert_ok(&render("none", &plain));
+    let top = envelope_render::ramp::viridis(1.0);
+    let bottom = envelope_render::ramp::viridis(0.0);
+    // The bar samples the ramp at pixel centres: its ends are within a few steps of them.
+    let near = |pixels: &[[u8; 3]], c: [u8; 3]| {
+        pixels
+            .iter()
+            .any(|p| (0..3).all(|k| p[k].abs_diff(c[k]) <= 8))
+    };
+    let q = png_pixels(&coloured);
+    assert!(near(&q, top) && near(&q, bottom), "no colour bar");
+    assert!(!near(&png_pixels(&plain), top));
+}

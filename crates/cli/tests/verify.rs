@@ -214,3 +214,82 @@ fn envelope_of_and_stop_at_first() {
     assert!(text.contains("envelope_of: holds"), "{text}");
     assert!(text.contains("not checked"), "{text}");
 }
+
+/// `--map`: the PLY is written whatever the verdict (holds: exit 0; violated: exit 1), with
+/// per-vertex quality and colours, and the JSON gains the per-face bounds; a non-PLY path is
+/// refused before any work (exit 2) and nothing is written.
+#[test]
+fn map_is_written_holds_or_not_and_refused_when_not_ply() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, a) = pair(dir.path());
+    let map = dir.path().join("map.ply");
+    let m = map.to_str().unwrap();
+    let (code, v) = verify_json(&o, &a, &["--epsilon", "0.0101", "--map", m]);
+    assert_eq!(code, 0, "{v:#}");
+    let (back, attributes, _) = envelope_io::read_path_with_attributes(&map).unwrap();
+    let q = attributes.quality.expect("quality");
+    assert!(attributes.colors.is_some());
+    assert_eq!(
+        back.faces.len(),
+        v["map"]["approx_faces"]["upper"].as_array().unwrap().len()
+    );
+    assert_eq!(
+        v["map"]["orig_faces"]["lower"].as_array().unwrap().len(),
+        generate::icosphere(2, 1.0).faces.len()
+    );
+    // Vertex 0 moved by 0.01 (within 0.0101): it carries the largest bound.
+    let worst = q.values.iter().map(|x| x[0]).fold(0.0, f64::max);
+    assert!((0.0099..=0.0102).contains(&worst), "{worst}");
+    assert!(v["map"]["approx_vertices"][0].as_f64().unwrap() >= 0.0099);
+    let text = std::fs::read(&map).unwrap();
+    let text = String::from_utf8_lossy(&text);
+    assert!(text.contains("comment ramp viridis 0 0.0101\n"));
+
+    // Violated: exit 1, and the map is written all the same.
+    std::fs::remove_file(&map).unwrap();
+    let out = envelope(&[
+        "verify",
+        o.to_str().unwrap(),
+        a.to_str().unwrap(),
+        "--epsilon",
+        "0.005",
+        "--map",
+        m,
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("error map: "));
+    assert!(map.exists());
+
+    // Not a .ply: exit 2 before any work, nothing written.
+    let off = dir.path().join("map.off");
+    let out = envelope(&[
+        "verify",
+        o.to_str().unwrap(),
+        a.to_str().unwrap(),
+        "--epsilon",
+        "0.0101",
+        "--map",
+        off.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("PLY"));
+    assert!(!off.exists());
+    // Even with an unreadable input: the path is refused first.
+    let out = envelope(&[
+        "verify",
+        "missing.off",
+        a.to_str().unwrap(),
+        "--epsilon",
+        "0.0101",
+        "--map",
+        off.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--map"));
+    let entries: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert_eq!(
+        entries.len(),
+        3,
+        "orig, approx, map.ply only: no temporaries"
+    );
+}

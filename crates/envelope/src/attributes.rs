@@ -555,7 +555,9 @@ enum Origin {
 /// The attributes of `output`, a simplification of `input` whose kept and unmoved vertices
 /// keep their input positions bitwise (as `Simplifier` and `Lod` outputs do; moved vertices
 /// are the others): see the module docs. Empty when `input` has none. `Simplifier::run`
-/// and `Lod::level_mesh` call it; it is public for outputs made by other means.
+/// and `Lod::level_mesh` call it; it is public for outputs made by other means. A
+/// [`quality`](Attributes::quality) is dropped: it is a value derived from the input's surface
+/// (an error map's bounds), which the output no longer has.
 ///
 /// ```
 /// use envelope::{carry_attributes, Attributes, Mesh, Wedges};
@@ -753,6 +755,9 @@ pub(crate) fn carry_through_repair(
         texcoords: a.texcoords.as_ref().map(|w| values_from(w, &from)),
         normals: a.normals.as_ref().map(|w| values_from(w, &from)),
         colors: a.colors.as_ref().map(|w| values_from(w, &from)),
+        // A derived value of the input (an error map's bounds): not carried, like in
+        // `carry_attributes`.
+        quality: None,
     }
 }
 

@@ -9,7 +9,8 @@
 //! * [`Simplifier`]: simplification within epsilon, certified ([`Simplified`]).
 //! * [`Lod`]: levels of detail with nested vertex sets and switching distances.
 //! * [`verify`]: the certificate of any simplifier's output; [`check`]: is a mesh acceptable
-//!   input.
+//!   input. [`verify_with_map`], [`error_map`], [`save_error_map`]: the certified bounds per
+//!   face and vertex, as a coloured PLY.
 //! * [`repair`]: repair that never moves the surface ([`Repaired`], [`RepairReport`]).
 //! * [`Genus`]: fill holes and tunnels smaller than alpha (El-Sana and Varshney 1997).
 //! * [`Scene`], [`load_scene`], [`save_scene`]: glTF 2.0 scenes (`.gltf`, `.glb`);
@@ -26,6 +27,7 @@ mod attributes;
 pub mod batch;
 mod epsilon;
 mod error;
+mod error_map;
 mod files;
 mod genus;
 mod lod;
@@ -48,12 +50,13 @@ pub use envelope_repair::{RepairError, RepairReport, Step as RepairStep};
 pub use envelope_simplify::{
     Correspondence, HoleFilling, Level, LodRule, Placement, Screen, SimplifyReport, VerifyReport,
 };
-pub use envelope_verify::{Certificate, OneSided, Verdict, Witness};
+pub use envelope_verify::{Certificate, ErrorMap, FaceBound, OneSided, Verdict, Witness};
 
 pub use attributes::{carry_attributes, seam_vertices};
 pub use envelope_gltf::{GltfError, Scene};
 pub use epsilon::Epsilon;
 pub use error::Error;
+pub use error_map::{error_map, save_error_map, verify_with_map};
 pub use files::{load, load_with_report, save};
 pub use genus::Genus;
 pub use lod::Lod;
@@ -113,6 +116,7 @@ pub mod advanced {
     pub use envelope_offset as offset;
     pub use envelope_predicates as predicates;
     pub use envelope_prism as prism;
+    pub use envelope_render as render;
     pub use envelope_repair as repair;
     pub use envelope_simplify as simplify;
     pub use envelope_verify as verify;

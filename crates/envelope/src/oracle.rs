@@ -35,6 +35,16 @@ pub fn check(mesh: &Mesh) -> CheckReport {
 /// # Errors
 /// [`Error::InvalidEpsilon`] when epsilon does not resolve to a positive finite length.
 pub fn verify(orig: &Mesh, approx: &Mesh, epsilon: Epsilon) -> Result<Certificate, Error> {
+    let eps = resolve(orig, epsilon)?;
+    let options = Options {
+        allow_input_intersections: true,
+        ..Options::new(eps)
+    };
+    Ok(certify(orig.soup(), approx.soup(), &options))
+}
+
+/// `epsilon` as a length on `orig`: positive and finite, or [`Error::InvalidEpsilon`].
+pub(crate) fn resolve(orig: &Mesh, epsilon: Epsilon) -> Result<f64, Error> {
     let eps = epsilon.validate()?.resolve(orig);
     if !(eps.is_finite() && eps > 0.0) {
         return Err(Error::InvalidEpsilon(format!(
@@ -42,9 +52,5 @@ pub fn verify(orig: &Mesh, approx: &Mesh, epsilon: Epsilon) -> Result<Certificat
             orig.diagonal()
         )));
     }
-    let options = Options {
-        allow_input_intersections: true,
-        ..Options::new(eps)
-    };
-    Ok(certify(orig.soup(), approx.soup(), &options))
+    Ok(eps)
 }

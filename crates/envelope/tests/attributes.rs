@@ -52,6 +52,7 @@ fn cylinder() -> Mesh {
             texcoords: Some(uv),
             normals: Some(normals),
             colors: None,
+            quality: None,
         })
         .unwrap()
 }

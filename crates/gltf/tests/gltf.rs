@@ -467,6 +467,7 @@ fn replacement_attributes_are_written_per_corner() {
         texcoords: Some(texcoords.clone()),
         normals: Some(normals),
         colors: Some(colors.clone()),
+        quality: None,
     };
     scene
         .replace(

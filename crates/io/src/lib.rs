@@ -188,7 +188,7 @@ impl Format {
     }
 
     /// The present attributes this format cannot write (`"texture coordinates"`,
-    /// `"normals"`, `"colours"`), for a note when they are dropped.
+    /// `"normals"`, `"colours"`, `"quality"`), for a note when they are dropped.
     ///
     /// ```
     /// use envelope_io::Format;
@@ -214,6 +214,10 @@ impl Format {
         }
         if attributes.colors.is_some() && !colors {
             out.push("colours");
+        }
+        // Only PLY has a per-vertex scalar property that viewers know.
+        if attributes.quality.is_some() && !matches!(self, Format::Ply(_)) {
+            out.push("quality");
         }
         out
     }
@@ -510,13 +514,43 @@ pub fn write_with_attributes<W: Write>(
     attributes: &Attributes,
     format: Format,
 ) -> Result<(), WriteError> {
+    write_with_comments(writer, soup, attributes, format, &[])
+}
+
+/// [`write_with_attributes`], with `comments` as PLY header `comment` lines after the
+/// writer's own (a line break inside one becomes a space); other formats ignore them.
+///
+/// ```
+/// use envelope_io::{read_with_attributes, write_with_comments, Format, PlyEncoding};
+/// use envelope_mesh::{Attributes, TriangleSoup, Wedges};
+/// let soup = TriangleSoup::from_raw(&[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], &[[0, 1, 2]]);
+/// let quality = Wedges { values: vec![[0.25], [0.5], [1.0]], corners: vec![[0, 1, 2]] };
+/// let attributes = Attributes { quality: Some(quality), ..Attributes::default() };
+/// let mut out = Vec::new();
+/// let comments = ["quality: a test".to_string()];
+/// write_with_comments(&mut out, &soup, &attributes, Format::Ply(PlyEncoding::Ascii), &comments).unwrap();
+/// let text = String::from_utf8(out.clone()).unwrap();
+/// assert!(text.contains("comment quality: a test\n") && text.contains("property float quality\n"));
+/// let (back, again, _) = read_with_attributes(&out[..], Format::Ply(PlyEncoding::Ascii)).unwrap();
+/// assert_eq!((back, again), (soup, attributes));
+/// ```
+///
+/// # Errors
+/// As [`write_with_attributes`].
+pub fn write_with_comments<W: Write>(
+    writer: W,
+    soup: &TriangleSoup,
+    attributes: &Attributes,
+    format: Format,
+    comments: &[String],
+) -> Result<(), WriteError> {
     validate(soup)?;
     validate_attributes(soup, attributes)?;
     let mut w = BufWriter::with_capacity(1 << 16, writer);
     match format {
         Format::Obj => obj::write_with_attributes(&mut w, soup, attributes)?,
         Format::Off => off::write(&mut w, soup)?,
-        Format::Ply(enc) => ply::write_with_attributes(&mut w, soup, attributes, enc)?,
+        Format::Ply(enc) => ply::write_with_attributes(&mut w, soup, attributes, enc, comments)?,
         Format::Stl(enc) => stl::write(&mut w, soup, enc)?,
     }
     w.flush()?;
@@ -543,12 +577,27 @@ pub fn write_path_with_attributes(
     attributes: &Attributes,
     format: Format,
 ) -> Result<(), WriteError> {
+    write_path_with_comments(path, soup, attributes, format, &[])
+}
+
+/// [`write_path_with_attributes`] with PLY header comments ([`write_with_comments`]),
+/// atomically.
+///
+/// # Errors
+/// As [`write_path_with_attributes`].
+pub fn write_path_with_comments(
+    path: impl AsRef<Path>,
+    soup: &TriangleSoup,
+    attributes: &Attributes,
+    format: Format,
+    comments: &[String],
+) -> Result<(), WriteError> {
     let path = path.as_ref();
     validate(soup)
         .and_then(|()| validate_attributes(soup, attributes))
         .map_err(|k| WriteError::from(k).with_path(path))?;
     atomically(path, |file| {
-        write_with_attributes(file, soup, attributes, format)
+        write_with_comments(file, soup, attributes, format, comments)
     })
 }
 

@@ -337,6 +337,7 @@ fn attributes(refs: CornerRefs, origins: &[[u64; 3]], report: &mut ReadReport) -
             values: refs.normals,
         }),
         colors: None,
+        quality: None,
     }
 }
 

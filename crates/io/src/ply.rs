@@ -18,7 +18,8 @@
 //!   `texture_u texture_v`, `texture_s texture_t`), `nx ny nz` and `red green blue [alpha]`,
 //!   each used only when all its components are scalars; integer colours are divided by their
 //!   type's maximum (`uchar` by 255, exactly rounded), float colours kept as written, alpha 1
-//!   when absent. A corner's value is its vertex's. Face-level `texcoord` lists are not read.
+//!   when absent; and the scalar `quality` (any type, kept as written: an error map's bounds).
+//!   A corner's value is its vertex's. Face-level `texcoord` lists are not read.
 //! * Every value is read as declared: a `float` coordinate written in ascii is rounded to
 //!   `f32`, exactly as its binary encoding would be.
 //! * Before any data is read, the header's counts are checked against the remaining file size
@@ -206,6 +207,7 @@ struct VertexAttributes {
     normal: Option<[usize; 3]>,
     rgb: Option<[usize; 3]>,
     alpha: Option<usize>,
+    quality: Option<usize>,
 }
 
 /// The texture coordinate spellings, in the order they are looked for.
@@ -235,6 +237,7 @@ impl VertexAttributes {
             normal: scalars(&[b"nx", b"ny", b"nz"]).map(|i| [i[0], i[1], i[2]]),
             rgb: scalars(&[b"red", b"green", b"blue"]).map(|i| [i[0], i[1], i[2]]),
             alpha: scalars(&[b"alpha"]).map(|i| i[0]),
+            quality: scalars(&[b"quality"]).map(|i| i[0]),
         }
     }
 
@@ -246,6 +249,7 @@ impl VertexAttributes {
             out.extend(rgb);
             out.extend(self.alpha);
         }
+        out.extend(self.quality);
         out
     }
 }
@@ -544,6 +548,7 @@ fn read_impl<R: Read>(
         texcoords: Vec::new(),
         normals: Vec::new(),
         colors: Vec::new(),
+        quality: Vec::new(),
     };
     for (e, role) in header.elements.iter().zip(&roles) {
         let min = e.min_bytes(encoding);
@@ -597,6 +602,7 @@ fn read_impl<R: Read>(
         texcoords: found.uv.map(|_| per_vertex(out.texcoords, &faces)),
         normals: found.normal.map(|_| per_vertex(out.normals, &faces)),
         colors: found.rgb.map(|_| per_vertex(out.colors, &faces)),
+        quality: found.quality.map(|_| per_vertex(out.quality, &faces)),
     };
     for (e, role) in header.elements.iter().zip(&roles) {
         let name = String::from_utf8_lossy(&e.name);
@@ -645,11 +651,12 @@ struct Output<'a> {
     poly: Vec<u32>,
     nv: u64,
     report: &'a mut ReadReport,
-    /// Whether to read the vertex attributes into the three tables below (one per vertex).
+    /// Whether to read the vertex attributes into the four tables below (one per vertex).
     with_attributes: bool,
     texcoords: Vec<[f64; 2]>,
     normals: Vec<[f64; 3]>,
     colors: Vec<[f64; 4]>,
+    quality: Vec<[f64; 1]>,
 }
 
 fn read_elements<S: Source>(
@@ -695,6 +702,7 @@ enum Target {
     Texcoord(usize),
     Normal(usize),
     Color(usize),
+    Quality,
     Skip,
 }
 
@@ -735,10 +743,14 @@ fn read_vertices<S: Source>(
             targets[i] = Target::Color(k);
         }
     }
+    if let Some(i) = attributes.quality {
+        targets[i] = Target::Quality;
+    }
     for v in 0..e.count {
         src.begin_item();
         let mut p = [0.0; 3];
         let (mut uv, mut normal, mut color) = ([0.0; 2], [0.0; 3], [0.0, 0.0, 0.0, 1.0]);
+        let mut quality = [0.0];
         for (prop, &target) in e.props.iter().zip(&targets) {
             match (prop.kind, target) {
                 (Kind::Scalar(t), Target::Position(k)) => p[k] = src.float(t, WHAT)?,
@@ -747,6 +759,7 @@ fn read_vertices<S: Source>(
                 (Kind::Scalar(t), Target::Color(k)) => {
                     color[k] = src.float(t, WHAT)? / color_scale(t);
                 }
+                (Kind::Scalar(t), Target::Quality) => quality[0] = src.float(t, WHAT)?,
                 (kind, _) => src.skip_property(kind, WHAT)?,
             }
         }
@@ -756,6 +769,7 @@ fn read_vertices<S: Source>(
             .iter()
             .chain(&normal)
             .chain(&color)
+            .chain(&quality)
             .all(|x| x.is_finite());
         if !finite {
             return Err(src.error(ReadErrorKind::AttributeValue {
@@ -771,6 +785,9 @@ fn read_vertices<S: Source>(
         }
         if attributes.rgb.is_some() {
             out.colors.push(color);
+        }
+        if attributes.quality.is_some() {
+            out.quality.push(quality);
         }
     }
     Ok(())

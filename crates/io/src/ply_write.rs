@@ -1,5 +1,7 @@
 //! The PLY writer: `double` positions and `int` (or `uint`) index lists; with attributes,
-//! per-vertex `u v`, `nx ny nz` (`double`) and `red green blue alpha` columns.
+//! per-vertex `u v`, `nx ny nz` (`double`), `red green blue alpha` and `quality` (`float`,
+//! rounded to nearest: a caller that needs a bound rounds it first) columns, and header
+//! `comment` lines.
 //!
 //! PLY holds one value of each attribute per vertex, so a vertex whose corners carry
 //! different values (a seam) is written once per distinct combination of texture
@@ -24,6 +26,16 @@ struct Columns {
     texcoords: Option<Vec<[f64; 2]>>,
     normals: Option<Vec<[f64; 3]>>,
     colors: Option<Vec<[f64; 4]>>,
+    quality: Option<Vec<[f64; 1]>>,
+}
+
+/// How one value after x y z is written.
+#[derive(Clone, Copy, PartialEq)]
+enum Column {
+    Double,
+    /// A colour component that is exactly `k / 255`.
+    Uchar,
+    Float,
 }
 
 pub(crate) fn write<W: Write>(
@@ -37,6 +49,7 @@ pub(crate) fn write<W: Write>(
         &soup.faces,
         &Columns::default(),
         encoding,
+        &[],
     )
 }
 
@@ -51,19 +64,28 @@ pub(crate) fn write_with_attributes<W: Write>(
     soup: &TriangleSoup,
     attributes: &Attributes,
     encoding: PlyEncoding,
+    comments: &[String],
 ) -> io::Result<()> {
     if attributes.is_empty() {
-        return write(w, soup, encoding);
+        return write_columns(
+            w,
+            &soup.positions,
+            &soup.faces,
+            &Columns::default(),
+            encoding,
+            comments,
+        );
     }
-    let (tex, normals, colors) = (
+    let (tex, normals, colors, quality) = (
         &attributes.texcoords,
         &attributes.normals,
         &attributes.colors,
+        &attributes.quality,
     );
     // A written vertex: the input vertex and its corner's value bits.
-    type Key = (u32, [u64; 9]);
+    type Key = (u32, [u64; 10]);
     let key = |f: usize, k: usize, v: VertexId| -> Key {
-        let mut bits = [0u64; 9];
+        let mut bits = [0u64; 10];
         if let Some(t) = tex {
             for (b, x) in bits[..2].iter_mut().zip(t.value(f, k)) {
                 *b = x.to_bits();
@@ -75,9 +97,12 @@ pub(crate) fn write_with_attributes<W: Write>(
             }
         }
         if let Some(c) = colors {
-            for (b, x) in bits[5..].iter_mut().zip(c.value(f, k)) {
+            for (b, x) in bits[5..9].iter_mut().zip(c.value(f, k)) {
                 *b = x.to_bits();
             }
+        }
+        if let Some(q) = quality {
+            bits[9] = q.value(f, k)[0].to_bits();
         }
         (v.0, bits)
     };
@@ -161,8 +186,14 @@ pub(crate) fn write_with_attributes<W: Write>(
                 .map(|x| [x[0], x[1], x[2], x[3]])
                 .collect()
         }),
+        quality: quality.as_ref().map(|q| {
+            column(&|f, k| q.value(f, k).to_vec(), vec![0.0])
+                .into_iter()
+                .map(|x| [x[0]])
+                .collect()
+        }),
     };
-    write_columns(w, &positions, &faces, &columns, encoding)
+    write_columns(w, &positions, &faces, &columns, encoding, comments)
 }
 
 fn write_columns<W: Write>(
@@ -171,6 +202,7 @@ fn write_columns<W: Write>(
     faces: &[[VertexId; 3]],
     columns: &Columns,
     encoding: PlyEncoding,
+    comments: &[String],
 ) -> io::Result<()> {
     let enc = match encoding {
         PlyEncoding::Ascii => "ascii",
@@ -186,10 +218,18 @@ fn write_columns<W: Write>(
         .colors
         .as_ref()
         .is_some_and(|c| c.iter().flatten().all(|&x| as_uchar(x).is_some()));
+    write!(w, "ply\nformat {enc} 1.0\ncomment written by envelope-io\n")?;
+    for c in comments {
+        // A line break would end the comment and start a header line of its own.
+        let line: String = c
+            .chars()
+            .map(|ch| if ch == '\n' || ch == '\r' { ' ' } else { ch })
+            .collect();
+        writeln!(w, "comment {line}")?;
+    }
     write!(
         w,
-        "ply\nformat {enc} 1.0\ncomment written by envelope-io\n\
-         element vertex {}\nproperty double x\nproperty double y\nproperty double z\n",
+        "element vertex {}\nproperty double x\nproperty double y\nproperty double z\n",
         positions.len(),
     )?;
     if columns.texcoords.is_some() {
@@ -207,22 +247,33 @@ fn write_columns<W: Write>(
             writeln!(w, "property {t} {c}")?;
         }
     }
+    if columns.quality.is_some() {
+        writeln!(w, "property float quality")?;
+    }
     write!(
         w,
         "element face {}\nproperty list uchar {index_type} vertex_indices\nend_header\n",
         faces.len()
     )?;
-    // The values after x y z of vertex `v`, and whether each is a uchar colour.
-    let extra = |v: usize, out: &mut Vec<(f64, bool)>| {
+    // The values after x y z of vertex `v`, and how each is written.
+    let color = if uchar_colors {
+        Column::Uchar
+    } else {
+        Column::Double
+    };
+    let extra = |v: usize, out: &mut Vec<(f64, Column)>| {
         out.clear();
         if let Some(t) = &columns.texcoords {
-            out.extend(t[v].iter().map(|&x| (x, false)));
+            out.extend(t[v].iter().map(|&x| (x, Column::Double)));
         }
         if let Some(n) = &columns.normals {
-            out.extend(n[v].iter().map(|&x| (x, false)));
+            out.extend(n[v].iter().map(|&x| (x, Column::Double)));
         }
         if let Some(c) = &columns.colors {
-            out.extend(c[v].iter().map(|&x| (x, uchar_colors)));
+            out.extend(c[v].iter().map(|&x| (x, color)));
+        }
+        if let Some(q) = &columns.quality {
+            out.push((q[v][0], Column::Float));
         }
     };
     let mut values = Vec::new();
@@ -231,10 +282,11 @@ fn write_columns<W: Write>(
             for (v, p) in positions.iter().enumerate() {
                 write!(w, "{:?} {:?} {:?}", p.x, p.y, p.z)?;
                 extra(v, &mut values);
-                for &(x, uchar) in &values {
-                    match as_uchar(x).filter(|_| uchar) {
-                        Some(k) => write!(w, " {k}")?,
-                        None => write!(w, " {x:?}")?,
+                for &(x, column) in &values {
+                    match (column, as_uchar(x)) {
+                        (Column::Uchar, Some(k)) => write!(w, " {k}")?,
+                        (Column::Float, _) => write!(w, " {:?}", x as f32)?,
+                        _ => write!(w, " {x:?}")?,
                     }
                 }
                 writeln!(w)?;
@@ -249,12 +301,16 @@ fn write_columns<W: Write>(
             for (v, p) in positions.iter().enumerate() {
                 rec.clear();
                 extra(v, &mut values);
-                let all = p.to_array().map(|x| (x, false));
-                for &(x, uchar) in all.iter().chain(&values) {
-                    match as_uchar(x).filter(|_| uchar) {
-                        Some(k) => rec.push(k),
-                        None if be => rec.extend_from_slice(&x.to_be_bytes()),
-                        None => rec.extend_from_slice(&x.to_le_bytes()),
+                let all = p.to_array().map(|x| (x, Column::Double));
+                for &(x, column) in all.iter().chain(&values) {
+                    match (column, as_uchar(x)) {
+                        (Column::Uchar, Some(k)) => rec.push(k),
+                        (Column::Float, _) if be => {
+                            rec.extend_from_slice(&(x as f32).to_be_bytes());
+                        }
+                        (Column::Float, _) => rec.extend_from_slice(&(x as f32).to_le_bytes()),
+                        _ if be => rec.extend_from_slice(&x.to_be_bytes()),
+                        _ => rec.extend_from_slice(&x.to_le_bytes()),
                     }
                 }
                 w.write_all(&rec)?;

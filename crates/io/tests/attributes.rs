@@ -60,6 +60,7 @@ fn seamed_grid() -> (TriangleSoup, Attributes) {
         texcoords: Some(uv),
         normals: Some(normals),
         colors: Some(colors),
+        quality: None,
     };
     (soup, attributes)
 }
@@ -360,6 +361,7 @@ mod round_trips {
                     values: colours.iter().map(|c| c.map(|k| f64::from(k) / 255.0)).collect(),
                     corners,
                 }),
+                quality: None,
             };
             for format in [Format::Obj, Format::Ply(PlyEncoding::Ascii), Format::Ply(PlyEncoding::BinaryBigEndian)] {
                 let mut bytes = Vec::new();
@@ -372,5 +374,102 @@ mod round_trips {
                 prop_assert_eq!(corner_bits(&back, &again), corner_bits(&soup, &expected));
             }
         }
+    }
+}
+
+/// PLY `quality` round-trips through every encoding, beside colours, with the header comments
+/// written; other formats report it dropped.
+#[test]
+fn quality_round_trips_through_ply_with_comments() {
+    let (soup, mut attributes) = seamed_grid();
+    let corners: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
+    // Values that are floats exactly: written as `float`, read back bit for bit.
+    let values: Vec<[f64; 1]> = (0..soup.num_vertices())
+        .map(|v| [f64::from(0.1f32 * v as f32)])
+        .collect();
+    attributes.quality = Some(Wedges { values, corners });
+    let comments = [
+        "quality: a test value".to_string(),
+        "two\nlines".to_string(),
+    ];
+    for enc in [
+        PlyEncoding::Ascii,
+        PlyEncoding::BinaryLittleEndian,
+        PlyEncoding::BinaryBigEndian,
+    ] {
+        let mut bytes = Vec::new();
+        envelope_io::write_with_comments(
+            &mut bytes,
+            &soup,
+            &attributes,
+            Format::Ply(enc),
+            &comments,
+        )
+        .unwrap();
+        let text = String::from_utf8_lossy(&bytes);
+        let header = &text[..text.find("end_header").unwrap()];
+        assert!(
+            header.contains("comment quality: a test value\n"),
+            "{header}"
+        );
+        assert!(header.contains("comment two lines\n"), "{header}");
+        assert!(header.contains("property float quality\n"), "{header}");
+        let (back, again, _) = read_with_attributes(&bytes[..], Format::Ply(enc)).unwrap();
+        assert_eq!(
+            back.positions.len(),
+            soup.positions.len() + 3,
+            "seam copies"
+        );
+        let q = again.quality.as_ref().expect("quality read back");
+        let orig = attributes.quality.as_ref().unwrap();
+        for f in 0..soup.num_faces() {
+            for k in 0..3 {
+                assert_eq!(
+                    q.value(f, k),
+                    orig.value(f, k),
+                    "{enc:?} face {f} corner {k}"
+                );
+                assert_eq!(
+                    again.colors.as_ref().unwrap().value(f, k),
+                    attributes.colors.as_ref().unwrap().value(f, k)
+                );
+            }
+        }
+    }
+    let only = Attributes {
+        quality: attributes.quality.clone(),
+        ..Attributes::default()
+    };
+    for format in [
+        Format::Obj,
+        Format::Off,
+        Format::from_extension("stl").unwrap(),
+    ] {
+        assert_eq!(format.dropped_attributes(&only), ["quality"]);
+    }
+    assert!(
+        Format::Ply(PlyEncoding::Ascii)
+            .dropped_attributes(&only)
+            .is_empty()
+    );
+}
+
+/// `quality` of any scalar type is read as written.
+#[test]
+fn ply_quality_of_any_type() {
+    for (ty, value, expect) in [
+        ("uchar", "200", 200.0),
+        ("double", "0.1", 0.1),
+        ("int", "-3", -3.0),
+    ] {
+        let ply = format!(
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+             property float z\nproperty {ty} quality\nelement face 1\n\
+             property list uchar int vertex_indices\nend_header\n\
+             0 0 0 {value}\n1 0 0 {value}\n0 1 0 {value}\n3 0 1 2\n"
+        );
+        let (_, a, _) =
+            read_with_attributes(ply.as_bytes(), Format::Ply(PlyEncoding::Ascii)).unwrap();
+        assert_eq!(a.quality.unwrap().value(0, 2), [expect], "{ty}");
     }
 }

@@ -1,5 +1,5 @@
-//! [`Attributes`]: per-corner (wedge) texture coordinates, normals and colours beside a
-//! [`crate::TriangleSoup`].
+//! [`Attributes`]: per-corner (wedge) texture coordinates, normals, colours and a scalar
+//! quality beside a [`crate::TriangleSoup`].
 //!
 //! Each attribute is stored the way OBJ stores it: a table of distinct values and, per face,
 //! the value index of each of its three corners ([`Wedges`]). A vertex whose faces give it
@@ -56,13 +56,20 @@ pub struct Attributes {
     /// Colours as RGBA in `0..=1` (PLY `red green blue [alpha]`, glTF `COLOR_0`; alpha 1
     /// where the file has none).
     pub colors: Option<Wedges<4>>,
+    /// A per-vertex scalar (PLY `quality`), such as the certified distance bound of an error
+    /// map (`envelope verify --map`). It is derived from the mesh it describes, so commands
+    /// that change the surface drop it rather than carry it.
+    pub quality: Option<Wedges<1>>,
 }
 
 impl Attributes {
     /// Whether no attribute is present.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.texcoords.is_none() && self.normals.is_none() && self.colors.is_none()
+        self.texcoords.is_none()
+            && self.normals.is_none()
+            && self.colors.is_none()
+            && self.quality.is_none()
     }
 
     /// Whether every present attribute [`Wedges::is_valid_for`] a soup of `faces` faces.
@@ -73,5 +80,6 @@ impl Attributes {
             .is_none_or(|w| w.is_valid_for(faces))
             && self.normals.as_ref().is_none_or(|w| w.is_valid_for(faces))
             && self.colors.as_ref().is_none_or(|w| w.is_valid_for(faces))
+            && self.quality.as_ref().is_none_or(|w| w.is_valid_for(faces))
     }
 }

@@ -33,6 +33,17 @@
 //!   distance is 0, proved without any predicate (simplifiers keep many input triangles).
 //!   Only bit equality is used, so `-0.0` against `0.0` merely misses the shortcut.
 //!
+//! * **Per-face bounds** (the error map, only when asked). A face's upper bound is the
+//!   largest bound of the pieces that settled it: each proved piece's certified value (the
+//!   exact close calls and cuts give `eps` itself), `0` for a shared triangle, and, for the
+//!   pieces left when the face has a witness or runs out of budget, a certified bound without
+//!   further subdivision. Its lower bound is the certified distance of the face's farthest
+//!   exact corner candidate (or its witness). Refinement stops as soon as a piece is proved
+//!   within `eps`, so the upper bound is just below `eps` wherever some piece needed
+//!   subdividing; `Search::tighten` then decides the face again at tolerances between its
+//!   bounds (bisection, a few rounds): a proof lowers the upper bound, a witness raises the
+//!   lower one, each by the same exact machinery. All of it is spent only when asked.
+//!
 //! Speed without changing what is proved: faces are processed in fixed chunks, each chunk
 //! sequentially, so the nearest-triangle search of a face starts from the triangle found for
 //! the previous face (spatial coherence prunes the BVH descent; the search result is only an
@@ -50,7 +61,7 @@ use crate::numeric::{
     orient3d_with_bound, rational, rpoint, sq_dist_exact, sqrt_down, sqrt_up, square_down,
     square_up, sub,
 };
-use crate::{OneSided, Verdict, Witness};
+use crate::{FaceBound, OneSided, Verdict, Witness};
 
 /// Subdivision depth limit (barycentric numerators stay in `u64`).
 const MAX_LEVEL: u32 = 60;
@@ -971,14 +982,72 @@ impl Summary {
     }
 }
 
+/// The certified bounds of one face from its result (see the module docs).
+fn face_bound(search: &Search<'_>, face: FaceId, tri: [DVec3; 3], r: &FaceResult) -> FaceBound {
+    let target = search.target;
+    let mut lower = r
+        .lower_candidate
+        .map_or(0.0, |(_, p)| target.certified_lower(p));
+    if let Some(w) = &r.witness {
+        lower = lower.max(w.distance);
+    }
+    let mut upper = r.upper;
+    search.tighten(face, tri, &mut lower, &mut upper);
+    FaceBound { lower, upper }
+}
+
+/// Bisection rounds of [`Search::tighten`].
+const MAP_ROUNDS: u32 = 3;
+
+impl Search<'_> {
+    /// For the error map only: narrows a face's certified `[lower, upper]` (`upper` at most
+    /// `eps`) by deciding the same face again at tolerances between them, with the same
+    /// proofs and witnesses: a proof at `e` makes its bound (at most `e`) the new upper
+    /// bound, a witness its distance (more than `e`) the new lower bound. At most
+    /// [`MAP_ROUNDS`] rounds, each with the first pass's budget; stops when the bounds are
+    /// within a quarter of each other (plus `eps / 256`), or at an undecided round.
+    fn tighten(&self, face: FaceId, tri: [DVec3; 3], lower: &mut f64, upper: &mut f64) {
+        if !(*upper > 0.0 && *upper <= self.tol.eps) {
+            return;
+        }
+        let floor = self.tol.eps * 2f64.powi(-8);
+        for _ in 0..MAP_ROUNDS {
+            if *upper <= 1.25 * *lower + floor {
+                return;
+            }
+            let e = 0.5 * (*lower + *upper);
+            if !(e > 0.0 && e < *upper) {
+                return;
+            }
+            let tol = Tolerance::new(e, self.tol.resolution);
+            let search = Search {
+                target: self.target,
+                tol: &tol,
+                tiny_budget: FIRST_PASS_TINY,
+            };
+            let r = search.face(face, tri, &mut Scratch::default());
+            match &r.witness {
+                Some(w) => *lower = lower.max(w.distance),
+                None if !r.undecided => *upper = upper.min(r.upper),
+                None => return,
+            }
+        }
+    }
+}
+
+/// A face's index and its bounds.
+type IndexedBound = (usize, FaceBound);
+
 /// Decides whether every point of the triangles `faces` of `positions` lies within `eps` of
-/// `target`, with a certified interval for the one-sided Hausdorff distance.
+/// `target`, with a certified interval for the one-sided Hausdorff distance; with
+/// `per_face`, also the certified bounds of each face (in face order).
 pub(crate) fn one_sided(
     positions: &[DVec3],
     faces: &[[u32; 3]],
     target: &Target,
     tol: &Tolerance,
-) -> OneSided {
+    per_face: bool,
+) -> (OneSided, Option<Vec<FaceBound>>) {
     // Two passes, so that a violated direction does not spend the full budget on faces
     // that stay undecided (ties along curves; fuzzed meshes of degenerate triangles took
     // seconds): the first pass gives each face a small budget and sets aside the faces it
@@ -990,13 +1059,14 @@ pub(crate) fn one_sided(
         tol,
         tiny_budget: FIRST_PASS_TINY,
     };
-    let (mut sum, deferred) = faces
+    let (mut sum, deferred, mut bounds) = faces
         .par_chunks(CHUNK)
         .enumerate()
         .map(|(c, chunk)| {
             let mut scratch = Scratch::default();
             let mut sum = Summary::default();
             let mut deferred = Vec::new();
+            let mut bounds: Vec<IndexedBound> = Vec::new();
             for (k, f) in chunk.iter().enumerate() {
                 let tri = f.map(|v| positions[v as usize]);
                 let index = c * CHUNK + k;
@@ -1004,20 +1074,34 @@ pub(crate) fn one_sided(
                 if r.undecided && r.witness.is_none() {
                     deferred.push((index, r));
                 } else {
+                    if per_face {
+                        bounds.push((
+                            index,
+                            face_bound(&first, FaceId::from_index(index), tri, &r),
+                        ));
+                    }
                     sum.add(r);
                 }
             }
-            (sum, deferred)
+            (sum, deferred, bounds)
         })
         .reduce(
-            || (Summary::default(), Vec::new()),
-            |(a, mut da), (b, db)| {
+            || (Summary::default(), Vec::new(), Vec::new()),
+            |(a, mut da, mut ba), (b, db, bb)| {
                 da.extend(db);
-                (a.merge(b), da)
+                ba.extend(bb);
+                (a.merge(b), da, ba)
             },
         );
     if sum.witness.is_some() {
-        for (_, r) in deferred {
+        for (index, r) in deferred {
+            if per_face {
+                let tri = faces[index].map(|v| positions[v as usize]);
+                bounds.push((
+                    index,
+                    face_bound(&first, FaceId::from_index(index), tri, &r),
+                ));
+            }
             sum.add(r);
         }
     } else if !deferred.is_empty() {
@@ -1026,17 +1110,31 @@ pub(crate) fn one_sided(
             tol,
             tiny_budget: MAX_FACE_TINY,
         };
-        let again = deferred
+        let (again, again_bounds) = deferred
             .par_iter()
-            .map(|&(index, _)| {
-                let f = faces[index];
+            .map(|(index, first_result)| {
+                let f = faces[*index];
                 let tri = f.map(|v| positions[v as usize]);
+                let r = full.face(FaceId::from_index(*index), tri, &mut Scratch::default());
+                let bound = per_face.then(|| {
+                    let b = face_bound(&full, FaceId::from_index(*index), tri, &r);
+                    // Both passes' upper bounds are certified: the smaller holds.
+                    let upper = b.upper.min(first_result.upper);
+                    vec![(*index, FaceBound { upper, ..b })]
+                });
                 let mut s = Summary::default();
-                s.add(full.face(FaceId::from_index(index), tri, &mut Scratch::default()));
-                s
+                s.add(r);
+                (s, bound.unwrap_or_default())
             })
-            .reduce(Summary::default, Summary::merge);
+            .reduce(
+                || (Summary::default(), Vec::new()),
+                |(a, mut ba), (b, bb)| {
+                    ba.extend(bb);
+                    (a.merge(b), ba)
+                },
+            );
         sum = sum.merge(again);
+        bounds.extend(again_bounds);
         // Every sub-triangle examined counts, the first pass's included.
         sum.subdivisions += deferred.iter().map(|(_, r)| r.subdivisions).sum::<u64>();
     }
@@ -1067,14 +1165,30 @@ pub(crate) fn one_sided(
     } else {
         Verdict::Holds
     };
-    OneSided {
+    let per_face = per_face.then(|| {
+        // Every face is in `bounds` exactly once: settled in the first pass, or deferred and
+        // then settled by one of the two branches above.
+        let mut out = vec![
+            FaceBound {
+                lower: 0.0,
+                upper: f64::INFINITY,
+            };
+            faces.len()
+        ];
+        for (index, b) in bounds {
+            out[index] = b;
+        }
+        out
+    });
+    let one = OneSided {
         verdict,
         lower,
         upper,
         witness,
         undecided_regions: undecided,
         subdivisions,
-    }
+    };
+    (one, per_face)
 }
 
 /// A plane through three points, exactly: `side(q)` is the sign-carrying determinant.

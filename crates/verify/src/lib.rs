@@ -10,7 +10,9 @@
 //!   the bounds meet within `resolution` of `epsilon`), with a certified interval
 //!   `[lower, upper]` for the one-sided Hausdorff distance;
 //! * the intersecting face pairs of `approx` (exact, adjacency-aware);
-//! * genus, components and border loops of both meshes, and whether they match.
+//! * genus, components and border loops of both meshes, and whether they match;
+//! * on request ([`Options::map`]), an [`ErrorMap`]: certified bounds per face, both ways,
+//!   and per vertex of `approx`.
 //!
 //! How the distance is certified (branch and bound, exact cover of each triangle by rounded
 //! sub-triangles with proved error bounds, exact witnesses, exact comparison with `epsilon²`)
@@ -33,6 +35,45 @@
 //! assert_eq!(far.verdict, Verdict::Violated);
 //! let w = far.approx_to_orig.witness.as_ref().unwrap();
 //! assert!(w.exact_f64 && w.point == approx.positions[0] && w.distance > 0.0099);
+//! ```
+//!
+//! # Error maps
+//!
+//! With [`Options::map`], [`Certificate::map`] holds the bounds the branch and bound already
+//! proved for each face, not a second estimate: a face's upper bound is the largest certified
+//! bound of the sub-triangles (or cut pieces) that settled it, its lower bound the certified
+//! distance of one exact point of it. A vertex of `approx` gets the largest upper bound of its
+//! faces, so it bounds the distance of the whole surface around it, not only of the vertex
+//! (the farthest point may lie inside a face). What this guarantees:
+//!
+//! * every value is a proved upper bound of the distance of its face (or of the faces around
+//!   its vertex) to the other mesh;
+//! * where a direction holds, every value of that direction is at most `epsilon`;
+//! * the largest vertex value is at least the proved lower bound `approx_to_orig.lower`
+//!   (the farthest face's bound covers the farthest point).
+//!
+//! The branch and bound stops refining once a piece is proved within `epsilon`, which leaves
+//! a face's bound just below `epsilon` wherever it had to subdivide; for the map, each face
+//! within `epsilon` is then decided again at tolerances between its lower and upper bounds
+//! (three bisection rounds at most, stopping once they are within a quarter of each other):
+//! a proof lowers its upper bound, an exact witness raises its lower bound. Bounds can stay
+//! apart (an undecided round, a tie at `epsilon`). Without [`Options::map`] none of this is
+//! computed; with it, verification takes a few times longer.
+//!
+//! ```
+//! use envelope_mesh::generate::icosphere;
+//! use envelope_verify::{certify, Options};
+//!
+//! let orig = icosphere(2, 1.0);
+//! let mut approx = orig.clone();
+//! approx.positions[0] *= 1.01;
+//! let c = certify(&orig, &approx, &Options { map: true, ..Options::new(0.02) });
+//! let map = c.map.as_ref().unwrap();
+//! assert_eq!(map.approx_faces.len(), approx.faces.len());
+//! // The moved vertex carries the largest bound, at least the 0.01 it moved.
+//! let worst = map.approx_vertices.iter().copied().fold(0.0, f64::max);
+//! assert_eq!(map.approx_vertices[0], worst);
+//! assert!(worst >= 0.01 * (1.0 - 1e-9) && worst <= 0.02);
 //! ```
 #![forbid(unsafe_code)]
 
@@ -71,6 +112,10 @@ pub struct Options {
     /// [`Certificate::kept_intersections`] and is no violation; any other pair is. For a simplifier that keeps the faces around an input's
     /// self-intersections unchanged: such a pair meets exactly as it did in `orig`.
     pub allow_input_intersections: bool,
+    /// Keep the certified bounds of every face, both ways, and of every vertex of `approx`
+    /// ([`Certificate::map`], see [Error maps](crate#error-maps)). Off by default: it
+    /// decides each face again at up to three tighter tolerances.
+    pub map: bool,
 }
 
 impl Options {
@@ -85,6 +130,7 @@ impl Options {
             topology: true,
             orig_to_approx: true,
             allow_input_intersections: false,
+            map: false,
         }
     }
 
@@ -169,6 +215,57 @@ pub struct OneSided {
     pub subdivisions: u64,
 }
 
+/// Certified bounds of the distance of one face (every point of it) to the other mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FaceBound {
+    /// Proved lower bound (the distance of one exact point of the face; 0 when none was
+    /// certified).
+    pub lower: f64,
+    /// Proved upper bound of the largest distance of a point of the face (infinite only when
+    /// no bound could be certified, or for a face whose corners are not vertices).
+    pub upper: f64,
+}
+
+/// Certified distance bounds per face, both ways, and per vertex of `approx` (see
+/// [Error maps](crate#error-maps)).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErrorMap {
+    /// Per face of `approx`, in face order: the bounds of its distance to `orig`.
+    pub approx_faces: Vec<FaceBound>,
+    /// Per face of `orig`, in face order: the bounds of its distance to `approx` (`None`
+    /// when `orig -> approx` was not checked).
+    pub orig_faces: Option<Vec<FaceBound>>,
+    /// Per vertex of `approx`: the largest upper bound of the faces around it, which bounds
+    /// the distance to `orig` of every point of those faces (0 for a vertex on no face).
+    pub approx_vertices: Vec<f64>,
+}
+
+impl ErrorMap {
+    /// The largest vertex value (0 for a mesh without vertices).
+    #[must_use]
+    pub fn max_vertex_value(&self) -> f64 {
+        self.approx_vertices.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// The map's JSON: per-face `upper` and `lower` arrays both ways, per-vertex values
+    /// (`null` for an infinite bound).
+    #[must_use]
+    pub fn to_json(&self) -> Value {
+        let num = |x: f64| if x.is_finite() { json!(x) } else { Value::Null };
+        let faces = |b: &[FaceBound]| {
+            json!({
+                "upper": b.iter().map(|f| num(f.upper)).collect::<Vec<_>>(),
+                "lower": b.iter().map(|f| num(f.lower)).collect::<Vec<_>>(),
+            })
+        };
+        json!({
+            "approx_faces": faces(&self.approx_faces),
+            "orig_faces": self.orig_faces.as_deref().map(faces),
+            "approx_vertices": self.approx_vertices.iter().map(|&x| num(x)).collect::<Vec<_>>(),
+        })
+    }
+}
+
 /// Topology numbers of one mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TopologySummary {
@@ -251,6 +348,8 @@ pub struct Certificate {
     pub kept_intersections: Vec<(FaceId, FaceId)>,
     /// Topology of both, when asked.
     pub topology: Option<TopologyCheck>,
+    /// Per-face and per-vertex bounds, when asked ([`Options::map`]).
+    pub map: Option<ErrorMap>,
 }
 
 impl OneSided {
@@ -340,7 +439,7 @@ impl Certificate {
             })
         };
         let topo = |t: &TopologySummary| json!({ "genus": t.genus, "components": t.components, "border_loops": t.border_loops });
-        json!({
+        let mut out = json!({
             "verdict": self.verdict.as_str(),
             "violations": self.violations(),
             "epsilon": self.epsilon,
@@ -371,7 +470,11 @@ impl Certificate {
                 "approx": topo(&t.approx),
                 "matches": t.matches(),
             })),
-        })
+        });
+        if let Some(map) = &self.map {
+            out["map"] = map.to_json();
+        }
+        out
     }
 }
 
@@ -382,6 +485,39 @@ fn raw_faces(soup: &TriangleSoup) -> Vec<[u32; 3]> {
         .map(|f| f.map(|v| v.0))
         .filter(|f| f.iter().all(|&v| (v as usize) < n))
         .collect()
+}
+
+/// Bounds per face of `soup` from bounds per face of [`raw_faces`] (a face naming a missing
+/// vertex was not measured: `[0, inf]`).
+fn per_soup_face(soup: &TriangleSoup, raw: Vec<FaceBound>) -> Vec<FaceBound> {
+    let n = soup.positions.len();
+    if raw.len() == soup.faces.len() {
+        return raw;
+    }
+    let mut raw = raw.into_iter();
+    soup.faces
+        .iter()
+        .map(|f| {
+            let measured = f.iter().all(|v| v.index() < n);
+            measured.then(|| raw.next()).flatten().unwrap_or(FaceBound {
+                lower: 0.0,
+                upper: f64::INFINITY,
+            })
+        })
+        .collect()
+}
+
+/// Per vertex, the largest upper bound of the faces around it (0 on no face).
+fn vertex_values(soup: &TriangleSoup, faces: &[FaceBound]) -> Vec<f64> {
+    let mut out = vec![0.0f64; soup.positions.len()];
+    for (f, b) in soup.faces.iter().zip(faces) {
+        for v in f {
+            if let Some(x) = out.get_mut(v.index()) {
+                *x = x.max(b.upper);
+            }
+        }
+    }
+    out
 }
 
 /// One intersecting pair of faces `(i, j)`, `i < j`, or `None` when the faces do not intersect
@@ -501,7 +637,7 @@ pub fn one_sided(
     );
     let target = hausdorff::Target::new(&to.positions, &raw_faces(to));
     let tol = hausdorff::Tolerance::new(epsilon, resolution.max(0.0));
-    hausdorff::one_sided(&from.positions, &raw_faces(from), &target, &tol)
+    hausdorff::one_sided(&from.positions, &raw_faces(from), &target, &tol, false).0
 }
 
 /// Certifies `approx` against `orig`: two-sided Hausdorff distance at most `epsilon`,
@@ -536,14 +672,18 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
                 .then(|| hausdorff::Target::new(&approx.positions, &af))
         },
     );
-    let ((approx_to_orig, orig_to_approx), (self_intersections, topology)) = rayon::join(
+    let (
+        ((approx_to_orig, approx_faces), (orig_to_approx, orig_faces)),
+        (self_intersections, topology),
+    ) = rayon::join(
         || {
-            let forward = || hausdorff::one_sided(&approx.positions, &af, &to_orig, &tol);
+            let forward =
+                || hausdorff::one_sided(&approx.positions, &af, &to_orig, &tol, options.map);
             match to_approx.as_ref().filter(|_| options.orig_to_approx) {
                 Some(back) => rayon::join(forward, || {
-                    hausdorff::one_sided(&orig.positions, &of, back, &tol)
+                    hausdorff::one_sided(&orig.positions, &of, back, &tol, options.map)
                 }),
-                None => (forward(), OneSided::unchecked()),
+                None => (forward(), (OneSided::unchecked(), None)),
             }
         },
         || {
@@ -603,6 +743,14 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
         }
         other => (other, Vec::new()),
     };
+    let map = approx_faces.map(|faces| {
+        let approx_faces = per_soup_face(approx, faces);
+        ErrorMap {
+            approx_vertices: vertex_values(approx, &approx_faces),
+            approx_faces,
+            orig_faces: orig_faces.map(|faces| per_soup_face(orig, faces)),
+        }
+    });
     let mut c = Certificate {
         verdict: Verdict::Holds,
         epsilon: eps,
@@ -616,6 +764,7 @@ pub fn certify(orig: &TriangleSoup, approx: &TriangleSoup, options: &Options) ->
         self_intersections_undecided: undecided,
         kept_intersections,
         topology,
+        map,
     };
     c.verdict = if !c.violations().is_empty() {
         Verdict::Violated
