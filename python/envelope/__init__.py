@@ -160,12 +160,16 @@ def simplify(
     )
 
 
-def verify(v0: Any, f0: Any, v1: Any, f1: Any, epsilon: Epsilon) -> Certificate:
+def verify(
+    v0: Any, f0: Any, v1: Any, f1: Any, epsilon: Epsilon, *, map: bool = False
+) -> Certificate:
     """Certify ``(v1, f1)`` against ``(v0, f0)``, whoever made it.
 
     Every point of each within ``epsilon`` of the other (exact branch and bound, both
     ways), no self-intersection of ``(v1, f1)``, the same genus, components and border
-    loops. A relative epsilon is a part of the original's diagonal.
+    loops. A relative epsilon is a part of the original's diagonal. With ``map=True`` the
+    certificate's ``error_map`` gives certified per-face bounds both ways and a per-vertex
+    bound of ``(v1, f1)`` (what ``envelope verify --map`` writes).
 
     >>> import envelope
     >>> v, f = envelope.demo()
@@ -175,7 +179,7 @@ def verify(v0: Any, f0: Any, v1: Any, f1: Any, epsilon: Epsilon) -> Certificate:
     >>> envelope.verify(v, f, moved, f, "0.1%").violations[0]
     'approx_to_orig'
     """
-    return _envelope.verify(v0, f0, v1, f1, epsilon)
+    return _envelope.verify(v0, f0, v1, f1, epsilon, map=map)
 
 
 def check(vertices: Any, faces: Any) -> CheckReport:

@@ -58,3 +58,21 @@ def test_check_finds_a_flipped_face(sphere):
     assert not r.acceptable
     assert "inconsistent_orientation" in r.problems
     assert r.degeneracies["inconsistent_orientation"]["severity"] == "error"
+
+
+def test_verify_error_map(cup, simplified_cup):
+    out = simplified_cup
+    c = envelope.verify(*cup, out.vertices, out.faces, "1%", map=True)
+    assert c.holds
+    m = c.error_map
+    assert len(m["approx_faces"]["upper"]) == len(out.faces)
+    assert len(m["orig_faces"]["upper"]) == len(cup[1])
+    assert len(m["approx_vertices"]) == len(out.vertices)
+    # Each bound at most epsilon where the certificate holds; the worst vertex at least the
+    # certificate's lower bound (a vertex bounds the faces around it).
+    assert all(u <= c.epsilon for u in m["approx_faces"]["upper"])
+    assert all(u <= c.epsilon for u in m["orig_faces"]["upper"])
+    assert max(m["approx_vertices"]) >= c.approx_to_orig.lower
+    lower, upper = m["approx_faces"]["lower"], m["approx_faces"]["upper"]
+    assert all(lo <= up for lo, up in zip(lower, upper))
+    assert envelope.verify(*cup, out.vertices, out.faces, "1%").error_map is None

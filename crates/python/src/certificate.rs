@@ -159,6 +159,16 @@ impl Certificate {
         }
     }
 
+    /// The error map (`verify(..., map=True)`, else `None`): a dict with, per face of the
+    /// approximation, the certified `upper` and `lower` bounds of its distance to the
+    /// original, the same per face of the original, and per vertex of the approximation the
+    /// largest upper bound of its faces (`None` for an unbounded value), as the command
+    /// line's JSON `map`.
+    #[getter]
+    fn error_map<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        json(py, &self.json["map"])
+    }
+
     /// Genus, components and border loops of both meshes and whether they match (a dict
     /// with `orig`, `approx`, `matches`; `None` when not checked).
     #[getter]

@@ -11,9 +11,9 @@ use crate::errors::from_error;
 use crate::options;
 
 /// Certifies `(v1, f1)` against `(v0, f0)`; a relative epsilon is a part of the original's
-/// diagonal.
+/// diagonal. With `map`, the certificate carries the error map (`envelope verify --map`).
 #[pyfunction]
-#[pyo3(signature = (v0, f0, v1, f1, epsilon))]
+#[pyo3(signature = (v0, f0, v1, f1, epsilon, *, map=false))]
 pub(crate) fn verify(
     py: Python<'_>,
     v0: &Bound<'_, PyAny>,
@@ -21,12 +21,19 @@ pub(crate) fn verify(
     v1: &Bound<'_, PyAny>,
     f1: &Bound<'_, PyAny>,
     epsilon: &Bound<'_, PyAny>,
+    map: bool,
 ) -> PyResult<Certificate> {
     let epsilon = options::epsilon(epsilon)?;
     let orig = arrays::mesh(v0, f0, Some("v0, f0"))?;
     let approx = arrays::mesh(v1, f1, Some("v1, f1"))?;
     let certificate = py
-        .detach(|| envelope::verify(&orig, &approx, epsilon))
+        .detach(|| {
+            if map {
+                envelope::verify_with_map(&orig, &approx, epsilon)
+            } else {
+                envelope::verify(&orig, &approx, epsilon)
+            }
+        })
         .map_err(from_error)?;
     Certificate::new(py, &certificate)
 }
