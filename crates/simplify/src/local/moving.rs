@@ -14,6 +14,7 @@ use crate::filter::Filter;
 use crate::rules::{Fifo, Rejection, Visitor};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
 use envelope_predicates::bvh::Aabb;
+use glam::DVec3;
 
 /// The phase after the subset run ([`Placement::Slide`], [`Placement::Collapse`]): every
 /// live vertex in id order, first in first out: the plain removal, else the slide of
@@ -55,6 +56,7 @@ pub(super) fn moving_phase(
         fibers,
         collapse: policies.collapse,
     };
+    let mut boxes = MovingBoxes::default();
     loop {
         if visitor.cancelled() {
             return Err(SimplifyError::Cancelled);
@@ -65,7 +67,7 @@ pub(super) fn moving_phase(
             independent_batch(
                 &mut queue,
                 local.mesh(),
-                |m, v| moving_box(m, v, fibers),
+                |m, v| boxes.get(m, v, fibers),
                 |_| false,
             )
             .into_iter()
@@ -84,7 +86,9 @@ pub(super) fn moving_phase(
             plan_each(
                 &jobs,
                 |_| false,
-                |_| 0,
+                // A guess at the cost, for the threads' balance only: the plain removal's
+                // filling, then the collapses' fans, grow with the valence.
+                |&(v, plain)| (1 + usize::from(plain)) * local.mesh().valence(v),
                 |&(v, plain)| local.plan_stuck(v, plain, &ways),
                 || false,
             )
@@ -106,6 +110,8 @@ pub(super) fn moving_phase(
                     stats.slid += usize::from(way == Way::Slid);
                     stats.collapsed += usize::from(way == Way::Collapsed);
                     visitor.on_removed(v, &removal.faces);
+                    debug_assert!(moved.iter().all(|u| removal.hole.vertices.contains(u)));
+                    boxes.forget_around(local.mesh(), v, &removal.hole.vertices);
                     let around = moved.iter().flat_map(|&u| local.mesh().vertex_neighbors(u));
                     let again: Vec<VertexId> = removal
                         .hole
@@ -152,14 +158,57 @@ enum Way {
 /// The box of `v`'s two-ring and of its neighbours' fibers: every face that a slide or a
 /// collapse of `v` reads or changes lies in it, when the slid and collapsed positions do.
 fn moving_box(m: &HalfEdgeMesh, v: VertexId, fibers: Option<&VertexFibers<'_>>) -> Aabb {
-    let mut points = vec![m.position(v)];
+    let grow = |b: Aabb, p: DVec3| Aabb {
+        min: b.min.min(p),
+        max: b.max.max(p),
+    };
+    // The points in a fixed order, one at a time (no list): the same box, bit for bit.
+    let mut b = grow(Aabb::EMPTY, m.position(v));
     for u in m.vertex_neighbors(v) {
-        points.extend(m.vertex_neighbors(u).map(|x| m.position(x)));
+        b = m.vertex_neighbors(u).fold(b, |b, x| grow(b, m.position(x)));
         if let Some((a, d)) = fibers.and_then(|f| f.segment(u)) {
-            points.extend([a, a + d]);
+            b = grow(grow(b, a), a + d);
         }
     }
-    Aabb::from_points(&points)
+    b
+}
+
+/// The [`moving_box`]es of the moving phase, kept while the two-ring stays: the batches
+/// look at a vertex again each time it is skipped. A removal changes the box of a vertex
+/// only within two rings of its hole (the hole's vertices gain and lose neighbours, and
+/// the moved vertices are on the hole), which [`MovingBoxes::forget_around`] forgets.
+#[derive(Default)]
+struct MovingBoxes(Vec<Option<Aabb>>);
+
+impl MovingBoxes {
+    fn get(&mut self, m: &HalfEdgeMesh, v: VertexId, fibers: Option<&VertexFibers<'_>>) -> Aabb {
+        let i = v.index();
+        if self.0.len() <= i {
+            self.0.resize(i + 1, None);
+        }
+        let b = *self.0[i].get_or_insert_with(|| moving_box(m, v, fibers));
+        debug_assert_eq!(b, moving_box(m, v, fibers), "stale moving box of {v}");
+        b
+    }
+
+    /// Forgets the removed vertex and every vertex within two rings of `hole` (the mesh
+    /// after the removal: the edges of a path from a vertex to the hole outside the removed
+    /// vertex's star all stay).
+    fn forget_around(&mut self, m: &HalfEdgeMesh, removed: VertexId, hole: &[VertexId]) {
+        let mut forget = |x: VertexId| {
+            if let Some(b) = self.0.get_mut(x.index()) {
+                *b = None;
+            }
+        };
+        forget(removed);
+        for &h in hole.iter().filter(|&&h| m.contains_vertex(h)) {
+            forget(h);
+            for u in m.vertex_neighbors(h) {
+                forget(u);
+                m.vertex_neighbors(u).for_each(&mut forget);
+            }
+        }
+    }
 }
 
 impl LocalSimplifier<'_> {
