@@ -11,10 +11,12 @@
 //! they started from carry that vertex's index (`alias`) so that the untouched envelope is
 //! "adjacent", not "intersecting", to the input.
 //!
-//! Candidates: each mover queries the BVH once, with the union of its star faces' swept
-//! boxes, and keeps the sorted list (freed when the mover is done). Every position a scene
-//! face can take lies in its swept box, so the list holds every face the star can ever
-//! meet; each check filters it by the current boxes. Before an exact test, a pair is
+//! Candidates: every position a scene face can take lies in its swept box, so each check
+//! queries the tree of swept boxes with the box of the star at the proposed positions and
+//! filters what it finds by the current boxes. (A list per mover of every face its star
+//! could ever reach grows with (epsilon / edge length)^2 and made the growth quadratic on
+//! fine meshes at large epsilon.) A mover's sweep starts where the mover starts (its proved
+//! start offset), since it never moves back. Before an exact test, a pair is
 //! skipped only when f64 arithmetic with a rigorous error bound proves it apart: the
 //! unshared vertices of one triangle strictly on one side of the other's plane, or the
 //! separating-axis test on the nine edge-cross-edge directions (strictly disjoint
@@ -43,9 +45,8 @@ pub(crate) struct Scene<'a> {
     /// Index used for adjacency (an unmoved vertex aliases the input vertex it sits on).
     pub(crate) alias: Vec<u32>,
     pub(crate) faces: Vec<[u32; 3]>,
-    /// The swept box of every face: every position it can take while the movers move.
-    pub(crate) swept: Vec<Aabb>,
-    /// Over `swept[fixed.1..]` (item `i` is face `fixed.1 + i`), or over the faces
+    /// Over the swept boxes (every position a face can take while the movers move) of the
+    /// faces `fixed.1..` (item `i` is face `fixed.1 + i`), or over the faces
     /// `only` names (item `i` is face `only[i]`).
     pub(crate) bvh: Bvh,
     /// The faces in `bvh` when not all of them ([`Scene::around`]), increasing.
@@ -92,7 +93,6 @@ impl<'a> Scene<'a> {
             positions,
             alias,
             faces,
-            swept,
             exempt,
             boxes: Vec::new(),
         };
@@ -130,7 +130,6 @@ impl<'a> Scene<'a> {
             positions,
             alias,
             faces,
-            swept,
             exempt,
             boxes: Vec::new(),
         };
@@ -169,9 +168,6 @@ pub(crate) struct Mover {
     pub(crate) steps: u32,
     pub(crate) halvings: u32,
     pub(crate) done: bool,
-    /// Scene faces whose swept box overlaps the swept box of the star (filled by [`grow`],
-    /// freed when the mover is done): a superset of every face the star can meet.
-    pub(crate) cands: Vec<u32>,
 }
 
 impl Mover {
@@ -187,33 +183,6 @@ impl Mover {
 /// Exact, adjacency-aware: closed triangles `t1`, `t2` with (aliased) indices `f`, `g` meet
 /// away from what they share.
 pub(crate) use envelope_predicates::indexed_triangles_intersect as tris_intersect;
-
-/// The faces whose swept box overlaps the swept box of `m`'s star, sorted: every face the
-/// star can meet at any parameter, since every position of every face lies in its swept box.
-fn candidates(scene: &Scene<'_>, m: &Mover) -> Vec<u32> {
-    let reach = reach(&scene.swept, m);
-    if let Some(only) = &scene.only {
-        debug_assert!(scene.fixed.is_none());
-        // Increasing items of an increasing list: still sorted.
-        return scene
-            .bvh
-            .overlapping(&reach)
-            .into_iter()
-            .map(|i| only[i as usize])
-            .collect();
-    }
-    let mut c = match scene.fixed {
-        Some((tree, n)) => {
-            let mut c = tree.overlapping(&reach);
-            debug_assert!(c.iter().all(|&i| i < n));
-            c.extend(scene.bvh.overlapping(&reach).into_iter().map(|i| i + n));
-            c
-        }
-        None => scene.bvh.overlapping(&reach),
-    };
-    c.shrink_to_fit();
-    c
-}
 
 /// The union of the swept boxes of `m`'s star: where the star can be at any parameter.
 pub(crate) fn reach(swept: &[Aabb], m: &Mover) -> Aabb {
@@ -248,14 +217,15 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
         })
         .collect();
     let all = star.iter().fold(Aabb::EMPTY, |b, s| b.union(&s.3));
-    // `m.star` and `m.cands` are both sorted: walk them together to tell star faces (at the
-    // proposed positions) from the others (at the scene's, whose boxes are kept).
-    let mut next_star = 0;
-    for &g in &m.cands {
-        while next_star < m.star.len() && m.star[next_star] < g {
-            next_star += 1;
+    // Every face the star can meet now has its current box (or, in the star, its proposed
+    // one) inside its swept box, so it is among the faces whose swept box overlaps `all`:
+    // the trees answer that directly, without a walk over everything the star could reach.
+    let mut clear = true;
+    let mut visit = |g: u32| {
+        if !clear {
+            return;
         }
-        let g_in_star = m.star.get(next_star) == Some(&g);
+        let g_in_star = m.star.binary_search(&g).is_ok();
         let gv = scene.faces[g as usize];
         // A star face is at the proposed positions; any other face's box is the kept one.
         let bg = if g_in_star {
@@ -264,7 +234,7 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
             scene.boxes[g as usize]
         };
         if !bg.overlaps(&all) {
-            continue;
+            return;
         }
         let tg = gv.map(pos);
         let ag = gv.map(alias);
@@ -283,11 +253,22 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
                 continue;
             }
             if tris_intersect(pf.t, af, tg, ag) {
-                return false;
+                clear = false;
+                return;
             }
         }
+    };
+    match (&scene.only, scene.fixed) {
+        (Some(only), _) => scene
+            .bvh
+            .for_each_overlapping(&all, |i| visit(only[i as usize])),
+        (None, Some((tree, n))) => {
+            tree.for_each_overlapping(&all, &mut visit);
+            scene.bvh.for_each_overlapping(&all, |i| visit(i + n));
+        }
+        (None, None) => scene.bvh.for_each_overlapping(&all, visit),
     }
-    true
+    clear
 }
 
 fn commit(scene: &mut Scene<'_>, m: &mut Mover, t: f64, policy: StepPolicy) {
@@ -319,7 +300,6 @@ fn reject(m: &mut Mover, policy: StepPolicy) {
 
 fn finish(m: &mut Mover) {
     m.done = true;
-    m.cands = Vec::new();
 }
 
 /// Batches of movers: by group, then greedy colour such that no two movers of a batch have
@@ -398,10 +378,6 @@ pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPoli
         m.star.sort_unstable(); // for the walk in `check`; the star's order decides nothing
     }
     let batches = batches(movers, &scene.faces, scene.positions.len());
-    let frozen: &Scene<'_> = scene;
-    movers.par_iter_mut().filter(|m| !m.done).for_each(|m| {
-        m.cands = candidates(frozen, m);
-    });
     loop {
         let mut any = false;
         for batch in &batches {
@@ -476,7 +452,16 @@ pub(crate) fn swept_face_boxes(faces: &[[u32; 3]], sweep: &[Aabb]) -> Vec<Aabb> 
 /// The box of every position `base + t dir`, `t` in `[0, target]` as f64 constructions:
 /// the exact segment box inflated by a bound on the construction's rounding.
 pub(crate) fn sweep_box(base: DVec3, dir: DVec3, target: f64) -> Aabb {
+    sweep_box_from(base, dir, 0.0, target)
+}
+
+/// The box of every position `base + t dir`, `t` in `[from, target]`, as f64 constructions:
+/// rounding is monotone, so each coordinate of a constructed point lies between those of
+/// the two constructed ends; the inflation covers the flush of tiny coordinates. A mover
+/// that starts at `from` never goes back, so this is where it can be.
+pub(crate) fn sweep_box_from(base: DVec3, dir: DVec3, from: f64, target: f64) -> Aabb {
+    let start = base + dir * from;
     let end = base + dir * target;
-    let scale = base.abs().max(end.abs()).max_element();
-    Aabb::from_points(&[base, end]).inflated(scale * 8.0 * f64::EPSILON)
+    let scale = start.abs().max(end.abs()).max_element();
+    Aabb::from_points(&[start, end]).inflated(scale * 8.0 * f64::EPSILON)
 }

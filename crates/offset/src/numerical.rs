@@ -167,7 +167,7 @@ impl Near<'_> {
             let dir = self.normals[v] * if side == 1 { 1.0 } else { -1.0 };
             let s0 = if side == 1 { plus[v] } else { minus[v] };
             if moves(v, side) {
-                engine::sweep_box(p, dir, self.requested[v])
+                engine::sweep_box_from(p, dir, s0.max(0.0), self.requested[v])
             } else if s0 > 0.0 {
                 Aabb::from_points(&[p + dir * s0])
             } else {
@@ -198,12 +198,16 @@ impl Near<'_> {
                     .union(&reach_of(v, 2))
             })
         };
+        // A tree over the reaches: a scan of all of them per face is quadratic when the
+        // movers are a few percent of a large mesh.
+        let near = envelope_predicates::bvh::Bvh::new(&reaches);
         let faces: Vec<usize> = (0..soup.num_faces())
             .into_par_iter()
             .filter(|&f| {
                 kept[f] || {
-                    let b = prism(f);
-                    reaches.iter().any(|r| r.overlaps(&b))
+                    let mut hit = false;
+                    near.for_each_overlapping(&prism(f), |_| hit = true);
+                    hit
                 }
             })
             .collect();
@@ -328,7 +332,7 @@ pub(crate) fn numerical_eps_ordered(
             let step = (params.global_fraction * diagonal)
                 .min(target / params.k as f64)
                 .min(params.local_fraction * shortest);
-            sweep[gv as usize] = engine::sweep_box(p, dir, target);
+            sweep[gv as usize] = engine::sweep_box_from(p, dir, s0.max(0.0), target);
             movers.push(Mover {
                 verts: vec![gv],
                 base: vec![p],
@@ -341,7 +345,6 @@ pub(crate) fn numerical_eps_ordered(
                 steps: 0,
                 halvings: 0,
                 done: false,
-                cands: Vec::new(),
             });
         }
     }

@@ -333,7 +333,6 @@ pub(crate) fn build_tubes(
                 steps: 0,
                 halvings: 0,
                 done: false,
-                cands: Vec::new(),
             });
         }
         let segs = if *closed { m } else { m - 1 };
