@@ -87,7 +87,7 @@ fn parse_size(s: &str) -> Option<usize> {
     };
     let v = num.parse::<f64>().ok()? * mul;
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    (v.is_finite() && v >= 8.0 && v <= 1e9).then_some(v as usize)
+    (8.0..=1e9).contains(&v).then_some(v as usize)
 }
 
 fn parse_args(argv: &[String]) -> Option<Args> {
