@@ -21,8 +21,12 @@ mod candidates;
 mod global;
 mod region;
 mod step;
+mod surface;
 
 pub use candidates::{Candidate, Fibers, Generated, Reach, covers, seed_candidates};
 pub use global::{GlobalError, GlobalOptions, GlobalStats, simplify_global, simplify_global_with};
 pub use region::{Region, ball, region};
 pub use step::{GlobalStep, HybridOrder, HybridStep, Method};
+pub use surface::{
+    FiberIndex, SURFACE_RINGS, SurfaceReach, covered, maximal_hole, surface_candidates,
+};
