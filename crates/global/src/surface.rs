@@ -114,7 +114,11 @@ impl FiberIndex {
             let (a, b) = (index.key(lo), index.key(hi));
             // A fiber far longer than the cells (a degenerate input) goes in one cell of each
             // end and is found by the widened queries only near them: bound the work.
-            if (0..3).map(|k| b[k] - a[k] + 1).product::<i64>() > 4096 {
+            if (0..3)
+                .map(|k| b[k].saturating_sub(a[k]).saturating_add(1))
+                .fold(1i64, i64::saturating_mul)
+                > 4096
+            {
                 for key in [a, b] {
                     index.cells.entry(key).or_default().push(v);
                 }
@@ -152,9 +156,13 @@ impl FiberIndex {
                 out.extend_from_slice(list);
             }
         } else {
-            for x in a[0] - 1..=b[0] + 1 {
-                for y in a[1] - 1..=b[1] + 1 {
-                    for z in a[2] - 1..=b[2] + 1 {
+            let (a, b) = (
+                a.map(|k| k.saturating_sub(1)),
+                b.map(|k| k.saturating_add(1)),
+            );
+            for x in a[0]..=b[0] {
+                for y in a[1]..=b[1] {
+                    for z in a[2]..=b[2] {
                         if let Some(list) = self.cells.get(&[x, y, z]) {
                             out.extend_from_slice(list);
                         }
@@ -263,12 +271,10 @@ pub fn surface_candidates(
     }
     scored.sort_by(|x, y| y.0.cmp(&x.0).then(y.1.total_cmp(&x.1)).then(x.2.cmp(&y.2)));
     let mut out = Vec::new();
-    let mut screens = 0;
-    for (_, aspect, t) in scored {
-        if out.len() >= reach.per_seed || screens >= SCREENS_PER_KEPT * reach.per_seed {
+    for (_, aspect, t) in scored.into_iter().take(SCREENS_PER_KEPT * reach.per_seed) {
+        if out.len() >= reach.per_seed {
             break;
         }
-        screens += 1;
         if let Some(barriers) = screen {
             if barriers.refuses(t.map(|v| mesh.position(v)), [false; 3]) {
                 counts.blocked += 1;
