@@ -67,7 +67,11 @@ fn each_method_writes_a_certified_output_and_says_what_ran() {
                 let d = &r["method_details"];
                 assert!(d["candidates_ranked"].as_u64().unwrap() > 0, "{d:#}");
                 assert!(d["candidate_triples"].as_u64() >= d["candidates_ranked"].as_u64());
-                assert!(d["accepted"].as_u64().unwrap() > 0, "{d:#}");
+                // The global stage on the input removes vertices; on what local left
+                // (a torus at 1 %), it may find nothing more.
+                assert!(d["global_first"]["accepted"].as_u64().unwrap() > 0, "{d:#}");
+                assert!(d["chosen"].is_string(), "{d:#}");
+                assert!(d["local"]["faces_after"].is_u64(), "{d:#}");
             }
             _ => {
                 let d = &r["method_details"];
@@ -76,8 +80,8 @@ fn each_method_writes_a_certified_output_and_says_what_ran() {
             }
         }
     }
-    // The hybrid starts with the local algorithm and only removes more.
-    assert!(faces[2] <= faces[0], "{faces:?}");
+    // The global and hybrid methods start with the local algorithm and only remove more.
+    assert!(faces[1] <= faces[0] && faces[2] <= faces[0], "{faces:?}");
 }
 
 #[test]

@@ -35,6 +35,7 @@
 
 use crate::candidates::{Candidate, Fibers, Generated, Reach, covers, seed_candidates};
 use crate::region::{ball_any, region};
+use crate::surface::{FiberIndex, SURFACE_RINGS, SurfaceReach, surface_candidates};
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_simplify::Progress;
 use envelope_simplify::policy::{
@@ -43,6 +44,7 @@ use envelope_simplify::policy::{
 use glam::DVec3;
 use rayon::prelude::*;
 use serde_json::{Value, json};
+use std::collections::HashSet;
 use thiserror::Error;
 
 /// Options of [`simplify_global`].
@@ -65,6 +67,9 @@ pub struct GlobalOptions {
     /// Stop once at most this many faces remain (checked before every candidate; the
     /// driver sets it from `SimplifyOptions::target_faces`).
     pub target_faces: Option<usize>,
+    /// Candidates from the whole surface with their maximal holes too ([`SurfaceReach`],
+    /// module `surface`); `None`: the region candidates only.
+    pub surface: Option<SurfaceReach>,
 }
 
 impl Default for GlobalOptions {
@@ -79,11 +84,23 @@ impl Default for GlobalOptions {
             check_each_step: false,
             border: true,
             target_faces: None,
+            surface: None,
         }
     }
 }
 
 impl GlobalOptions {
+    /// The global method of section 5.3: whole-surface candidates ([`SurfaceReach::default`])
+    /// with their maximal holes, ranked together with the region candidates of
+    /// [`GlobalOptions::default`].
+    #[must_use]
+    pub fn surface() -> Self {
+        GlobalOptions {
+            surface: Some(SurfaceReach::default()),
+            ..GlobalOptions::default()
+        }
+    }
+
     /// The hybrid's global stage: regions up to 2 rings and 10 boundary vertices, 3
     /// candidates per region, 4 passes. (Larger regions gave the same faces on the
     /// `global_vs_local` benchmark for more time.)
@@ -97,6 +114,7 @@ impl GlobalOptions {
             check_each_step: false,
             border: true,
             target_faces: None,
+            surface: None,
         }
     }
 }
@@ -139,6 +157,10 @@ pub struct GlobalStats {
     pub removed: usize,
     /// Candidate triangles given to the validity filter.
     pub filter_tests: u64,
+    /// Whole-surface candidates accepted (with [`GlobalOptions::surface`]).
+    pub surface_accepted: usize,
+    /// Vertices they removed.
+    pub surface_removed: usize,
 }
 
 impl GlobalStats {
@@ -160,6 +182,8 @@ impl GlobalStats {
             "no_valid_fill": self.no_valid_fill,
             "removed_vertices": self.removed,
             "filter_tests": self.filter_tests,
+            "surface_accepted": self.surface_accepted,
+            "surface_removed_vertices": self.surface_removed,
         })
     }
 }
@@ -250,7 +274,14 @@ fn run(
         }
         stats.passes += 1;
         let start = g.epoch;
-        let mut candidates = g.rank(fibers, &seeds, &reach, screen, &mut stats.generated);
+        let mut candidates = g.rank(
+            fibers,
+            &seeds,
+            &reach,
+            options.surface.as_ref(),
+            screen,
+            &mut stats.generated,
+        );
         let before = stats.accepted;
         for c in candidates.drain(..) {
             if reached(g.mesh) {
@@ -269,6 +300,10 @@ fn run(
             if placed {
                 stats.accepted += 1;
                 stats.removed += c.inside.len();
+                if c.rings == SURFACE_RINGS {
+                    stats.surface_accepted += 1;
+                    stats.surface_removed += c.inside.len();
+                }
                 if options.check_each_step {
                     g.mesh.sanity_check().map_err(GlobalError::SanityCheck)?;
                     g.grid
@@ -309,13 +344,23 @@ impl Global<'_> {
         fibers: &Fibers<'_>,
         seeds: &[VertexId],
         reach: &Reach,
+        surface: Option<&SurfaceReach>,
         screen: Option<&Barriers>,
         counts: &mut Generated,
     ) -> Vec<Candidate> {
         let mesh: &HalfEdgeMesh = self.mesh;
+        let index = surface.map(|_| FiberIndex::new(mesh, fibers));
         let per_seed: Vec<(Generated, Vec<Candidate>)> = seeds
             .par_iter()
-            .map(|&s| seed_candidates(mesh, fibers, s, reach, screen))
+            .map(|&s| {
+                let (mut c, mut v) = seed_candidates(mesh, fibers, s, reach, screen);
+                if let (Some(sr), Some(index)) = (surface, &index) {
+                    let (c2, v2) = surface_candidates(mesh, fibers, index, s, sr, screen);
+                    c += c2;
+                    v.extend(v2);
+                }
+                (c, v)
+            })
             .collect();
         let mut all = Vec::new();
         for (c, v) in per_seed {
@@ -323,6 +368,16 @@ impl Global<'_> {
             all.extend(v);
         }
         all.sort_by(Candidate::rank);
+        // A whole-surface triangle comes from each of its corners' seeds: keep its first.
+        let mut seen: HashSet<[VertexId; 3]> = HashSet::new();
+        all.retain(|c| {
+            if c.rings != SURFACE_RINGS {
+                return true;
+            }
+            let mut t = c.triangle;
+            t.sort_unstable();
+            seen.insert(t)
+        });
         all
     }
 

@@ -115,6 +115,37 @@ fn figure_8_local_is_stuck_and_global_reaches_the_minimal_triangulation() {
     }
 }
 
+/// Figure 8 with a ridge longer than the hybrid's regions reach (5 and 7 inner ridge
+/// vertices): local is stuck with every inner ridge vertex; the global method's
+/// whole-surface candidates (corners within 3 edges on what local left, where the flat
+/// sides are already a few long triangles) straighten the ridge in one maximal hole.
+#[test]
+fn a_long_ridge_needs_whole_surface_candidates() {
+    let eps = 0.05;
+    for n in [5, 7] {
+        let soup = zigzag_ridge(n, 0.85 * eps, eps);
+        let (local, _) = run(&soup, eps, Method::Local);
+        let (global, report) = run(&soup, eps, Method::Global);
+        let (hybrid, _) = run(&soup, eps, Method::Hybrid);
+        println!(
+            "ridge of {n}: input {} faces, local {}, global {}, hybrid {}; global details {}",
+            soup.num_faces(),
+            local.num_faces(),
+            global.num_faces(),
+            hybrid.num_faces(),
+            report.method_details
+        );
+        assert_eq!(inner_ridge_vertices(&local, n), n);
+        assert!(global.num_faces() < local.num_faces());
+        assert!(global.num_faces() <= hybrid.num_faces());
+        assert_eq!(inner_ridge_vertices(&global, n), 0);
+        assert!(report.method_details["surface_accepted"].as_u64().unwrap() > 0);
+        for out in [&local, &global] {
+            assert_certified(&soup, out, eps);
+        }
+    }
+}
+
 #[test]
 fn closed_and_open_meshes_are_certified() {
     let cases: Vec<(&str, TriangleSoup, f64)> = vec![
