@@ -20,7 +20,8 @@
 //! The inputs are written as binary PLY into `--dir` and kept there (default a temporary
 //! directory, removed at the end). Each run is a child process under `/usr/bin/time -f %M` (peak RSS); the
 //! stage times come from the report (`envelope.seconds`, `simplify_seconds`,
-//! `verify.seconds`, `seconds`).
+//! `verify.seconds`, `seconds`); `cpu/wall` is the process's user and system time over its
+//! wall time (2 when both cores of this machine work throughout).
 #![forbid(unsafe_code)]
 
 use std::fs;
@@ -57,6 +58,8 @@ struct Row {
     total: Option<f64>,
     wall: Option<f64>,
     peak_mib: Option<f64>,
+    /// User plus system seconds of the whole process.
+    cpu: Option<f64>,
     meshopt: Option<f64>,
     status: String,
 }
@@ -258,7 +261,12 @@ fn run_envelope(bin: &Path, a: &Args, input: &Path, dir: &Path, eps: &str, row: 
     let report = dir.join("report.json");
     let _ = fs::remove_file(&report);
     let mut cmd = Command::new("/usr/bin/time");
-    cmd.args(["-f", "peak_kib=%M", "timeout", &format!("{}", a.timeout)]);
+    cmd.args([
+        "-f",
+        "peak_kib=%M cpu_s=%U+%S",
+        "timeout",
+        &format!("{}", a.timeout),
+    ]);
     cmd.arg(bin);
     if let Some(t) = &a.threads {
         cmd.args(["--threads", t]);
@@ -274,11 +282,18 @@ fn run_envelope(bin: &Path, a: &Args, input: &Path, dir: &Path, eps: &str, row: 
         return;
     };
     let stderr = String::from_utf8_lossy(&res.stderr);
-    row.peak_mib = stderr
+    let last = stderr
         .lines()
-        .filter_map(|l| l.strip_prefix("peak_kib="))
-        .find_map(|v| v.trim().parse::<f64>().ok())
+        .rfind(|l| l.starts_with("peak_kib="))
+        .unwrap_or("");
+    let field = |key: &str| last.split(' ').find_map(|w| w.strip_prefix(key));
+    row.peak_mib = field("peak_kib=")
+        .and_then(|v| v.parse::<f64>().ok())
         .map(|k| k / 1024.0);
+    row.cpu = field("cpu_s=").and_then(|v| {
+        let (u, s) = v.split_once('+')?;
+        Some(u.parse::<f64>().ok()? + s.parse::<f64>().ok()?)
+    });
     row.status = if res.status.success() {
         "ok".into()
     } else {
@@ -349,7 +364,7 @@ fn main() -> ExitCode {
     }
     let mut rows: Vec<Row> = Vec::new();
     println!(
-        "{:<18} {:>9} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8} {:>7} {:>9} {:>8} {:>8}",
+        "{:<18} {:>9} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>8} {:>8} {:>8} {:>8}",
         "input",
         "faces",
         "eps",
@@ -360,6 +375,7 @@ fn main() -> ExitCode {
         "total s",
         "wall s",
         "cert/simp",
+        "cpu/wall",
         "peak MiB",
         "meshopt",
         "ours/mo"
@@ -391,7 +407,7 @@ fn main() -> ExitCode {
             run_envelope(&bin, &args, &path, &dir, label, &mut row);
             row.meshopt = meshopt_seconds(soup, frac * diag);
             println!(
-                "{:<18} {:>9} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>8} {:>8} {:>8}{}",
+                "{:<18} {:>9} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>8} {:>8} {:>8} {:>8}{}",
                 row.input,
                 row.faces,
                 row.eps,
@@ -402,6 +418,7 @@ fn main() -> ExitCode {
                 cell(row.total, 2),
                 cell(row.wall, 2),
                 cell(row.certificate.zip(row.simplify).map(|(c, s)| c / s), 2),
+                cell(row.cpu.zip(row.wall).map(|(c, w)| c / w), 2),
                 cell(row.peak_mib, 0),
                 cell(row.meshopt, 3),
                 cell(row.total.zip(row.meshopt).map(|(o, m)| o / m), 0),
@@ -450,7 +467,7 @@ fn main() -> ExitCode {
                     "input": r.input, "faces": r.faces, "epsilon": r.eps,
                     "output_faces": r.out_faces, "envelopes": r.envelopes,
                     "simplify": r.simplify, "certificate": r.certificate, "total": r.total,
-                    "wall": r.wall, "peak_mib": r.peak_mib, "meshopt": r.meshopt,
+                    "wall": r.wall, "cpu": r.cpu, "peak_mib": r.peak_mib, "meshopt": r.meshopt,
                     "status": r.status,
                 })
             })
