@@ -446,8 +446,41 @@ fn drop_internal(edges: &EdgeMap, patch_of: &[usize], cands: &mut Vec<Candidate>
             }
         }
     }
+    // Mouths that are not accepted leak: flood the patches from the kept surface (kept
+    // patches of preferred rims that are not regions), crossing any edge except an edge of an
+    // accepted rim run from the side being left. A region patch reached this way is open to
+    // the kept surface (through a wide mouth): it stays, and the junction rims kept on its
+    // side plug the rest of its network off.
+    let mut blocked: HashSet<(usize, (VertexId, VertexId))> = HashSet::new();
+    let mut start: Vec<usize> = Vec::new();
+    for c in cands.iter() {
+        if let Some(p) = c.patch {
+            blocked.extend(c.key.iter().map(|&e| (p, e)));
+            if !region.contains(&p) {
+                start.push(p);
+            }
+        }
+    }
+    let mut next: HashMap<usize, Vec<(usize, (VertexId, VertexId))>> = HashMap::new();
+    for (&e, fs) in &edges.faces {
+        if let [(f, _), (g, _)] = fs.as_slice() {
+            let (p, q) = (patch_of[f.index()], patch_of[g.index()]);
+            if p != q && p != usize::MAX && q != usize::MAX {
+                next.entry(p).or_default().push((q, e));
+                next.entry(q).or_default().push((p, e));
+            }
+        }
+    }
+    let mut open: HashSet<usize> = start.iter().copied().collect();
+    while let Some(p) = start.pop() {
+        for &(q, e) in next.get(&p).into_iter().flatten() {
+            if !blocked.contains(&(p, e)) && open.insert(q) {
+                start.push(q);
+            }
+        }
+    }
     let before = cands.len();
-    cands.retain(|c| c.patch.is_none_or(|p| !region.contains(&p)));
+    cands.retain(|c| c.patch.is_none_or(|p| !region.contains(&p) || open.contains(&p)));
     before - cands.len()
 }
 
