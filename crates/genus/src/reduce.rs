@@ -19,9 +19,20 @@
 //! a rim whose other side is the rest of the part): that rim is refused and the selection is
 //! recomputed until stable. Refusing can only keep the input as it was.
 //!
+//! **Tunnel networks (issue 37).** Where tunnels meet, the junction loop is a candidate from
+//! both walls; kept as a rim it would stop the spread from one tunnel's mouth inside the
+//! other's wall, and the whole network would be refused as not enclosed. A candidate whose
+//! kept patch is on the region side of another accepted rim is dropped as internal, unless
+//! that patch is open to the kept surface through a mouth that is not an accepted rim (a
+//! flood over patches from the kept surface, stopped only by accepted rims run from the side
+//! being left): then its junction rims stay and plug the rest of the network off, as the
+//! closing would. This only chooses candidates; acceptance is unchanged.
+//!
 //! **Validation.** The output is checked with `envelope-check`; caps involved in a new
 //! intersecting, coincident, duplicate or non-manifold finding are refused and the selection
-//! is redone (at worst the input comes back unchanged).
+//! is redone (at worst the input comes back unchanged). Of two caps in conflict, one already
+//! in conflict with something else (a cap duplicating kept faces, e.g. over the outer loop
+//! of a face) is refused first, otherwise the later one.
 
 use std::collections::{BTreeSet, HashMap, HashSet, VecDeque};
 use std::time::Instant;
