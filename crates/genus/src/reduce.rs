@@ -422,6 +422,9 @@ pub fn reduce_genus_with(
     Ok((out, report))
 }
 
+/// An undirected edge `(min, max)`.
+type Edge = (VertexId, VertexId);
+
 /// Drops the candidates whose kept patch lies on the region side of another accepted rim
 /// (returns how many). A patch is on the region side of a rim when it is across the rim from
 /// the rim's kept patch and the rim is not a tie (the same edge cycle accepted from both
@@ -462,7 +465,7 @@ fn drop_internal(edges: &EdgeMap, patch_of: &[usize], cands: &mut Vec<Candidate>
     // accepted rim run from the side being left. A region patch reached this way is open to
     // the kept surface (through a wide mouth): it stays, and the junction rims kept on its
     // side plug the rest of its network off.
-    let mut blocked: HashSet<(usize, (VertexId, VertexId))> = HashSet::new();
+    let mut blocked: HashSet<(usize, Edge)> = HashSet::new();
     let mut start: Vec<usize> = Vec::new();
     for c in cands.iter() {
         if let Some(p) = c.patch {
@@ -472,7 +475,8 @@ fn drop_internal(edges: &EdgeMap, patch_of: &[usize], cands: &mut Vec<Candidate>
             }
         }
     }
-    let mut next: HashMap<usize, Vec<(usize, (VertexId, VertexId))>> = HashMap::new();
+    // Patch -> (neighbouring patch, shared edge).
+    let mut next: HashMap<usize, Vec<(usize, Edge)>> = HashMap::new();
     for (&e, fs) in &edges.faces {
         if let [(f, _), (g, _)] = fs.as_slice() {
             let (p, q) = (patch_of[f.index()], patch_of[g.index()]);
@@ -491,7 +495,10 @@ fn drop_internal(edges: &EdgeMap, patch_of: &[usize], cands: &mut Vec<Candidate>
         }
     }
     let before = cands.len();
-    cands.retain(|c| c.patch.is_none_or(|p| !region.contains(&p) || open.contains(&p)));
+    cands.retain(|c| {
+        c.patch
+            .is_none_or(|p| !region.contains(&p) || open.contains(&p))
+    });
     before - cands.len()
 }
 
