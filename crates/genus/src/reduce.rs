@@ -19,9 +19,20 @@
 //! a rim whose other side is the rest of the part): that rim is refused and the selection is
 //! recomputed until stable. Refusing can only keep the input as it was.
 //!
+//! **Tunnel networks (issue 37).** Where tunnels meet, the junction loop is a candidate from
+//! both walls; kept as a rim it would stop the spread from one tunnel's mouth inside the
+//! other's wall, and the whole network would be refused as not enclosed. A candidate whose
+//! kept patch is on the region side of another accepted rim is dropped as internal, unless
+//! that patch is open to the kept surface through a mouth that is not an accepted rim (a
+//! flood over patches from the kept surface, stopped only by accepted rims run from the side
+//! being left): then its junction rims stay and plug the rest of the network off, as the
+//! closing would. This only chooses candidates; acceptance is unchanged.
+//!
 //! **Validation.** The output is checked with `envelope-check`; caps involved in a new
 //! intersecting, coincident, duplicate or non-manifold finding are refused and the selection
-//! is redone (at worst the input comes back unchanged).
+//! is redone (at worst the input comes back unchanged). Of two caps in conflict, one already
+//! in conflict with something else (a cap duplicating kept faces, e.g. over the outer loop
+//! of a face) is refused first, otherwise the later one.
 
 use std::collections::{BTreeSet, HashMap, HashSet, VecDeque};
 use std::time::Instant;
@@ -97,6 +108,9 @@ pub struct GenusReport {
     pub refused_enclosure: usize,
     /// Candidates refused by the output validation.
     pub refused_validation: usize,
+    /// Candidate rims dropped as internal: their kept patch is itself on the region side of
+    /// an accepted rim (the junction of two tunnels), so the region spreads across them.
+    pub internal_rims: usize,
     /// Rims capped (a through hole has two).
     pub holes_filled: usize,
     /// Triangles added by the caps.
@@ -133,6 +147,7 @@ impl GenusReport {
             "refused_wide": self.refused_wide,
             "refused_enclosure": self.refused_enclosure,
             "refused_validation": self.refused_validation,
+            "internal_rims": self.internal_rims,
             "triangles_added": self.triangles_added,
             "triangles_removed": self.triangles_removed,
             "alpha_close_pairs": self.alpha_close_pairs,
@@ -152,6 +167,8 @@ struct Candidate {
     key: Vec<(VertexId, VertexId)>,
     /// Normal variation of the kept patch.
     variation: f64,
+    /// The kept patch (sharp-edge candidates).
+    patch: Option<usize>,
     /// The cap.
     cap: Vec<[VertexId; 3]>,
 }
@@ -277,6 +294,7 @@ pub fn reduce_genus_with(
                 keep: lp.faces.clone(),
                 key,
                 variation: variation[p],
+                patch: Some(p),
                 cap: Vec::new(),
             });
         }
@@ -304,6 +322,7 @@ pub fn reduce_genus_with(
                 keep: faces,
                 key,
                 variation: 0.0,
+                patch: None,
                 cap: Vec::new(),
             });
         }
@@ -335,6 +354,7 @@ pub fn reduce_genus_with(
     // Two-sided ambiguity: the kept side is the one with less normal variation; ties keep
     // both orders (the interior test decides).
     candidates.sort_by(|a, b| a.key.cmp(&b.key).then(a.variation.total_cmp(&b.variation)));
+    let internal_rims = drop_internal(&edges, &pat.of_face, &mut candidates);
 
     let mut refused: HashSet<usize> = HashSet::new();
     let mut refused_validation: HashSet<usize> = HashSet::new();
@@ -391,6 +411,7 @@ pub fn reduce_genus_with(
         refused_wide,
         refused_enclosure: refused.len() - refused_validation.len(),
         refused_validation: refused_validation.len(),
+        internal_rims,
         holes_filled: active.len(),
         triangles_added: added_faces.len(),
         triangles_removed: removed,
@@ -399,6 +420,86 @@ pub fn reduce_genus_with(
         added_faces,
     };
     Ok((out, report))
+}
+
+/// An undirected edge `(min, max)`.
+type Edge = (VertexId, VertexId);
+
+/// Drops the candidates whose kept patch lies on the region side of another accepted rim
+/// (returns how many). A patch is on the region side of a rim when it is across the rim from
+/// the rim's kept patch and the rim is not a tie (the same edge cycle accepted from both
+/// sides with equal normal variation). Where tunnels meet (a tunnel wall pierced by
+/// another), the junction loop is a candidate from both walls; kept, it would stop the
+/// interior spread from one tunnel's mouth inside the other's wall and the whole network
+/// would be refused as not enclosed. Dropped, the network is one region, enclosed when every
+/// mouth is an accepted rim. (A heuristic choice of candidates: the acceptance that follows
+/// is unchanged.)
+fn drop_internal(edges: &EdgeMap, patch_of: &[usize], cands: &mut Vec<Candidate>) -> usize {
+    let mut tied: HashSet<&[(VertexId, VertexId)]> = HashSet::new();
+    for w in cands.windows(2) {
+        if w[0].key == w[1].key && w[0].variation.total_cmp(&w[1].variation).is_eq() {
+            tied.insert(w[0].key.as_slice());
+        }
+    }
+    let mut region: HashSet<usize> = HashSet::new();
+    let mut seen: HashSet<&[(VertexId, VertexId)]> = HashSet::new();
+    for c in cands.iter() {
+        // Only the preferred (first) side of each edge cycle marks, and never a tie.
+        if !seen.insert(c.key.as_slice()) || tied.contains(c.key.as_slice()) {
+            continue;
+        }
+        let Some(p) = c.patch else { continue };
+        let n = c.vertices.len();
+        for i in 0..n {
+            let (a, b) = (c.vertices[i], c.vertices[(i + 1) % n]);
+            if let Some(g) = edges.across(c.keep[i], a, b) {
+                let q = patch_of[g.index()];
+                if q != usize::MAX && q != p {
+                    region.insert(q);
+                }
+            }
+        }
+    }
+    // Mouths that are not accepted leak: flood the patches from the kept surface (kept
+    // patches of preferred rims that are not regions), crossing any edge except an edge of an
+    // accepted rim run from the side being left. A region patch reached this way is open to
+    // the kept surface (through a wide mouth): it stays, and the junction rims kept on its
+    // side plug the rest of its network off.
+    let mut blocked: HashSet<(usize, Edge)> = HashSet::new();
+    let mut start: Vec<usize> = Vec::new();
+    for c in cands.iter() {
+        if let Some(p) = c.patch {
+            blocked.extend(c.key.iter().map(|&e| (p, e)));
+            if !region.contains(&p) {
+                start.push(p);
+            }
+        }
+    }
+    // Patch -> (neighbouring patch, shared edge).
+    let mut next: HashMap<usize, Vec<(usize, Edge)>> = HashMap::new();
+    for (&e, fs) in &edges.faces {
+        if let [(f, _), (g, _)] = fs.as_slice() {
+            let (p, q) = (patch_of[f.index()], patch_of[g.index()]);
+            if p != q && p != usize::MAX && q != usize::MAX {
+                next.entry(p).or_default().push((q, e));
+                next.entry(q).or_default().push((p, e));
+            }
+        }
+    }
+    let mut open: HashSet<usize> = start.iter().copied().collect();
+    while let Some(p) = start.pop() {
+        for &(q, e) in next.get(&p).into_iter().flatten() {
+            if !blocked.contains(&(p, e)) && open.insert(q) {
+                start.push(q);
+            }
+        }
+    }
+    let before = cands.len();
+    cands.retain(|c| {
+        c.patch
+            .is_none_or(|p| !region.contains(&p) || open.contains(&p))
+    });
+    before - cands.len()
 }
 
 /// Splits a closed loop through a vertex more than once into simple loops (each keeps its
@@ -721,6 +822,9 @@ fn validate(
             cap_vertices.entry(v).or_default().push(c);
         }
     }
+    // Two conflicting caps: refuse one already in conflict with something else if any (a cap
+    // duplicating kept faces, e.g. over the outer loop of a face), else the later one.
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
     for class in VALIDATED {
         let finding = report.finding(class);
         let before = baseline.get(&class).copied().unwrap_or(0);
@@ -746,11 +850,16 @@ fn validate(
             // Two caps in conflict: refusing the later one is enough.
             if let (Element::FacePair { .. }, [c1, c2]) = (e, caps.as_slice()) {
                 if c1 != c2 {
-                    bad.insert(*c1.max(c2));
+                    pairs.push((*c1, *c2));
                     continue;
                 }
             }
             bad.extend(caps);
+        }
+    }
+    for (c1, c2) in pairs {
+        if !bad.contains(&c1) && !bad.contains(&c2) {
+            bad.insert(c1.max(c2));
         }
     }
     any.then(|| bad.into_iter().collect())

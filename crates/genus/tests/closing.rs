@@ -1,0 +1,203 @@
+//! The genus after reduction against an independent voxel closing (issue 37): on generated
+//! parts with known tunnel sizes (plates with holes of several widths, blocks with tunnels, a
+//! cheese-like block of crossing tunnels), the output genus is at most the closing's genus
+//! plus `max(1, genus_in / 10)`, and the output is closed, manifold, free of intersections
+//! (`envelope-check`) with every added triangle inside the alpha-prisms.
+
+mod support;
+
+use envelope_check::{CheckOptions, DegeneracyClass, check};
+use envelope_genus::details::covered_by_corner_cubes;
+use envelope_genus::testmeshes::plate_with_square_holes;
+use envelope_genus::{GenusOptions, GenusReport, TessellationSource, reduce_genus_with};
+use envelope_mesh::{TriangleSoup, analyze, generate};
+use glam::DVec3;
+use proptest::prelude::*;
+use support::voxel_closing::{closing_genus, voxel_genus};
+
+/// Runs the reduction (both sources) and asserts what must always hold; returns the output
+/// genus of each source.
+fn certified(
+    soup: &TriangleSoup,
+    alpha: f64,
+    source: TessellationSource,
+) -> (TriangleSoup, GenusReport) {
+    let (out, report) = reduce_genus_with(soup, &GenusOptions::new(alpha), source).unwrap();
+    let c = check(&out, &CheckOptions::default());
+    for class in [
+        DegeneracyClass::IntersectingTriangles,
+        DegeneracyClass::CoincidentTriangles,
+        DegeneracyClass::DuplicateTriangles,
+        DegeneracyClass::NonManifoldEdges,
+        DegeneracyClass::NonManifoldVertices,
+        DegeneracyClass::InconsistentOrientation,
+        DegeneracyClass::ZeroAreaTriangles,
+    ] {
+        assert_eq!(c.finding(class).count, 0, "{class:?} in the output");
+    }
+    assert!(c.manifold, "output not manifold");
+    let topo = analyze(&out);
+    assert_eq!(topo.num_border_loops(), 0, "output not closed");
+    assert_eq!(report.genus_out, topo.genus);
+    for &f in &report.added_faces {
+        let t = out.triangle(f);
+        assert!(
+            covered_by_corner_cubes(t, alpha),
+            "added face {f:?} outside its corners' cubes"
+        );
+        for p in t {
+            assert!(
+                soup.positions.contains(&p),
+                "added corner {p} is not an input vertex"
+            );
+        }
+    }
+    (out, report)
+}
+
+/// The target of issue 37: at most the closing's genus plus `max(1, genus_in / 10)`.
+fn assert_near_closing(soup: &TriangleSoup, alpha: f64, h: f64, source: TessellationSource) {
+    let g_in = i64::from(analyze(soup).genus.unwrap());
+    assert_eq!(
+        voxel_genus(soup, h),
+        g_in,
+        "the voxelization sees the input genus"
+    );
+    let closed = closing_genus(soup, alpha, h);
+    let (_, r) = certified(soup, alpha, source);
+    let g_out = i64::from(r.genus_out.unwrap());
+    assert!(g_out <= g_in, "genus grew: {g_in} -> {g_out}");
+    let slack = (g_in / 10).max(1);
+    assert!(
+        g_out <= closed + slack,
+        "{source:?} alpha {alpha}: genus {g_in} -> {g_out}, closing {closed} (+{slack} allowed); {r:?}"
+    );
+}
+
+/// A `nx x ny x nz` block of unit cells with straight square tunnels: `(axis, a, b, w)` runs
+/// along `axis` through the cells whose other two coordinates are in `[a, a + w) x [b, b + w)`.
+fn block_with_tunnels(n: [u32; 3], tunnels: &[(usize, u32, u32, u32)]) -> TriangleSoup {
+    let tunnels = tunnels.to_vec();
+    generate::voxel_surface(
+        n[0],
+        n[1],
+        n[2],
+        move |i, j, k| {
+            let c = [i, j, k];
+            !tunnels.iter().any(|&(axis, a, b, w)| {
+                let (u, v) = (c[(axis + 1) % 3], c[(axis + 2) % 3]);
+                u >= a && u < a + w && v >= b && v < b + w
+            })
+        },
+        DVec3::ONE,
+    )
+}
+
+/// A cheese-like block: 1-cell tunnels along z on every other column and along x on every
+/// other row, crossing each other (a network of many close tunnels sharing walls).
+fn cheese_block(m: u32) -> TriangleSoup {
+    let n = 2 * m + 1;
+    generate::voxel_surface(
+        n,
+        n,
+        n,
+        |i, j, k| {
+            let z_tunnel = i % 2 == 1 && j % 2 == 1;
+            let x_tunnel = j % 2 == 1 && k % 2 == 1 && k > 1 && k + 2 < n;
+            !(z_tunnel || x_tunnel)
+        },
+        DVec3::ONE,
+    )
+}
+
+#[test]
+fn voxel_closing_counts_known_parts() {
+    // The helper itself: a plate with holes 1, 2 and 4 wide keeps the holes at least 2 alpha
+    // wide (closing radius alpha).
+    let plate = plate_with_square_holes(&[1, 2, 4], 1, 1.0);
+    assert_eq!(voxel_genus(&plate, 0.25), 3);
+    assert_eq!(closing_genus(&plate, 0.75, 0.25), 2);
+    assert_eq!(closing_genus(&plate, 1.25, 0.25), 1);
+    assert_eq!(closing_genus(&plate, 2.5, 0.25), 0);
+    assert_eq!(closing_genus(&plate, 0.25, 0.25), 3);
+    let torus = generate::torus(1.0, 0.4, 48, 24);
+    assert_eq!(voxel_genus(&torus, 0.05), 1);
+    assert_eq!(closing_genus(&torus, 0.1, 0.05), 1);
+    assert_eq!(closing_genus(&torus, 0.5, 0.05), 0);
+}
+
+#[test]
+fn plate_with_holes_of_several_widths() {
+    let plate = plate_with_square_holes(&[1, 1, 2, 3, 5], 1, 1.0);
+    for alpha in [0.75, 1.25, 1.75, 3.0] {
+        assert_near_closing(&plate, alpha, 0.25, TessellationSource::SharpEdges);
+    }
+}
+
+#[test]
+fn block_with_tunnels_along_three_axes() {
+    let block = block_with_tunnels(
+        [9, 9, 6],
+        &[
+            (2, 1, 1, 1),
+            (2, 4, 1, 2),
+            (2, 1, 5, 3),
+            (0, 6, 2, 1),
+            (1, 1, 7, 1),
+        ],
+    );
+    assert!(analyze(&block).genus.unwrap() >= 5);
+    for alpha in [0.75, 1.25] {
+        assert_near_closing(&block, alpha, 0.25, TessellationSource::SharpEdges);
+    }
+}
+
+#[test]
+fn cheese_block_of_crossing_tunnels() {
+    let cheese = cheese_block(3);
+    let g = analyze(&cheese).genus.unwrap();
+    assert!(g >= 10, "genus {g}");
+    for alpha in [0.75] {
+        for source in [
+            TessellationSource::SharpEdges,
+            TessellationSource::PrismUnion,
+        ] {
+            assert_near_closing(&cheese, alpha, 0.25, source);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, .. ProptestConfig::default() })]
+
+    /// Plates with random hole widths and random alpha: near the closing, always certified.
+    #[test]
+    fn random_plates_reach_the_closing(
+        widths in prop::collection::vec(1u32..5, 1..5),
+        thickness in 1u32..3,
+        alpha_quarters in 2u32..12,
+    ) {
+        // alpha in odd multiples of 1/8 keeps 2 alpha off the integer hole widths.
+        let alpha = f64::from(alpha_quarters) * 0.25 + 0.125;
+        let plate = plate_with_square_holes(&widths, thickness, 1.0);
+        assert_near_closing(&plate, alpha, 0.125, TessellationSource::SharpEdges);
+    }
+
+    /// Blocks with random straight tunnels along z: near the closing, always certified.
+    #[test]
+    fn random_tunnel_blocks_reach_the_closing(
+        spots in prop::collection::vec((0u32..3, 0u32..3, 1u32..3), 1..5),
+        alpha_quarters in 2u32..8,
+    ) {
+        let alpha = f64::from(alpha_quarters) * 0.25 + 0.125;
+        // Tunnels on a 4-cell lattice (one-cell walls at least), widths 1 or 2.
+        let tunnels: Vec<(usize, u32, u32, u32)> = {
+            let mut t: Vec<_> = spots.iter().map(|&(a, b, w)| (2, 1 + 4 * a, 1 + 4 * b, w)).collect();
+            t.sort_unstable();
+            t.dedup_by_key(|x| (x.1, x.2));
+            t
+        };
+        let block = block_with_tunnels([13, 13, 3], &tunnels);
+        assert_near_closing(&block, alpha, 0.125, TessellationSource::SharpEdges);
+    }
+}
