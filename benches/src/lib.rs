@@ -21,6 +21,75 @@ impl Rng {
     }
 }
 
+/// An epsilon given as a percentage of the bounding-box diagonal (`1/64%`, `0.5%`): the
+/// label as given and the fraction (`0.5%` is `0.005`); `None` unless finite and positive.
+///
+/// ```
+/// assert_eq!(envelope_benches::parse_epsilon("1/4%"), Some(("1/4%".into(), 0.0025)));
+/// assert_eq!(envelope_benches::parse_epsilon("0.5"), None);
+/// ```
+#[must_use]
+pub fn parse_epsilon(s: &str) -> Option<(String, f64)> {
+    let p = s.strip_suffix('%')?;
+    let v = match p.split_once('/') {
+        Some((a, b)) => a.parse::<f64>().ok()? / b.parse::<f64>().ok()?,
+        None => p.parse::<f64>().ok()?,
+    };
+    (v.is_finite() && v > 0.0).then(|| (s.to_string(), v / 100.0))
+}
+
+/// What meshoptimizer's `simplify` gave: its f32 positions (as it takes them), the kept
+/// triangles' indices into them, the seconds of the call alone and the error it reports.
+pub struct MeshoptRun {
+    /// The input's positions rounded to f32.
+    pub positions: Vec<[f32; 3]>,
+    /// Three indices per kept triangle.
+    pub indices: Vec<u32>,
+    /// Seconds of the `simplify` call alone.
+    pub seconds: f64,
+    /// meshoptimizer's own error estimate (absolute).
+    pub error: f32,
+}
+
+/// meshoptimizer's `simplify` of `soup` to 0 triangles under absolute error `eps`
+/// (`SimplifyOptions::ErrorAbsolute`): the speed ceiling the peers and scale benches
+/// measure, with no guarantee.
+///
+/// # Errors
+/// meshoptimizer's refusal of the vertex data, as text.
+pub fn meshopt_simplify(
+    soup: &envelope_mesh::TriangleSoup,
+    eps: f64,
+) -> Result<MeshoptRun, String> {
+    #[allow(clippy::cast_possible_truncation)]
+    let positions: Vec<[f32; 3]> = soup
+        .positions
+        .iter()
+        .map(|p| [p.x as f32, p.y as f32, p.z as f32])
+        .collect();
+    let input: Vec<u32> = soup.faces.iter().flat_map(|f| f.map(|v| v.0)).collect();
+    let bytes = meshopt::utilities::typed_to_bytes(&positions);
+    let adapter = meshopt::VertexDataAdapter::new(bytes, 12, 0).map_err(|e| e.to_string())?;
+    let t = std::time::Instant::now();
+    let mut error = 0f32;
+    #[allow(clippy::cast_possible_truncation)]
+    let indices = meshopt::simplify(
+        &input,
+        &adapter,
+        0,
+        eps as f32,
+        meshopt::SimplifyOptions::ErrorAbsolute,
+        Some(&mut error),
+    );
+    let seconds = t.elapsed().as_secs_f64();
+    Ok(MeshoptRun {
+        positions,
+        indices,
+        seconds,
+        error,
+    })
+}
+
 /// One step of Loop subdivision (Loop 1987): every face split in four, new edge points at
 /// 3/8 of the edge's ends and 1/8 of the two opposite corners, old vertices moved to
 /// `(1 - n beta) v + beta * sum(neighbours)` with Warren's `beta = 3 / (8 n)` (`3/16` at

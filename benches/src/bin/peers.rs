@@ -41,6 +41,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
+use envelope_benches::{meshopt_simplify, parse_epsilon};
 use envelope_io::read_path;
 use envelope_mesh::TriangleSoup;
 use envelope_tests::oracle::{
@@ -169,15 +170,6 @@ fn usage() -> ExitCode {
          epsilons are percentages of the input's bounding-box diagonal (`1/64%`, `0.5%`)"
     );
     ExitCode::FAILURE
-}
-
-fn parse_epsilon(s: &str) -> Option<(String, f64)> {
-    let p = s.strip_suffix('%')?;
-    let v = match p.split_once('/') {
-        Some((a, b)) => a.parse::<f64>().ok()? / b.parse::<f64>().ok()?,
-        None => p.parse::<f64>().ok()?,
-    };
-    (v.is_finite() && v > 0.0).then(|| (s.to_string(), v / 100.0))
 }
 
 fn parse_args(argv: &[String]) -> Option<Args> {
@@ -1120,33 +1112,14 @@ fn meshopt_child(input: &Path, output: &Path, eps: f64) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    #[allow(clippy::cast_possible_truncation)]
-    let pos: Vec<[f32; 3]> = soup
-        .positions
-        .iter()
-        .map(|p| [p.x as f32, p.y as f32, p.z as f32])
-        .collect();
-    let indices: Vec<u32> = soup.faces.iter().flat_map(|f| f.map(|v| v.0)).collect();
-    let bytes = meshopt::utilities::typed_to_bytes(&pos);
-    let adapter = match meshopt::VertexDataAdapter::new(bytes, 12, 0) {
-        Ok(a) => a,
+    let run = match meshopt_simplify(&soup, eps) {
+        Ok(r) => r,
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::FAILURE;
         }
     };
-    let t = Instant::now();
-    let mut err = 0f32;
-    #[allow(clippy::cast_possible_truncation)]
-    let out = meshopt::simplify(
-        &indices,
-        &adapter,
-        0,
-        eps as f32,
-        meshopt::SimplifyOptions::ErrorAbsolute,
-        Some(&mut err),
-    );
-    let secs = t.elapsed().as_secs_f64();
+    let (pos, out, secs, err) = (run.positions, run.indices, run.seconds, run.error);
     // Compact the used vertices; f32 -> f64 is exact, `{}` prints the shortest round trip.
     let mut map = vec![u32::MAX; pos.len()];
     let mut used = Vec::new();

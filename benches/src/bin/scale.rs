@@ -29,7 +29,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
 use std::time::Instant;
 
-use envelope_benches::loop_subdivide;
+use envelope_benches::{loop_subdivide, meshopt_simplify, parse_epsilon};
 use envelope_io::{Format, PlyEncoding, read_path, write};
 use envelope_mesh::{TriangleSoup, VertexId};
 use glam::DVec3;
@@ -71,15 +71,6 @@ fn usage() -> ExitCode {
          [--json PATH] [--quick]"
     );
     ExitCode::from(2)
-}
-
-fn parse_epsilon(s: &str) -> Option<(String, f64)> {
-    let p = s.strip_suffix('%')?;
-    let v = match p.split_once('/') {
-        Some((a, b)) => a.parse::<f64>().ok()? / b.parse::<f64>().ok()?,
-        None => p.parse::<f64>().ok()?,
-    };
-    (v.is_finite() && v > 0.0).then(|| (s.to_string(), v / 100.0))
 }
 
 fn parse_size(s: &str) -> Option<usize> {
@@ -222,40 +213,6 @@ fn envelope_bin(a: &Args) -> Option<PathBuf> {
         .max_by_key(|p| fs::metadata(p).and_then(|m| m.modified()).ok())
 }
 
-fn bbox_diagonal(soup: &TriangleSoup) -> f64 {
-    let (lo, hi) = soup.positions.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-    );
-    (hi - lo).length()
-}
-
-/// meshoptimizer's `simplify` to 0 triangles under absolute error `eps`; its seconds.
-fn meshopt_seconds(soup: &TriangleSoup, eps: f64) -> Option<f64> {
-    #[allow(clippy::cast_possible_truncation)]
-    let pos: Vec<[f32; 3]> = soup
-        .positions
-        .iter()
-        .map(|p| [p.x as f32, p.y as f32, p.z as f32])
-        .collect();
-    let indices: Vec<u32> = soup.faces.iter().flat_map(|f| f.map(|v| v.0)).collect();
-    let adapter =
-        meshopt::VertexDataAdapter::new(meshopt::utilities::typed_to_bytes(&pos), 12, 0).ok()?;
-    let t = Instant::now();
-    #[allow(clippy::cast_possible_truncation)]
-    let out = meshopt::simplify(
-        &indices,
-        &adapter,
-        0,
-        eps as f32,
-        meshopt::SimplifyOptions::ErrorAbsolute,
-        None,
-    );
-    let s = t.elapsed().as_secs_f64();
-    std::hint::black_box(out);
-    Some(s)
-}
-
 fn run_envelope(bin: &Path, a: &Args, input: &Path, dir: &Path, eps: &str, row: &mut Row) {
     let out = dir.join("out.ply");
     let report = dir.join("report.json");
@@ -396,7 +353,7 @@ fn main() -> ExitCode {
             eprintln!("error: {}: {e}", path.display());
             return ExitCode::FAILURE;
         }
-        let diag = bbox_diagonal(soup);
+        let diag = soup.diagonal();
         for (label, frac) in &args.epsilons {
             let mut row = Row {
                 input: name.clone(),
@@ -405,7 +362,7 @@ fn main() -> ExitCode {
                 ..Row::default()
             };
             run_envelope(&bin, &args, &path, &dir, label, &mut row);
-            row.meshopt = meshopt_seconds(soup, frac * diag);
+            row.meshopt = meshopt_simplify(soup, frac * diag).ok().map(|r| r.seconds);
             println!(
                 "{:<18} {:>9} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>8} {:>8} {:>8} {:>8}{}",
                 row.input,
