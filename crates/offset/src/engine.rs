@@ -116,11 +116,7 @@ impl<'a> Scene<'a> {
         let near = Bvh::new(reaches);
         let only: Vec<u32> = (0..faces.len() as u32)
             .into_par_iter()
-            .filter(|&f| {
-                let mut hit = false;
-                near.for_each_overlapping(&swept[f as usize], |_| hit = true);
-                hit
-            })
+            .filter(|&f| near.any_overlapping(&swept[f as usize]))
             .collect();
         let kept: Vec<Aabb> = only.iter().map(|&f| swept[f as usize]).collect();
         let mut scene = Scene {
@@ -220,11 +216,8 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
     // Every face the star can meet now has its current box (or, in the star, its proposed
     // one) inside its swept box, so it is among the faces whose swept box overlaps `all`:
     // the trees answer that directly, without a walk over everything the star could reach.
-    let mut clear = true;
-    let mut visit = |g: u32| {
-        if !clear {
-            return;
-        }
+    // Whether the star at `t` is clear of face `g`.
+    let clear_of = |g: u32| {
         let g_in_star = m.star.binary_search(&g).is_ok();
         let gv = scene.faces[g as usize];
         // A star face is at the proposed positions; any other face's box is the kept one.
@@ -234,7 +227,7 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
             scene.boxes[g as usize]
         };
         if !bg.overlaps(&all) {
-            return;
+            return true;
         }
         let tg = gv.map(pos);
         let ag = gv.map(alias);
@@ -253,21 +246,28 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
                 continue;
             }
             if tris_intersect(pf.t, af, tg, ag) {
-                clear = false;
-                return;
+                return false;
             }
         }
+        true
     };
     match (&scene.only, scene.fixed) {
-        (Some(only), _) => scene
-            .bvh
-            .for_each_overlapping(&all, |i| visit(only[i as usize])),
+        (Some(only), _) => all_clear(&scene.bvh, &all, |i| clear_of(only[i as usize])),
         (None, Some((tree, n))) => {
-            tree.for_each_overlapping(&all, &mut visit);
-            scene.bvh.for_each_overlapping(&all, |i| visit(i + n));
+            all_clear(tree, &all, clear_of) && all_clear(&scene.bvh, &all, |i| clear_of(i + n))
         }
-        (None, None) => scene.bvh.for_each_overlapping(&all, visit),
+        (None, None) => all_clear(&scene.bvh, &all, clear_of),
     }
+}
+
+/// Whether `clear_of` holds for every item of `tree` whose box overlaps `query`; the walk
+/// stops at the first that fails.
+fn all_clear(tree: &Bvh, query: &Aabb, mut clear_of: impl FnMut(u32) -> bool) -> bool {
+    let mut clear = true;
+    tree.for_each_overlapping_while(query, |i| {
+        clear = clear_of(i);
+        clear
+    });
     clear
 }
 
@@ -375,7 +375,7 @@ pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPoli
         }
     }
     for m in movers.iter_mut() {
-        m.star.sort_unstable(); // for the walk in `check`; the star's order decides nothing
+        m.star.sort_unstable(); // for `check`'s binary search; the star's order decides nothing
     }
     let batches = batches(movers, &scene.faces, scene.positions.len());
     loop {

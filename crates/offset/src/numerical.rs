@@ -2,7 +2,7 @@
 //! (the [`engine`](crate::engine)), on the mesh renumbered in Z-order, or on the part of it a
 //! few movers reach ([`Near`]).
 use envelope_mesh::{TriangleSoup, VertexFaces, VertexId};
-use envelope_predicates::bvh::Aabb;
+use envelope_predicates::bvh::{Aabb, Bvh};
 use glam::DVec3;
 
 use crate::engine::{self, Mover, Scene, StepPolicy};
@@ -200,16 +200,10 @@ impl Near<'_> {
         };
         // A tree over the reaches: a scan of all of them per face is quadratic when the
         // movers are a few percent of a large mesh.
-        let near = envelope_predicates::bvh::Bvh::new(&reaches);
+        let near = Bvh::new(&reaches);
         let faces: Vec<usize> = (0..soup.num_faces())
             .into_par_iter()
-            .filter(|&f| {
-                kept[f] || {
-                    let mut hit = false;
-                    near.for_each_overlapping(&prism(f), |_| hit = true);
-                    hit
-                }
-            })
+            .filter(|&f| kept[f] || near.any_overlapping(&prism(f)))
             .collect();
         // The part's vertices in the whole mesh's Z-order (ties by id).
         let mut verts: Vec<u32> = faces

@@ -450,6 +450,33 @@ impl Bvh {
 
     /// Calls `f` with every item whose box overlaps `query`.
     pub fn for_each_overlapping(&self, query: &Aabb, mut f: impl FnMut(u32)) {
+        self.for_each_overlapping_while(query, |i| {
+            f(i);
+            true
+        });
+    }
+
+    /// Whether some item's box overlaps `query` (the walk stops at the first).
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let at = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let tree = Bvh::new(&[at(0.0), at(5.0)]);
+    /// assert!(tree.any_overlapping(&at(5.5)) && !tree.any_overlapping(&at(2.5)));
+    /// ```
+    #[must_use]
+    pub fn any_overlapping(&self, query: &Aabb) -> bool {
+        let mut hit = false;
+        self.for_each_overlapping_while(query, |_| {
+            hit = true;
+            false
+        });
+        hit
+    }
+
+    /// Calls `f` with the items whose boxes overlap `query` until it returns `false`.
+    pub fn for_each_overlapping_while(&self, query: &Aabb, mut f: impl FnMut(u32) -> bool) {
         if self.nodes.is_empty() {
             return;
         }
@@ -473,8 +500,8 @@ impl Bvh {
             }
             if node.leaf {
                 for k in node.a as usize..(node.a + node.b) as usize {
-                    if self.boxes[k].overlaps(query) {
-                        f(self.items[k]);
+                    if self.boxes[k].overlaps(query) && !f(self.items[k]) {
+                        return;
                     }
                 }
             } else if len + 2 <= stack.len() {
