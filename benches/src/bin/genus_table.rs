@@ -69,6 +69,17 @@ fn preserve(soup: &TriangleSoup, eps: f64) -> Result<(TriangleSoup, f64), String
     Ok((out, t.elapsed().as_secs_f64()))
 }
 
+/// The corpus part `name`, or `None` (said on stderr) when it cannot be read.
+fn read_part(corpus: &std::path::Path, name: &str) -> Option<TriangleSoup> {
+    match envelope_io::read_path(corpus.join(format!("{name}.off"))) {
+        Ok((s, _)) => Some(s),
+        Err(e) => {
+            eprintln!("skipping {name}: {e} (run scripts/corpus.sh)");
+            None
+        }
+    }
+}
+
 fn genus(s: &TriangleSoup) -> String {
     analyze(s)
         .genus
@@ -131,13 +142,8 @@ fn closing_table(
         if only.is_some_and(|o| o != name) {
             continue;
         }
-        let path = corpus.join(format!("{name}.off"));
-        let soup = match envelope_io::read_path(&path) {
-            Ok((s, _)) => s,
-            Err(e) => {
-                eprintln!("skipping {name}: {e} (run scripts/corpus.sh)");
-                continue;
-            }
+        let Some(soup) = read_part(corpus, name) else {
+            continue;
         };
         let topo = analyze(&soup);
         let g_in = topo.genus.map_or(0, i64::from);
@@ -219,24 +225,18 @@ fn main() -> ExitCode {
         if only.as_deref().is_some_and(|o| o != name) {
             continue;
         }
-        let path = corpus.join(format!("{name}.off"));
-        let soup = match envelope_io::read_path(&path) {
-            Ok((s, _)) => s,
-            Err(e) => {
-                eprintln!("skipping {name}: {e} (run scripts/corpus.sh)");
-                if quick {
-                    let plate =
-                        envelope_genus::testmeshes::plate_with_square_holes(&[1, 2, 4], 2, 1.0);
-                    match row("generated plate [1,2,4]", &plate, eps_pct, 10.0, source) {
-                        Ok(r) => println!("{r}"),
-                        Err(e) => {
-                            eprintln!("generated plate: {e}");
-                            failed = true;
-                        }
+        let Some(soup) = read_part(&corpus, name) else {
+            if quick {
+                let plate = envelope_genus::testmeshes::plate_with_square_holes(&[1, 2, 4], 2, 1.0);
+                match row("generated plate [1,2,4]", &plate, eps_pct, 10.0, source) {
+                    Ok(r) => println!("{r}"),
+                    Err(e) => {
+                        eprintln!("generated plate: {e}");
+                        failed = true;
                     }
                 }
-                continue;
             }
+            continue;
         };
         match row(name, &soup, eps_pct, alpha_pct, source) {
             Ok(r) => println!("{r}"),
