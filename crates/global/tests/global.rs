@@ -15,6 +15,26 @@ fn run(soup: &TriangleSoup, eps: f64, method: Method) -> (TriangleSoup, Simplify
     simplify_with(soup, &options, method.step().as_ref(), &mut ()).expect("simplify")
 }
 
+/// Local, global (with its report) and hybrid outputs of `soup`, their sizes printed.
+fn three_methods(
+    soup: &TriangleSoup,
+    eps: f64,
+    label: &str,
+) -> (TriangleSoup, TriangleSoup, SimplifyReport, TriangleSoup) {
+    let (local, _) = run(soup, eps, Method::Local);
+    let (global, report) = run(soup, eps, Method::Global);
+    let (hybrid, _) = run(soup, eps, Method::Hybrid);
+    println!(
+        "{label}: input {} faces, local {}, global {}, hybrid {}; global details {}",
+        soup.num_faces(),
+        local.num_faces(),
+        global.num_faces(),
+        hybrid.num_faces(),
+        report.method_details
+    );
+    (local, global, report, hybrid)
+}
+
 /// Certified within `eps` both ways, intersection-free, same topology.
 fn assert_certified(input: &TriangleSoup, out: &TriangleSoup, eps: f64) {
     let c = certify(input, out, &Options::new(eps));
@@ -92,17 +112,7 @@ fn figure_8_local_is_stuck_and_global_reaches_the_minimal_triangulation() {
     let (n, eps) = (3, 0.05);
     let soup = zigzag_ridge(n, 0.85 * eps, eps);
     assert_eq!(analyze(&soup).genus, Some(0));
-    let (local, _) = run(&soup, eps, Method::Local);
-    let (global, report) = run(&soup, eps, Method::Global);
-    let (hybrid, _) = run(&soup, eps, Method::Hybrid);
-    println!(
-        "figure 8: input {} faces, local {}, global {}, hybrid {}; global details {}",
-        soup.num_faces(),
-        local.num_faces(),
-        global.num_faces(),
-        hybrid.num_faces(),
-        report.method_details
-    );
+    let (local, global, _, hybrid) = three_methods(&soup, eps, "figure 8");
     // Local: no single inner ridge vertex can go.
     assert_eq!(inner_ridge_vertices(&local, n), n);
     // Global: the ridge is straight; the bar is two pentagons and five quads (16 faces).
@@ -124,17 +134,7 @@ fn a_long_ridge_needs_whole_surface_candidates() {
     let eps = 0.05;
     for n in [5, 7] {
         let soup = zigzag_ridge(n, 0.85 * eps, eps);
-        let (local, _) = run(&soup, eps, Method::Local);
-        let (global, report) = run(&soup, eps, Method::Global);
-        let (hybrid, _) = run(&soup, eps, Method::Hybrid);
-        println!(
-            "ridge of {n}: input {} faces, local {}, global {}, hybrid {}; global details {}",
-            soup.num_faces(),
-            local.num_faces(),
-            global.num_faces(),
-            hybrid.num_faces(),
-            report.method_details
-        );
+        let (local, global, report, hybrid) = three_methods(&soup, eps, &format!("ridge of {n}"));
         assert_eq!(inner_ridge_vertices(&local, n), n);
         assert!(global.num_faces() < local.num_faces());
         assert!(global.num_faces() <= hybrid.num_faces());
