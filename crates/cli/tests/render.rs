@@ -30,37 +30,26 @@ fn render_writes_one_panel_per_mesh() {
     let dir = tempfile::tempdir().unwrap();
     let (a, b) = meshes(dir.path());
     let out = dir.path().join("pair.png");
-    let run = envelope()
-        .args(["render", &a, &b, out.to_str().unwrap()])
-        .args([
-            "--size",
-            "96x64",
-            "--view",
-            "-20,35",
-            "--wire",
-            "--same-scale",
-        ])
-        .args(["--caption", "sphere"])
-        .output()
-        .unwrap();
-    assert_ok(&run);
+    let render = || {
+        envelope()
+            .args(["render", &a, &b, out.to_str().unwrap()])
+            .args([
+                "--size",
+                "96x64",
+                "--view",
+                "-20,35",
+                "--wire",
+                "--same-scale",
+            ])
+            .args(["--caption", "sphere"])
+            .output()
+            .unwrap()
+    };
+    assert_ok(&render());
     assert_eq!(png_size(&out), (192, 64));
     let first = std::fs::read(&out).unwrap();
     // Same arguments, same bytes.
-    let again = envelope()
-        .args(["render", &a, &b, out.to_str().unwrap()])
-        .args([
-            "--size",
-            "96x64",
-            "--view",
-            "-20,35",
-            "--wire",
-            "--same-scale",
-        ])
-        .args(["--caption", "sphere"])
-        .output()
-        .unwrap();
-    assert_ok(&again);
+    assert_ok(&render());
     assert_eq!(std::fs::read(&out).unwrap(), first);
 }
 
