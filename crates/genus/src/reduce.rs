@@ -13,20 +13,14 @@
 //! triangle lies inside the union of alpha-prisms. A hole wider than `2 alpha` fails this
 //! (its middle is farther than `alpha` from every rim vertex).
 //!
-//! **Interior triangles (3.4).** From each accepted rim, faces on the side away from the
-//! kept patch are spread over breadth-first, never crossing an accepted rim. If the spread
-//! reaches the kept side of any accepted rim, the region is not enclosed (a hole that widens,
-//! a rim whose other side is the rest of the part): that rim is refused and the selection is
-//! recomputed until stable. Refusing can only keep the input as it was.
-//!
-//! **Tunnel networks (issue 37).** Where tunnels meet, the junction loop is a candidate from
-//! both walls; kept as a rim it would stop the spread from one tunnel's mouth inside the
-//! other's wall, and the whole network would be refused as not enclosed. A candidate whose
-//! kept patch is on the region side of another accepted rim is dropped as internal, unless
-//! that patch is open to the kept surface through a mouth that is not an accepted rim (a
-//! flood over patches from the kept surface, stopped only by accepted rims run from the side
-//! being left): then its junction rims stay and plug the rest of the network off, as the
-//! closing would. This only chooses candidates; acceptance is unchanged.
+//! **Interior triangles (3.4), over tunnel networks (issue 37).** The surface is cut along
+//! every candidate rim into cells; [`select`] decides which cells fill: the preferred side
+//! of each rim marks its region cells, and a filling cell that meets a staying one across an
+//! edge no taken rim covers (a mouth wider than the cube) stays instead, until stable. So a
+//! tunnel that opens wide stays open and is plugged where it joins the rest of the network,
+//! which still fills. A plug is a rim run the other way where only one side has a candidate.
+//! Caps that fold back over their planar kept face are refused first ([`folds_onto_kept`]).
+//! The crate README lists the rules; refusing can only keep the input as it was.
 //!
 //! **Validation.** The output is checked with `envelope-check`; caps involved in a new
 //! intersecting, coincident, duplicate or non-manifold finding are refused and the selection
@@ -39,7 +33,7 @@ use std::time::Instant;
 
 use envelope_check::{CheckOptions, DegeneracyClass, Element, check};
 use envelope_mesh::{FaceId, TriangleSoup, VertexId, analyze};
-use envelope_predicates::{Orientation, orient3d};
+use envelope_predicates::{Orientation, orient2d, orient3d};
 
 use crate::GenusError;
 use crate::exact::{covered_by_corner_cubes, linf_close};
@@ -167,8 +161,10 @@ struct Candidate {
     key: Vec<(VertexId, VertexId)>,
     /// Normal variation of the kept patch.
     variation: f64,
-    /// The kept patch (sharp-edge candidates).
-    patch: Option<usize>,
+    /// A plug: another candidate run the other way (its cap reversed), never preferred, so
+    /// never the reason a region is filled; it only closes a filled region off from a kept
+    /// cell whose own side has no candidate on these edges (see [`select`]).
+    plug: bool,
     /// The cap.
     cap: Vec<[VertexId; 3]>,
 }
@@ -294,7 +290,7 @@ pub fn reduce_genus_with(
                 keep: lp.faces.clone(),
                 key,
                 variation: variation[p],
-                patch: Some(p),
+                plug: false,
                 cap: Vec::new(),
             });
         }
@@ -322,7 +318,7 @@ pub fn reduce_genus_with(
                 keep: faces,
                 key,
                 variation: 0.0,
-                patch: None,
+                plug: false,
                 cap: Vec::new(),
             });
         }
@@ -347,28 +343,64 @@ pub fn reduce_genus_with(
                     || linf_close(soup.position(a), soup.position(b), alpha)
             }) && covered_by_corner_cubes(t.map(|v| soup.position(v)), alpha)
         });
+        if folds_onto_kept(soup, c, &cap) {
+            refused_shape += 1;
+            return false;
+        }
         c.cap = cap;
         refused_wide += usize::from(!ok);
         ok
     });
+    // Plugs: each edge cycle with a cap from one side only also runs the other way.
+    let mut plugs: Vec<Candidate> = Vec::new();
+    let mut sides_of: HashMap<&[Edge], usize> = HashMap::new();
+    for c in &candidates {
+        *sides_of.entry(c.key.as_slice()).or_default() += 1;
+    }
+    for c in candidates
+        .iter()
+        .filter(|c| sides_of[c.key.as_slice()] == 1)
+    {
+        let n = c.vertices.len();
+        let vertices: Vec<VertexId> = (0..n).map(|i| c.vertices[(n - i) % n]).collect();
+        let keep: Option<Vec<FaceId>> = (0..n)
+            .map(|i| {
+                let j = n - 1 - i;
+                edges.across(c.keep[j], c.vertices[j], c.vertices[(j + 1) % n])
+            })
+            .collect();
+        let Some(keep) = keep else { continue };
+        let plug = Candidate {
+            vertices,
+            keep,
+            key: c.key.clone(),
+            variation: f64::INFINITY,
+            plug: true,
+            cap: c.cap.iter().map(|t| [t[0], t[2], t[1]]).collect(),
+        };
+        if !folds_onto_kept(soup, &plug, &plug.cap) {
+            plugs.push(plug);
+        }
+    }
+    candidates.extend(plugs);
     // Two-sided ambiguity: the kept side is the one with less normal variation; ties keep
     // both orders (the interior test decides).
     candidates.sort_by(|a, b| a.key.cmp(&b.key).then(a.variation.total_cmp(&b.variation)));
-    let internal_rims = drop_internal(&edges, &pat.of_face, &mut candidates);
+    let cells = Cells::new(soup, &edges, &candidates);
 
     let mut refused: HashSet<usize> = HashSet::new();
     let mut refused_validation: HashSet<usize> = HashSet::new();
     let mut baseline: Option<HashMap<DegeneracyClass, usize>> = None;
-    let (out, added, removed, active) = loop {
-        let active = select(soup, &edges, &candidates, &mut refused);
+    let (out, added, removed, active, filled) = loop {
+        let (active, filled) = select(&edges, &candidates, &cells, &refused);
         let (out, added, removed, cap_of_face) = assemble(soup, &candidates, &active);
         if cap_of_face.is_empty() {
-            break (out, added, removed, active);
+            break (out, added, removed, active, filled);
         }
         let base = baseline.get_or_insert_with(|| class_counts(soup));
         let implicated = validate(&out, &cap_of_face, base);
         match implicated {
-            None => break (out, added, removed, active),
+            None => break (out, added, removed, active, filled),
             Some(bad) if bad.is_empty() => {
                 // Nothing to blame precisely: refuse every active cap.
                 refused.extend(active.iter().copied());
@@ -380,6 +412,29 @@ pub fn reduce_genus_with(
             }
         }
     };
+    // Per edge cycle not capped: refused by the validation, internal (both sides filled: a
+    // junction inside a filled network), or not enclosed.
+    let (mut refused_enclosure, mut internal_rims, mut refused_by_validation) = (0, 0, 0);
+    let mut i = 0;
+    while i < candidates.len() {
+        let mut j = i;
+        while j < candidates.len() && candidates[j].key == candidates[i].key {
+            j += 1;
+        }
+        if !(i..j).any(|k| active.contains(&k)) {
+            if (i..j).any(|k| refused_validation.contains(&k)) {
+                refused_by_validation += 1;
+            } else if (i..j).all(|k| {
+                let (kept, region) = &cells.sides[k];
+                kept.iter().chain(region).all(|&q| filled[q])
+            }) {
+                internal_rims += 1;
+            } else {
+                refused_enclosure += 1;
+            }
+        }
+        i = j;
+    }
     // Alpha-neighbourhoods of the faces at the accepted rims (report only).
     let mut rim_faces: Vec<FaceId> = active
         .iter()
@@ -409,8 +464,8 @@ pub fn reduce_genus_with(
         candidates: num_candidates,
         refused_shape,
         refused_wide,
-        refused_enclosure: refused.len() - refused_validation.len(),
-        refused_validation: refused_validation.len(),
+        refused_enclosure,
+        refused_validation: refused_by_validation,
         internal_rims,
         holes_filled: active.len(),
         triangles_added: added_faces.len(),
@@ -424,83 +479,6 @@ pub fn reduce_genus_with(
 
 /// An undirected edge `(min, max)`.
 type Edge = (VertexId, VertexId);
-
-/// Drops the candidates whose kept patch lies on the region side of another accepted rim
-/// (returns how many). A patch is on the region side of a rim when it is across the rim from
-/// the rim's kept patch and the rim is not a tie (the same edge cycle accepted from both
-/// sides with equal normal variation). Where tunnels meet (a tunnel wall pierced by
-/// another), the junction loop is a candidate from both walls; kept, it would stop the
-/// interior spread from one tunnel's mouth inside the other's wall and the whole network
-/// would be refused as not enclosed. Dropped, the network is one region, enclosed when every
-/// mouth is an accepted rim. (A heuristic choice of candidates: the acceptance that follows
-/// is unchanged.)
-fn drop_internal(edges: &EdgeMap, patch_of: &[usize], cands: &mut Vec<Candidate>) -> usize {
-    let mut tied: HashSet<&[(VertexId, VertexId)]> = HashSet::new();
-    for w in cands.windows(2) {
-        if w[0].key == w[1].key && w[0].variation.total_cmp(&w[1].variation).is_eq() {
-            tied.insert(w[0].key.as_slice());
-        }
-    }
-    let mut region: HashSet<usize> = HashSet::new();
-    let mut seen: HashSet<&[(VertexId, VertexId)]> = HashSet::new();
-    for c in cands.iter() {
-        // Only the preferred (first) side of each edge cycle marks, and never a tie.
-        if !seen.insert(c.key.as_slice()) || tied.contains(c.key.as_slice()) {
-            continue;
-        }
-        let Some(p) = c.patch else { continue };
-        let n = c.vertices.len();
-        for i in 0..n {
-            let (a, b) = (c.vertices[i], c.vertices[(i + 1) % n]);
-            if let Some(g) = edges.across(c.keep[i], a, b) {
-                let q = patch_of[g.index()];
-                if q != usize::MAX && q != p {
-                    region.insert(q);
-                }
-            }
-        }
-    }
-    // Mouths that are not accepted leak: flood the patches from the kept surface (kept
-    // patches of preferred rims that are not regions), crossing any edge except an edge of an
-    // accepted rim run from the side being left. A region patch reached this way is open to
-    // the kept surface (through a wide mouth): it stays, and the junction rims kept on its
-    // side plug the rest of its network off.
-    let mut blocked: HashSet<(usize, Edge)> = HashSet::new();
-    let mut start: Vec<usize> = Vec::new();
-    for c in cands.iter() {
-        if let Some(p) = c.patch {
-            blocked.extend(c.key.iter().map(|&e| (p, e)));
-            if !region.contains(&p) {
-                start.push(p);
-            }
-        }
-    }
-    // Patch -> (neighbouring patch, shared edge).
-    let mut next: HashMap<usize, Vec<(usize, Edge)>> = HashMap::new();
-    for (&e, fs) in &edges.faces {
-        if let [(f, _), (g, _)] = fs.as_slice() {
-            let (p, q) = (patch_of[f.index()], patch_of[g.index()]);
-            if p != q && p != usize::MAX && q != usize::MAX {
-                next.entry(p).or_default().push((q, e));
-                next.entry(q).or_default().push((p, e));
-            }
-        }
-    }
-    let mut open: HashSet<usize> = start.iter().copied().collect();
-    while let Some(p) = start.pop() {
-        for &(q, e) in next.get(&p).into_iter().flatten() {
-            if !blocked.contains(&(p, e)) && open.insert(q) {
-                start.push(q);
-            }
-        }
-    }
-    let before = cands.len();
-    cands.retain(|c| {
-        c.patch
-            .is_none_or(|p| !region.contains(&p) || open.contains(&p))
-    });
-    before - cands.len()
-}
 
 /// Splits a closed loop through a vertex more than once into simple loops (each keeps its
 /// edges' faces); pieces with fewer than three vertices (slits run both ways) are dropped.
@@ -526,6 +504,51 @@ fn split_simple(vertices: &[VertexId], faces: &[FaceId]) -> Vec<(Vec<VertexId>, 
         out.push(path.into_iter().unzip());
     }
     out
+}
+
+/// Whether a cap triangle on a rim edge lies in the plane of the kept face on that edge and
+/// on the same side of the edge (exact orient3d, then orient2d in a projection that is exact
+/// for coplanar points): the cap would fold back over the kept patch, as the cap of a planar
+/// face's outer loop does. Such a cap always overlaps a kept face, so it is refused before
+/// the selection (the validation would refuse it later, after it had filled its region).
+fn folds_onto_kept(soup: &TriangleSoup, c: &Candidate, cap: &[[VertexId; 3]]) -> bool {
+    let n = c.vertices.len();
+    let mut third: HashMap<Edge, VertexId> = HashMap::new();
+    for t in cap {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            third.insert((a.min(b), a.max(b)), t[(k + 2) % 3]);
+        }
+    }
+    (0..n).any(|i| {
+        let (a, b) = (c.vertices[i], c.vertices[(i + 1) % n]);
+        let Some(&x) = third.get(&(a.min(b), a.max(b))) else {
+            return false;
+        };
+        let Some(&d) = soup.faces[c.keep[i].index()]
+            .iter()
+            .find(|&&v| v != a && v != b)
+        else {
+            return false;
+        };
+        let [pa, pb, px, pd] = [a, b, x, d].map(|v| soup.position(v));
+        if !orient3d(pa, pb, pd, px).is_degenerate() {
+            return false;
+        }
+        let normal = (pb - pa).cross(pd - pa).abs();
+        let proj = |p: glam::DVec3| {
+            if normal.x >= normal.y && normal.x >= normal.z {
+                glam::DVec2::new(p.y, p.z)
+            } else if normal.y >= normal.z {
+                glam::DVec2::new(p.z, p.x)
+            } else {
+                glam::DVec2::new(p.x, p.y)
+            }
+        };
+        let (sa, sb) = (proj(pa), proj(pb));
+        let (ox, od) = (orient2d(sa, sb, proj(px)), orient2d(sa, sb, proj(pd)));
+        !ox.is_degenerate() && ox == od
+    })
 }
 
 /// Six times the signed volume (f64 heuristic): negative when the faces are oriented inward.
@@ -649,35 +672,166 @@ fn describe(e: &Element) -> String {
     }
 }
 
-/// The stable selection: accepted caps whose interior spread stays enclosed. Among
-/// candidates with the same edge cycle, only the first not refused is active.
+/// The cells of the surface cut along every candidate rim, and for each candidate the cells
+/// on its kept side and on its region side.
+struct Cells {
+    /// Cell of each face (`usize::MAX` for a face with a repeated index).
+    of_face: Vec<usize>,
+    count: usize,
+    /// Per candidate: kept-side cells, region-side cells (sorted, deduplicated).
+    sides: Vec<(Vec<usize>, Vec<usize>)>,
+}
+
+impl Cells {
+    fn new(soup: &TriangleSoup, edges: &EdgeMap, cands: &[Candidate]) -> Self {
+        let barrier: HashSet<Edge> = cands.iter().flat_map(|c| c.key.iter().copied()).collect();
+        let mut of_face = vec![usize::MAX; soup.num_faces()];
+        let mut count = 0;
+        for f in soup.face_ids() {
+            let t = soup.faces[f.index()];
+            if of_face[f.index()] != usize::MAX || t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                continue;
+            }
+            of_face[f.index()] = count;
+            let mut stack = vec![f];
+            while let Some(f) = stack.pop() {
+                let t = soup.faces[f.index()];
+                for k in 0..3 {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    if barrier.contains(&(a.min(b), a.max(b))) {
+                        continue;
+                    }
+                    if let Some(g) = edges.across(f, a, b) {
+                        if of_face[g.index()] == usize::MAX {
+                            of_face[g.index()] = count;
+                            stack.push(g);
+                        }
+                    }
+                }
+            }
+            count += 1;
+        }
+        let sides = cands
+            .iter()
+            .map(|c| {
+                let n = c.vertices.len();
+                let mut kept: Vec<usize> = c.keep.iter().map(|f| of_face[f.index()]).collect();
+                let mut region: Vec<usize> = (0..n)
+                    .filter_map(|i| {
+                        let (a, b) = (c.vertices[i], c.vertices[(i + 1) % n]);
+                        edges.across(c.keep[i], a, b).map(|g| of_face[g.index()])
+                    })
+                    .collect();
+                kept.sort_unstable();
+                kept.dedup();
+                region.sort_unstable();
+                region.dedup();
+                (kept, region)
+            })
+            .collect();
+        Cells {
+            of_face,
+            count,
+            sides,
+        }
+    }
+
+    /// Whether candidate `i` separates: no cell on both of its sides (a border loop has no
+    /// region side).
+    fn separates(&self, i: usize) -> bool {
+        let (kept, region) = &self.sides[i];
+        kept.iter().all(|k| region.binary_search(k).is_err())
+    }
+}
+
+/// The stable selection (section 3.4 over whole networks of tunnels). The surface is cut
+/// along every candidate rim into cells. The cells on the region side of the preferred
+/// candidate of each edge cycle (the first not refused; ties give both) are tentatively
+/// filled. A candidate is usable when all its kept cells stay and all its region cells are
+/// filled; usable candidates are taken in order unless they share an edge with one already
+/// taken. Every edge between a filled cell and a kept one must lie on a taken rim; where one
+/// does not (a mouth wider than the cube, a rim refused), the filled cell is kept instead,
+/// and this repeats until stable. So a tunnel that opens wide at one end stays open and is
+/// plugged at its junction with the rest of the network, which still fills; refusing can
+/// only keep more of the input. Returns the taken candidates and the filled cells.
 fn select(
-    soup: &TriangleSoup,
     edges: &EdgeMap,
     cands: &[Candidate],
-    refused: &mut HashSet<usize>,
-) -> Vec<usize> {
+    cells: &Cells,
+    refused: &HashSet<usize>,
+) -> (Vec<usize>, Vec<bool>) {
+    let mut preferred: Vec<usize> = Vec::new();
+    let mut i = 0;
+    while i < cands.len() {
+        let mut j = i;
+        while j < cands.len() && cands[j].key == cands[i].key {
+            j += 1;
+        }
+        let group: Vec<usize> = (i..j)
+            .filter(|&k| !refused.contains(&k) && !cands[k].plug && cells.separates(k))
+            .collect();
+        if let Some(&first) = group.first() {
+            preferred.extend(group.iter().copied().filter(|&k| {
+                cands[k]
+                    .variation
+                    .total_cmp(&cands[first].variation)
+                    .is_eq()
+            }));
+        }
+        i = j;
+    }
+    // Flattest kept patches first: their kept cells are anchored (a mouth on a planar face
+    // anchors the face) before a junction rim could put them on its region side.
+    preferred.sort_by(|&a, &b| cands[a].variation.total_cmp(&cands[b].variation));
+    let mut filled = vec![false; cells.count];
+    let mut anchored = vec![false; cells.count];
+    for &k in &preferred {
+        let (kept, region) = &cells.sides[k];
+        if region.iter().any(|&q| anchored[q]) {
+            continue;
+        }
+        for &q in region {
+            filled[q] = true;
+        }
+        for &q in kept {
+            if !filled[q] {
+                anchored[q] = true;
+            }
+        }
+    }
     loop {
-        let mut active: Vec<usize> = Vec::new();
-        let mut seen_keys: HashSet<&[(VertexId, VertexId)]> = HashSet::new();
-        for (i, c) in cands.iter().enumerate() {
-            if !refused.contains(&i) && seen_keys.insert(c.key.as_slice()) {
-                active.push(i);
+        let mut taken: Vec<usize> = Vec::new();
+        let mut covered: HashSet<Edge> = HashSet::new();
+        for (k, c) in cands.iter().enumerate() {
+            if refused.contains(&k) || !cells.separates(k) {
+                continue;
+            }
+            let (kept, region) = &cells.sides[k];
+            if kept.iter().any(|&q| filled[q]) || region.iter().any(|&q| !filled[q]) {
+                continue;
+            }
+            if c.key.iter().any(|e| covered.contains(e)) {
+                continue;
+            }
+            covered.extend(c.key.iter().copied());
+            taken.push(k);
+        }
+        let mut changed = false;
+        for (e, fs) in &edges.faces {
+            if let [(f, _), (g, _)] = fs.as_slice() {
+                let (p, q) = (cells.of_face[f.index()], cells.of_face[g.index()]);
+                if p == usize::MAX || q == usize::MAX || filled[p] == filled[q] {
+                    continue;
+                }
+                if !covered.contains(e) {
+                    let inner = if filled[p] { p } else { q };
+                    filled[inner] = false;
+                    changed = true;
+                }
             }
         }
-        let (barrier, kept) = rim_sets(cands, &active);
-        let mut bad = None;
-        for &i in &active {
-            if interior_region(soup, edges, &cands[i], &barrier, &kept).is_none() {
-                bad = Some(i);
-                break;
-            }
-        }
-        match bad {
-            Some(i) => {
-                refused.insert(i);
-            }
-            None => return active,
+        if !changed {
+            return (taken, filled);
         }
     }
 }
@@ -895,6 +1049,39 @@ fn compact(s: &TriangleSoup, added: Vec<usize>) -> (TriangleSoup, Vec<FaceId>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn caps_folding_back_over_their_planar_patch_are_told_apart_from_hole_caps() {
+        // A planar disk with one square hole: its patch has the outer loop and the hole loop.
+        let disk = crate::testmeshes::disk_with_square_holes(&[1], 1.0);
+        let edges = EdgeMap::new(&disk);
+        let normals = face_normals(&disk);
+        let tess: HashSet<Edge> = tessellation_edges(&edges, &normals, 70.0)
+            .into_iter()
+            .collect();
+        let pat = patches(&disk, &edges, &tess);
+        let loops = &pat.loops[0];
+        assert_eq!((pat.count, loops.len()), (1, 2));
+        let verdicts: Vec<bool> = loops
+            .iter()
+            .map(|lp| {
+                let c = Candidate {
+                    vertices: lp.vertices.clone(),
+                    keep: lp.faces.clone(),
+                    key: Vec::new(),
+                    variation: 0.0,
+                    plug: false,
+                    cap: Vec::new(),
+                };
+                let cap = triangulate_loop(&disk, &c.vertices).unwrap();
+                folds_onto_kept(&disk, &c, &cap)
+            })
+            .collect();
+        // The outer loop's cap lies over the disk; the hole's cap fills the hole.
+        let outer = usize::from(loops[1].vertices.len() > loops[0].vertices.len());
+        assert!(verdicts[outer], "outer cap folds: {verdicts:?}");
+        assert!(!verdicts[1 - outer], "hole cap does not: {verdicts:?}");
+    }
 
     #[test]
     fn figure_eight_loops_split_at_the_repeated_vertex() {
