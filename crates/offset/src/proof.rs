@@ -167,14 +167,12 @@ pub(crate) fn prove_envelopes(
             // The envelopes' tree is only returned: refitted beside the search.
             let refit = || input_tree.interleaved_refit(2, &boxes[nf as usize..]);
             rayon::join(refit, || {
-                // Each face's plane once (each meets about a dozen candidates), in parallel.
-                let prepared: Vec<PreparedFace> = all
-                    .par_iter()
-                    .map(|&f| PreparedFace::new(&positions, f))
-                    .collect();
-                // Global face ids `i`, `j` of two different faces.
+                // Global face ids `i`, `j` of two different faces. Each face's plane is
+                // prepared per pair rather than kept for all three surfaces (120 bytes a
+                // face: the largest allocation of the run on fine meshes).
                 let meet = |i: u32, j: u32| {
-                    prepared_faces_intersect(&prepared[i as usize], &prepared[j as usize])
+                    let face = |k: u32| PreparedFace::new(&positions, all[k as usize]);
+                    prepared_faces_intersect(&face(i), &face(j))
                 };
                 // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the union of
                 // the face's box on each surface) overlap, then every pair of their triangles on

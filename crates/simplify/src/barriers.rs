@@ -135,12 +135,9 @@ pub struct Barriers {
     /// The triangles, in the leaf order of `bvh` (whose leaf boxes, [`Bvh::leaf_boxes`], are
     /// their boxes, checked before any plane test).
     triangles: Vec<[DVec3; 3]>,
-    /// Each triangle's own [`PointSlab`] (prunes candidates whose corners all lie clearly on
-    /// one side of its plane).
-    slabs: Vec<PointSlab>,
     kinds: Vec<BarrierKind>,
-    /// The largest coordinate magnitude of any barrier triangle (the bound `slabs` are
-    /// widened for; see [`SlabFilter::new`]).
+    /// The largest coordinate magnitude of any barrier triangle (the bound a barrier
+    /// triangle's own [`PointSlab`] is widened for; see [`SlabFilter::new`]).
     magnitude: f64,
     /// Per envelope triangle, a bit per corner that is a pin ([`Barriers::with_pins`]).
     pinned: Vec<u8>,
@@ -310,10 +307,6 @@ impl Barriers {
             .par_iter()
             .map(|&t| magnitude(t))
             .reduce(|| 0.0, f64::max);
-        let slabs = triangles
-            .par_iter()
-            .map(|&t| SlabFilter::new(t, magnitude).points)
-            .collect();
         let pinned = vec![0; triangles.len()];
         let components: Vec<(Aabb, DVec3)> = surfaces
             .iter()
@@ -325,7 +318,6 @@ impl Barriers {
         });
         Ok(Self {
             triangles,
-            slabs,
             kinds,
             magnitude,
             pinned,
@@ -769,9 +761,13 @@ impl Barriers {
     ) -> bool {
         match kind {
             BarrierKind::Envelope | BarrierKind::Wall => {
-                let own = &self.slabs[i];
-                let apart = plane.separates_points(b)
-                    || (own.covers(plane.t_mag) && own.separates_points(t));
+                // The barrier triangle's own slab is made here, when the candidate's plane
+                // does not separate, rather than kept: 168 bytes per barrier triangle were
+                // the largest allocation on fine meshes (the same values, the same pruning).
+                let apart = plane.separates_points(b) || {
+                    let own = SlabFilter::new(b, self.magnitude).points;
+                    own.covers(plane.t_mag) && own.separates_points(t)
+                };
                 !apart
                     && match pin_ids(t, b, self.pinned[i]) {
                         Some(g) => indexed_triangles_intersect(t, [0, 1, 2], b, g),
@@ -847,8 +843,8 @@ struct SlabFilter {
     t_mag: f64,
 }
 
-/// The part of a [`SlabFilter`] that [`SlabFilter::separates_points`] reads (the barriers
-/// keep one per triangle: 168 bytes instead of 272).
+/// The part of a [`SlabFilter`] that [`SlabFilter::separates_points`] reads (what a barrier
+/// triangle's own test needs).
 #[derive(Clone, Copy, Debug, Default)]
 struct PointSlab {
     /// The normal, then the three in-plane edge normals.
