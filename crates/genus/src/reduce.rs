@@ -38,7 +38,7 @@ use envelope_predicates::{Orientation, orient2d, orient3d};
 use crate::GenusError;
 use crate::exact::{covered_by_corner_cubes, linf_close};
 use crate::tessellation::{
-    EdgeMap, face_normals, link_chains, normal_variation, patches, tessellation_edges,
+    EdgeMap, Patches, face_normals, link_chains, normal_variation, patches, tessellation_edges,
 };
 use crate::triangulate::triangulate_loop;
 use crate::union::{TessellationSource, union_rims};
@@ -685,32 +685,8 @@ struct Cells {
 impl Cells {
     fn new(soup: &TriangleSoup, edges: &EdgeMap, cands: &[Candidate]) -> Self {
         let barrier: HashSet<Edge> = cands.iter().flat_map(|c| c.key.iter().copied()).collect();
-        let mut of_face = vec![usize::MAX; soup.num_faces()];
-        let mut count = 0;
-        for f in soup.face_ids() {
-            let t = soup.faces[f.index()];
-            if of_face[f.index()] != usize::MAX || t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
-                continue;
-            }
-            of_face[f.index()] = count;
-            let mut stack = vec![f];
-            while let Some(f) = stack.pop() {
-                let t = soup.faces[f.index()];
-                for k in 0..3 {
-                    let (a, b) = (t[k], t[(k + 1) % 3]);
-                    if barrier.contains(&(a.min(b), a.max(b))) {
-                        continue;
-                    }
-                    if let Some(g) = edges.across(f, a, b) {
-                        if of_face[g.index()] == usize::MAX {
-                            of_face[g.index()] = count;
-                            stack.push(g);
-                        }
-                    }
-                }
-            }
-            count += 1;
-        }
+        // The cells are the patches of the surface cut along the rims.
+        let Patches { of_face, count, .. } = patches(soup, edges, &barrier);
         let sides = cands
             .iter()
             .map(|c| {
