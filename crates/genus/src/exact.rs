@@ -9,6 +9,25 @@ use envelope_predicates::exact_num::Rational;
 use envelope_predicates::{Filtered, Kernel, Sign};
 use glam::DVec3;
 
+/// The projection onto the coordinate plane that `normal` (an f64 construction) is most
+/// aligned with: dropping a coordinate is exact, so for points in one plane not parallel to
+/// the dropped axis the projected orientations are the points' own.
+pub(crate) fn dominant_projection(normal: DVec3) -> impl Fn(DVec3) -> glam::DVec2 {
+    let a = normal.abs();
+    let drop = if a.x >= a.y && a.x >= a.z {
+        0
+    } else if a.y >= a.z {
+        1
+    } else {
+        2
+    };
+    move |p: DVec3| match drop {
+        0 => glam::DVec2::new(p.y, p.z),
+        1 => glam::DVec2::new(p.z, p.x),
+        _ => glam::DVec2::new(p.x, p.y),
+    }
+}
+
 /// Exactly collinear (or coincident) points.
 pub(crate) fn collinear(a: DVec3, b: DVec3, c: DVec3) -> bool {
     envelope_predicates::collinear(a, b, c)

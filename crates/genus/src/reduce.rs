@@ -415,16 +415,11 @@ pub fn reduce_genus_with(
     // Per edge cycle not capped: refused by the validation, internal (both sides filled: a
     // junction inside a filled network), or not enclosed.
     let (mut refused_enclosure, mut internal_rims, mut refused_by_validation) = (0, 0, 0);
-    let mut i = 0;
-    while i < candidates.len() {
-        let mut j = i;
-        while j < candidates.len() && candidates[j].key == candidates[i].key {
-            j += 1;
-        }
-        if !(i..j).any(|k| active.contains(&k)) {
-            if (i..j).any(|k| refused_validation.contains(&k)) {
+    for group in key_groups(&candidates) {
+        if !group.clone().any(|k| active.contains(&k)) {
+            if group.clone().any(|k| refused_validation.contains(&k)) {
                 refused_by_validation += 1;
-            } else if (i..j).all(|k| {
+            } else if group.clone().all(|k| {
                 let (kept, region) = &cells.sides[k];
                 kept.iter().chain(region).all(|&q| filled[q])
             }) {
@@ -433,7 +428,6 @@ pub fn reduce_genus_with(
                 refused_enclosure += 1;
             }
         }
-        i = j;
     }
     // Alpha-neighbourhoods of the faces at the accepted rims (report only).
     let mut rim_faces: Vec<FaceId> = active
@@ -535,16 +529,7 @@ fn folds_onto_kept(soup: &TriangleSoup, c: &Candidate, cap: &[[VertexId; 3]]) ->
         if !orient3d(pa, pb, pd, px).is_degenerate() {
             return false;
         }
-        let normal = (pb - pa).cross(pd - pa).abs();
-        let proj = |p: glam::DVec3| {
-            if normal.x >= normal.y && normal.x >= normal.z {
-                glam::DVec2::new(p.y, p.z)
-            } else if normal.y >= normal.z {
-                glam::DVec2::new(p.z, p.x)
-            } else {
-                glam::DVec2::new(p.x, p.y)
-            }
-        };
+        let proj = crate::exact::dominant_projection((pb - pa).cross(pd - pa));
         let (sa, sb) = (proj(pa), proj(pb));
         let (ox, od) = (orient2d(sa, sb, proj(px)), orient2d(sa, sb, proj(pd)));
         !ox.is_degenerate() && ox == od
@@ -672,6 +657,18 @@ fn describe(e: &Element) -> String {
     }
 }
 
+/// The index ranges of the candidates with the same edge cycle (`cands` sorted by key).
+fn key_groups(cands: &[Candidate]) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
+    let mut i = 0;
+    std::iter::from_fn(move || {
+        let start = i;
+        while i < cands.len() && cands[i].key == cands[start].key {
+            i += 1;
+        }
+        (start < cands.len()).then_some(start..i)
+    })
+}
+
 /// The cells of the surface cut along every candidate rim, and for each candidate the cells
 /// on its kept side and on its region side.
 struct Cells {
@@ -737,13 +734,8 @@ fn select(
     refused: &HashSet<usize>,
 ) -> (Vec<usize>, Vec<bool>) {
     let mut preferred: Vec<usize> = Vec::new();
-    let mut i = 0;
-    while i < cands.len() {
-        let mut j = i;
-        while j < cands.len() && cands[j].key == cands[i].key {
-            j += 1;
-        }
-        let group: Vec<usize> = (i..j)
+    for group in key_groups(cands) {
+        let group: Vec<usize> = group
             .filter(|&k| !refused.contains(&k) && !cands[k].plug && cells.separates(k))
             .collect();
         if let Some(&first) = group.first() {
@@ -754,7 +746,6 @@ fn select(
                     .is_eq()
             }));
         }
-        i = j;
     }
     // Flattest kept patches first: their kept cells are anchored (a mouth on a planar face
     // anchors the face) before a junction rim could put them on its region side.

@@ -62,19 +62,7 @@ fn planar_cdt(pts: &[DVec3], loop_: &[VertexId]) -> Option<Vec<[VertexId; 3]>> {
             (p.x - q.x) * (p.y + q.y),
         );
     }
-    let a = normal.abs();
-    let drop = if a.x >= a.y && a.x >= a.z {
-        0
-    } else if a.y >= a.z {
-        1
-    } else {
-        2
-    };
-    let proj = |p: DVec3| match drop {
-        0 => DVec2::new(p.y, p.z),
-        1 => DVec2::new(p.z, p.x),
-        _ => DVec2::new(p.x, p.y),
-    };
+    let proj = crate::exact::dominant_projection(normal);
     let p2: Vec<DVec2> = pts.iter().map(|&p| proj(p)).collect();
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
         ConstrainedDelaunayTriangulation::new();

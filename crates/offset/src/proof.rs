@@ -154,6 +154,13 @@ pub(crate) fn prove_envelopes(
         };
         (s, FaceId(f % nf))
     };
+    // Whether faces `i`, `j` (global ids, two different faces) meet. Each face's plane is
+    // prepared per pair rather than kept for all three surfaces (120 bytes a face, the
+    // largest allocation of a run on fine meshes).
+    let meet = |i: u32, j: u32| {
+        let face = |k: u32| PreparedFace::new(&positions, face_of(k));
+        prepared_faces_intersect(&face(i), &face(j))
+    };
     let (envelope_tree, mut pairs) = match known.unchanged {
         None => {
             let all: Vec<[u32; 3]> = (0..3 * nf).into_par_iter().map(face_of).collect();
@@ -167,13 +174,6 @@ pub(crate) fn prove_envelopes(
             // The envelopes' tree is only returned: refitted beside the search.
             let refit = || input_tree.interleaved_refit(2, &boxes[nf as usize..]);
             rayon::join(refit, || {
-                // Global face ids `i`, `j` of two different faces. Each face's plane is
-                // prepared per pair rather than kept for all three surfaces (120 bytes a
-                // face: the largest allocation of the run on fine meshes).
-                let meet = |i: u32, j: u32| {
-                    let face = |k: u32| PreparedFace::new(&positions, all[k as usize]);
-                    prepared_faces_intersect(&face(i), &face(j))
-                };
                 // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the union of
                 // the face's box on each surface) overlap, then every pair of their triangles on
                 // any two surfaces (within the input only when it is not known free) whose own
@@ -220,12 +220,6 @@ pub(crate) fn prove_envelopes(
             })
         }
         Some(u) => {
-            // The same answer as on prepared faces, for the few pairs with a changed face
-            // (no plane prepared, no box computed for the faces no pair asks about).
-            let meet = |i: u32, j: u32| {
-                let face = |k: u32| PreparedFace::new(&positions, face_of(k));
-                prepared_faces_intersect(&face(i), &face(j))
-            };
             // Only the changed faces, each against every face (a pair of two changed faces
             // once: from the lower id); the pairs of unchanged faces keep their answers.
             let is_changed = |f: u32| f >= nf && !u.faces[(f / nf - 1) as usize][(f % nf) as usize];
