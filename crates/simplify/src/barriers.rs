@@ -806,8 +806,8 @@ impl Barriers {
         match kind {
             BarrierKind::Envelope | BarrierKind::Wall => {
                 // The barrier triangle's own slab is made here, when the candidate's plane
-                // does not separate, rather than kept: 168 bytes per barrier triangle were
-                // the largest allocation on fine meshes (the same values, the same pruning).
+                // does not separate, rather than kept at 168 bytes per barrier triangle (the
+                // same values, the same pruning; the memory it saves is in the changelog).
                 let apart = plane.separates_points(b) || {
                     let own = SlabFilter::new(b, self.magnitude).points;
                     own.covers(plane.t_mag) && own.separates_points(t)
