@@ -101,6 +101,7 @@ def simplify(
     tube_segments: Optional[int] = DEFAULTS["tube_segments"],
     target_faces: Optional[int] = None,
     certify: bool = DEFAULTS["certify"],
+    tolerance_phase: bool = DEFAULTS["tolerance_phase"],
     threads: Optional[int] = None,
     progress: Optional[Progress] = None,
 ) -> Simplified:
@@ -121,6 +122,9 @@ def simplify(
             vertex.
         target_faces: stop once at most this many faces remain.
         certify: certify the output against the input.
+        tolerance_phase: after the simplification, go on where the envelopes stop (thin
+            parts at large epsilons) with operations proved against the bound itself
+            (uniform epsilon only).
         threads: worker threads; ``None`` is the library's default (one per core). The
             output is the same for any number.
         progress: called with a dict per event (``{"kind": "stage", "stage": "envelopes"}``,
@@ -155,6 +159,7 @@ def simplify(
         tube_segments=tube_segments,
         target_faces=target_faces,
         certify=certify,
+        tolerance_phase=tolerance_phase,
         threads=threads,
         progress=progress,
     )

@@ -183,6 +183,7 @@ def simplify(
     tube_segments: Optional[int],
     target_faces: Optional[int] = None,
     certify: Optional[bool] = None,
+    tolerance_phase: Optional[bool] = None,
     threads: Optional[int] = None,
     progress: Optional[_Progress] = None,
 ) -> Simplified: ...

@@ -71,6 +71,32 @@ struct Case {
     soup: TriangleSoup,
     percents: &'static [f64],
     placement: Placement,
+    /// With the tolerance phase after the step (`SimplifyOptions::tolerance_phase`).
+    tolerance_phase: bool,
+}
+
+/// Thin shapes at epsilons above half their thickness, with the tolerance phase: a
+/// flattened sphere (an ear) and a thin ring.
+const THIN_PERCENTS: &[f64] = &[2.0, 4.0];
+
+fn thin_cases() -> Vec<Case> {
+    let mut ear = generate::icosphere(3, 1.0);
+    for p in &mut ear.positions {
+        *p *= DVec3::new(1.0, 0.7, 0.02);
+    }
+    [
+        ("ear (tolerance)", ear),
+        ("ring (tolerance)", generate::torus(1.0, 0.02, 96, 8)),
+    ]
+    .into_iter()
+    .map(|(n, soup)| Case {
+        name: n.to_string(),
+        soup,
+        percents: THIN_PERCENTS,
+        placement: Placement::Auto,
+        tolerance_phase: true,
+    })
+    .collect()
 }
 
 const GENERATED_PERCENTS: &[f64] = &[1.0 / 16.0, 0.25, 1.0];
@@ -100,8 +126,10 @@ fn cases(log: &mut Vec<String>) -> Vec<Case> {
         soup,
         percents: GENERATED_PERCENTS,
         placement: Placement::Auto,
+        tolerance_phase: false,
     })
     .collect();
+    v.extend(thin_cases());
     // hand and femur each have one folded vertex (pinned).
     let mut corpus = vec![
         "fandisk.off",
@@ -137,14 +165,26 @@ fn cases(log: &mut Vec<String>) -> Vec<Case> {
                             soup: soup.clone(),
                             percents: CORPUS_PERCENTS,
                             placement,
+                            tolerance_phase: false,
                         });
                     }
+                }
+                // The tolerance phase on a thin-limbed model, with the envelopes capped.
+                if name == "elephant.off" {
+                    v.push(Case {
+                        name: format!("{name} (tolerance)"),
+                        soup: soup.clone(),
+                        percents: THIN_PERCENTS,
+                        placement: Placement::Auto,
+                        tolerance_phase: true,
+                    });
                 }
                 v.push(Case {
                     name: name.to_string(),
                     soup,
                     percents: CORPUS_PERCENTS,
                     placement: Placement::Subset,
+                    tolerance_phase: false,
                 });
             }
             Ok(_) => log.push(format!("{name}: not acceptable input, not run")),
@@ -174,6 +214,7 @@ fn outputs_pass_cgal() {
             let mut options = SimplifyOptions::new(EpsilonField::Constant(eps));
             options.verify = true;
             options.placement = case.placement;
+            options.tolerance_phase = case.tolerance_phase;
             let (out, report) = match simplify(&case.soup, &options, &mut ()) {
                 Ok(r) => r,
                 Err(e) => {
@@ -181,6 +222,9 @@ fn outputs_pass_cgal() {
                     continue;
                 }
             };
+            if case.tolerance_phase && report.tolerance_phase.is_none() {
+                failures.push(format!("{tag}: the tolerance phase did not run"));
+            }
             if case.placement == Placement::Auto {
                 auto_ran.insert(report.placement);
             }

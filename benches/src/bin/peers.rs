@@ -21,6 +21,12 @@
 //! measurement that hits one shows as `limit` in the table, and an oracle left behind by a
 //! killed `peers` ends at its CPU limit.
 //!
+//! Each `envelope` row at (mesh, E) also names the best valid peer: the fewest faces of any
+//! peer output of that mesh in this run, at any epsilon, proved within E both ways (our
+//! certificate's bounds, else CGAL's distance plus its error bound), free of
+//! self-intersections and of the input's topology (`best_valid_peer`); then whether ours has
+//! at most as many faces.
+//!
 //! ```sh
 //! benches/peers/build.sh && cargo build --release -p envelope-cli
 //! cargo run --release -p envelope-benches --bin peers -- [--quick] [--meshes a,b]
@@ -938,6 +944,11 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
             head.push(format!("speed {}/{}", p.name(), o.name()));
         }
     }
+    let best_columns = tools.contains(&Tool::Envelope) && !peers.is_empty();
+    if best_columns {
+        head.push("best valid peer".into());
+        head.push("ours <= best".into());
+    }
     let _ = writeln!(s, "| {} |", head.join(" | "));
     let _ = writeln!(s, "|{}", "---|".repeat(head.len()));
     for row in rows {
@@ -1001,6 +1012,17 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
                 cells.push(sr);
             }
         }
+        if best_columns {
+            let best = best_valid_peer(rows, &row.mesh, row.eps);
+            cells.push(best.as_ref().map_or("-".into(), |b| {
+                format!("{} ({} @{})", b.faces, b.tool.name(), b.eps_label)
+            }));
+            cells.push(match ours_le_best(row, best.as_ref()) {
+                Some(true) => "yes".into(),
+                Some(false) => "no".into(),
+                None => "-".into(),
+            });
+        }
         let _ = writeln!(s, "| {} |", cells.join(" | "));
     }
     s.push_str(
@@ -1013,9 +1035,81 @@ fn table(rows: &[Row], tools: &[Tool]) -> String {
          its CPU or memory limit, `err`: another oracle failure). cert: envelope-verify's \
          certified two-sided check (ok = proved <= eps, >=x = proved violated by x eps). \
          self-int: CGAL self-intersecting face pairs of the output. topology: genus, border \
-         loops and components of input and output by CGAL (OpenMesh for a soup).\n",
+         loops and components of input and output by CGAL (OpenMesh for a soup). \
+         best valid peer (rows of `envelope` at eps E): the fewest faces of any peer output of \
+         the same mesh in this run, at any eps (its own after the @), proved within E both \
+         ways (our certificate's proved bounds, else CGAL's distance + its error bound <= E), \
+         with self-int no and topology same; `-`: none. ours <= best: `envelope`'s faces at \
+         most the best valid peer's (`-`: no valid peer, or ours did not finish).\n",
     );
     s
+}
+
+/// A peer output proved valid at some epsilon (see [`valid_within`]).
+struct BestPeer {
+    tool: Tool,
+    /// The epsilon the peer ran at (label and absolute).
+    eps_label: String,
+    eps: f64,
+    faces: usize,
+}
+
+/// Whether the output of `r`, a run at absolute epsilon `own`, is proved within absolute
+/// distance `e` of the input both ways, has no self-intersecting pair and the input's
+/// topology; anything unmeasured or undecided counts against it.
+///
+/// The stored distances are over `own`. Our certificate decides when it can: a violation
+/// proved beyond `e` rejects, a verdict `Holds` at `own <= e` or a proved upper bound within
+/// `e` accepts (the verdict itself was decided at `own` only). Otherwise CGAL's two-sided
+/// distance must be within `e` with its error bound (`HAUSDORFF_BOUND * own`) added.
+fn valid_within(r: &Run, own: f64, e: f64) -> bool {
+    if r.status != Status::Ok
+        || r.faces.is_none()
+        || !matches!(r.self_int, Some((0, _)))
+        || r.topo.as_deref() != Some("same")
+    {
+        return false;
+    }
+    if let Some((verdict, lower, upper)) = r.cert {
+        if verdict == Verdict::Violated && lower * own > e {
+            return false;
+        }
+        if (verdict == Verdict::Holds && own <= e) || upper * own <= e {
+            return true;
+        }
+    }
+    r.dist
+        .is_some_and(|(_, ao, oa)| ao.max(oa) * own + HAUSDORFF_BOUND * own <= e)
+}
+
+/// The peer output of `mesh` (any row, any epsilon) with the fewest faces that is valid
+/// within absolute `e`; the first in run order among equals.
+fn best_valid_peer(rows: &[Row], mesh: &str, e: f64) -> Option<BestPeer> {
+    rows.iter()
+        .filter(|row| row.mesh == mesh)
+        .flat_map(|row| {
+            row.runs
+                .iter()
+                .filter(move |(t, r)| !t.ours() && valid_within(r, row.eps, e))
+                .map(move |(t, r)| BestPeer {
+                    tool: *t,
+                    eps_label: row.eps_label.clone(),
+                    eps: row.eps,
+                    faces: r.faces.unwrap_or(usize::MAX),
+                })
+        })
+        .min_by_key(|b| b.faces)
+}
+
+/// `envelope`'s faces at most `best`'s; `None` without a finished `envelope` run or a best.
+fn ours_le_best(row: &Row, best: Option<&BestPeer>) -> Option<bool> {
+    let ours = row
+        .runs
+        .iter()
+        .find(|(t, r)| *t == Tool::Envelope && r.status == Status::Ok)?
+        .1
+        .faces?;
+    Some(ours <= best?.faces)
 }
 
 /// The median (the mean of the middle two for an even count); `None` for no sample.
@@ -1091,13 +1185,23 @@ fn to_json(rows: &[Row], args: &Args, progs: &Programs, stamp: u64) -> Value {
         "oracle_address_space_gib": args.oracle_gib,
         "hausdorff_bound_over_eps": HAUSDORFF_BOUND,
         "envelope_binary": progs.envelope.as_ref().map(|p| p.display().to_string()).ok(),
-        "rows": rows.iter().map(|row| json!({
-            "mesh": row.mesh,
-            "epsilon_label": row.eps_label,
-            "epsilon": row.eps,
-            "input_faces": row.input_faces,
-            "runs": runs(row),
-        })).collect::<Vec<_>>(),
+        "rows": rows.iter().map(|row| {
+            let best = best_valid_peer(rows, &row.mesh, row.eps);
+            json!({
+                "mesh": row.mesh,
+                "epsilon_label": row.eps_label,
+                "epsilon": row.eps,
+                "input_faces": row.input_faces,
+                "runs": runs(row),
+                "best_valid_peer": best.as_ref().map(|b| json!({
+                    "tool": b.tool.name(),
+                    "epsilon_label": b.eps_label,
+                    "epsilon": b.eps,
+                    "faces": b.faces,
+                })),
+                "envelope_faces_le_best_valid_peer": ours_le_best(row, best.as_ref()),
+            })
+        }).collect::<Vec<_>>(),
     })
 }
 
@@ -1192,6 +1296,114 @@ mod tests {
         assert!(d.contains("genus Some(1)->Some(0)"), "{d}");
         let d = compare_topology(&topo(0, 2, true), &topo(0, 1, false));
         assert!(d.contains("loops 2->1"), "{d}");
+    }
+}
+
+#[cfg(test)]
+mod best_peer_tests {
+    use super::*;
+
+    /// A finished peer run with `faces`, CGAL's two sides over its epsilon and a certificate.
+    fn peer(faces: usize, d: (f64, f64), cert: Option<(Verdict, f64, f64)>) -> Run {
+        Run {
+            faces: Some(faces),
+            dist: Some((d.0.max(d.1), d.0, d.1)),
+            cert,
+            self_int: Some((0, "mesh")),
+            topo: Some("same".into()),
+            ..Run::status(Status::Ok)
+        }
+    }
+
+    #[test]
+    fn validity_converts_to_absolute_and_is_conservative() {
+        // CGAL only: 0.5 of 2.0 = 1.0 absolute, + bound 0.02: valid at 1.02, not at 1.01.
+        let r = peer(10, (0.5, 0.3), None);
+        assert!(valid_within(&r, 2.0, 1.02));
+        assert!(!valid_within(&r, 2.0, 1.01));
+        // Holds at its own 1.0 carries to a larger E, not to a smaller one (CGAL decides).
+        let r = peer(10, (0.9, 0.9), Some((Verdict::Holds, 0.8, 0.95)));
+        assert!(valid_within(&r, 1.0, 1.0));
+        assert!(valid_within(&r, 1.0, 2.0));
+        assert!(valid_within(&r, 1.0, 0.95));
+        assert!(!valid_within(&r, 1.0, 0.9));
+        // A proved violation beyond E rejects whatever CGAL says.
+        let r = peer(
+            10,
+            (0.1, 0.1),
+            Some((Verdict::Violated, 1.5, f64::INFINITY)),
+        );
+        assert!(!valid_within(&r, 1.0, 1.4));
+        assert!(valid_within(&r, 1.0, 2.0));
+        // Self-intersections, changed or unmeasured topology, no measurement: never valid.
+        let mut r = peer(10, (0.1, 0.1), None);
+        r.self_int = Some((3, "mesh"));
+        assert!(!valid_within(&r, 1.0, 1.0));
+        let mut r = peer(10, (0.1, 0.1), None);
+        r.topo = Some("genus Some(1)->Some(0), loops 0->0, components 1->1".into());
+        assert!(!valid_within(&r, 1.0, 1.0));
+        let mut r = peer(10, (0.1, 0.1), None);
+        r.topo = None;
+        assert!(!valid_within(&r, 1.0, 1.0));
+        let mut r = peer(10, (0.1, 0.1), None);
+        r.dist = None;
+        assert!(!valid_within(&r, 1.0, 1.0));
+    }
+
+    #[test]
+    fn best_peer_looks_across_epsilons_of_the_mesh() {
+        let row = |mesh: &str, label: &str, eps: f64, runs: Vec<(Tool, Run)>| Row {
+            mesh: mesh.into(),
+            eps_label: label.into(),
+            eps,
+            input_faces: 100,
+            runs,
+        };
+        let ours = |f| Run {
+            faces: Some(f),
+            ..Run::status(Status::Ok)
+        };
+        let rows = vec![
+            row(
+                "m",
+                "1%",
+                1.0,
+                vec![
+                    (Tool::Envelope, ours(30)),
+                    (Tool::Cgal, peer(40, (0.9, 0.5), None)),
+                    (Tool::Meshopt, peer(5, (3.0, 3.0), None)),
+                ],
+            ),
+            row(
+                "m",
+                "2%",
+                2.0,
+                vec![
+                    (Tool::Envelope, ours(20)),
+                    (Tool::Cgal, peer(25, (0.45, 0.2), None)),
+                ],
+            ),
+            row(
+                "other",
+                "1%",
+                1.0,
+                vec![(Tool::Cgal, peer(1, (0.0, 0.0), None))],
+            ),
+        ];
+        // At 1.0: cgal@2% is 0.9 + 0.02 absolute, valid and smaller than cgal@1%.
+        let b = best_valid_peer(&rows, "m", 1.0).expect("a valid peer");
+        assert_eq!(
+            (b.tool, b.eps_label.as_str(), b.faces),
+            (Tool::Cgal, "2%", 25)
+        );
+        assert_eq!(ours_le_best(&rows[0], Some(&b)), Some(false));
+        // At 0.5 nothing is proved within.
+        assert!(best_valid_peer(&rows, "m", 0.5).is_none());
+        assert_eq!(ours_le_best(&rows[0], None), None);
+        // At 2.0: still cgal@2% (meshopt's 3 eps = 3.0 absolute is too far).
+        let b = best_valid_peer(&rows, "m", 2.0).expect("a valid peer");
+        assert_eq!(b.faces, 25);
+        assert_eq!(ours_le_best(&rows[1], Some(&b)), Some(true));
     }
 }
 

@@ -192,6 +192,11 @@ pub(crate) struct Args {
     /// vertices, so the output's vertices are no longer a subset of the input's).
     #[arg(long, value_enum, default_value_t = PlacementArg::default_())]
     placement: PlacementArg,
+    /// After the simplification, go on where the envelopes stop (thin parts at large
+    /// epsilons): removals and edge collapses each proved against the contract itself
+    /// (uniform epsilon only).
+    #[arg(long, default_value_t = defaults::TOLERANCE_PHASE, action = clap::ArgAction::Set)]
+    tolerance_phase: bool,
     /// Write the report as JSON to this file (its directory must exist).
     #[arg(long)]
     report: Option<PathBuf>,
@@ -467,6 +472,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
         .envelope_method(args.envelope.method())
         .hole_filling(args.hole_filling.hole_filling())
         .placement(args.placement.placement())
+        .tolerance_phase(args.tolerance_phase)
         .certify(!args.no_verify)
         .progress(|e| bar.tell(e))
         .run(&mesh);

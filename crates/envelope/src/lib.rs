@@ -91,6 +91,8 @@ pub mod defaults {
     pub const TUBE_SEGMENTS_RANGE: std::ops::RangeInclusive<u32> = envelope_offset::TUBE_SEGMENTS;
     /// Every output is certified.
     pub const CERTIFY: bool = true;
+    /// The tolerance phase runs after the simplification (where the epsilon is uniform).
+    pub const TOLERANCE_PHASE: bool = true;
     /// The paper's bunny epsilons (Table 1, Figure 11), for level-of-detail chains.
     pub const LOD_EPSILONS: &str = "1/64%,1/32%,1/16%,1/8%,1/4%,1/2%,1%";
     /// The genus reduction's sharp-edge angle between face normals, in degrees (the paper's).

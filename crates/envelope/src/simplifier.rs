@@ -33,6 +33,7 @@ pub struct Simplifier<'a> {
     tube_segments: Option<u32>,
     target_faces: Option<usize>,
     certify: bool,
+    tolerance_phase: bool,
     threads: Option<usize>,
     progress: Option<Box<Callback<'a>>>,
 }
@@ -68,6 +69,7 @@ impl<'a> Simplifier<'a> {
             tube_segments: Some(defaults::TUBE_SEGMENTS),
             target_faces: None,
             certify: defaults::CERTIFY,
+            tolerance_phase: defaults::TOLERANCE_PHASE,
             threads: None,
             progress: None,
         }
@@ -120,6 +122,17 @@ impl<'a> Simplifier<'a> {
     #[must_use]
     pub fn certify(mut self, certify: bool) -> Self {
         self.certify = certify;
+        self
+    }
+
+    /// After the simplification, the tolerance phase: removals and edge collapses each
+    /// proved against the contract itself (the new faces within epsilon of the input, the
+    /// input near them within epsilon of the output, no intersection), which go on where
+    /// the envelopes stop, in thin parts at large epsilons. Only for a uniform epsilon on an
+    /// input that does not meet itself.
+    #[must_use]
+    pub fn tolerance_phase(mut self, on: bool) -> Self {
+        self.tolerance_phase = on;
         self
     }
 
@@ -187,6 +200,7 @@ impl<'a> Simplifier<'a> {
             verify: self.certify,
             // Seam vertices stay where they are, so texture charts do not tear.
             keep: crate::seam_vertices(mesh),
+            tolerance_phase: self.tolerance_phase,
             ..SimplifyOptions::new(field)
         })
     }

@@ -39,7 +39,7 @@ use crate::surface::{FiberIndex, SURFACE_RINGS, SurfaceReach, surface_candidates
 use envelope_mesh::{FaceId, HalfEdgeMesh, VertexId};
 use envelope_simplify::Progress;
 use envelope_simplify::policy::{
-    Barriers, EnvelopeFilter, FaceGrid, FillContext, Filter, Greedy, Hole,
+    Approximation, Barriers, EnvelopeFilter, FaceGrid, FillContext, Filter, Greedy, Hole,
 };
 use glam::DVec3;
 use rayon::prelude::*;
@@ -488,7 +488,12 @@ impl Global<'_> {
                 .iter()
                 .map(|t| t.map(|x| self.mesh.position(x)))
                 .collect();
-            r.open || !filter.refuses_replacement(&old, &new)
+            r.open
+                || !filter.refuses_replacement(
+                    &old,
+                    &new,
+                    &Approximation::of_mesh(self.mesh, &self.grid),
+                )
         };
         let added = if cov {
             self.mesh.add_faces(&placed).ok()

@@ -394,6 +394,7 @@ fn global_stats(g: &GlobalStats) -> Stats {
         slid: 0,
         collapsed: 0,
         moving_phase: false,
+        tolerance_removed: 0,
     }
 }
 

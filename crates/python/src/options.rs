@@ -245,6 +245,7 @@ pub(crate) fn defaults_dict(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("tube_segments", defaults::TUBE_SEGMENTS)?;
     d.set_item("tube_segments_range", (*range.start(), *range.end()))?;
     d.set_item("certify", defaults::CERTIFY)?;
+    d.set_item("tolerance_phase", defaults::TOLERANCE_PHASE)?;
     d.set_item("lod_epsilons", defaults::LOD_EPSILONS)?;
     d.set_item("lod_rule", name_of(RULES, &LodRule::default()))?;
     d.set_item("pixels", screen.pixels)?;

@@ -64,8 +64,8 @@ impl Simplified {
 #[pyfunction]
 #[pyo3(signature = (
     vertices, faces, epsilon, *, placement=None, method=None, envelope=None,
-    hole_filling=None, tube_segments, target_faces=None, certify=None, threads=None,
-    progress=None,
+    hole_filling=None, tube_segments, target_faces=None, certify=None,
+    tolerance_phase=None, threads=None, progress=None,
 ))]
 pub(crate) fn simplify(
     py: Python<'_>,
@@ -79,6 +79,7 @@ pub(crate) fn simplify(
     tube_segments: Option<i64>,
     target_faces: Option<i64>,
     certify: Option<bool>,
+    tolerance_phase: Option<bool>,
     threads: Option<i64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Simplified> {
@@ -94,6 +95,9 @@ pub(crate) fn simplify(
     }
     if let Some(certify) = certify {
         simplifier = simplifier.certify(certify);
+    }
+    if let Some(on) = tolerance_phase {
+        simplifier = simplifier.tolerance_phase(on);
     }
     if let Some(n) = options::threads(threads) {
         simplifier = simplifier.threads(n);

@@ -50,7 +50,8 @@ use crate::local::{
     HoleFilling, Options as LocalOptions, Order, Placement, SimplifyError, Stats,
     simplify_local_from,
 };
-use crate::rules::{Rejection, Visitor};
+use crate::rules::{Rejection, StopRule, TargetFaces, Visitor};
+use crate::tolerance::simplify_past_envelopes;
 use crate::walls::border_walls;
 
 /// What [`simplify`] does.
@@ -86,6 +87,10 @@ pub struct SimplifyOptions {
     /// end are free): attribute seams, say. Kept vertices stay in the output at their input
     /// positions, so an edge between two kept vertices is never removed.
     pub keep: Vec<bool>,
+    /// After the step, the tolerance phase (module `tolerance`): operations proved against
+    /// the contract itself where the envelopes stopped the step (thin parts at large
+    /// epsilons). Only for a constant epsilon on an input that does not meet itself.
+    pub tolerance_phase: bool,
 }
 
 impl SimplifyOptions {
@@ -104,6 +109,7 @@ impl SimplifyOptions {
             target_faces: None,
             verify: false,
             keep: Vec::new(),
+            tolerance_phase: false,
         }
     }
 }
@@ -351,6 +357,32 @@ pub struct SimplifyReport {
     pub method: &'static str,
     /// What the method adds to the report (candidate counts for the global one).
     pub method_details: Value,
+    /// The tolerance phase after the step (`SimplifyOptions::tolerance_phase`), when it ran.
+    pub tolerance_phase: Option<TolerancePhaseReport>,
+}
+
+/// What the tolerance phase did ([`SimplifyReport::tolerance_phase`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TolerancePhaseReport {
+    /// Vertices it removed (also counted in [`SimplifyReport::removed_vertices`]).
+    pub removed_vertices: usize,
+    /// Seconds it took (part of [`SimplifyReport::simplify_seconds`]).
+    pub seconds: f64,
+    /// The epsilon the envelopes were built at: [`SimplifyReport::epsilon_abs`], or less
+    /// when it exceeded [`TOLERANCE_ENVELOPE_CAP`] of the diagonal.
+    pub envelope_epsilon_abs: f64,
+}
+
+impl TolerancePhaseReport {
+    /// Stable JSON keys (the field names).
+    #[must_use]
+    pub fn to_json(&self) -> Value {
+        json!({
+            "removed_vertices": self.removed_vertices,
+            "seconds": self.seconds,
+            "envelope_epsilon_abs": self.envelope_epsilon_abs,
+        })
+    }
 }
 
 impl SimplifyReport {
@@ -392,6 +424,7 @@ impl SimplifyReport {
                 "seconds": e.seconds,
             },
             "verify": self.verify.as_ref().map(VerifyReport::to_json),
+            "tolerance_phase": self.tolerance_phase.as_ref().map(TolerancePhaseReport::to_json),
             "kept": self.kept.as_ref().map(|k| json!({
                 "intersecting_pairs": k.intersecting_pairs,
                 "kept_faces": k.kept_faces,
@@ -609,6 +642,9 @@ pub fn simplify_with(
     let shared = soup
         .indices_in_range()
         .then(|| rayon::join(|| analyze(soup), || face_tree(soup)));
+    let mut capped = shared
+        .as_ref()
+        .and_then(|(topology, _)| tolerance_cap(soup, topology, options));
     // The input check and the envelopes run side by side (much of the check is sequential);
     // the check's verdict comes first, whatever the envelopes made of a refused input.
     let ((problems, own_topology), (env, env_seconds)) = rayon::join(
@@ -621,7 +657,12 @@ pub fn simplify_with(
             }
         },
         || {
-            let env = envelopes_for(soup, options, shared.as_ref().map(|(t, b)| (t, b)));
+            let env = envelopes_up_to(
+                soup,
+                options,
+                shared.as_ref().map(|(t, b)| (t, b)),
+                capped.map(|(_, cap)| cap),
+            );
             (env, t_env.elapsed().as_secs_f64())
         },
     );
@@ -646,7 +687,12 @@ pub fn simplify_with(
             soup, &topo_in, &used, start_with, options, step, progress, start,
         );
     }
-    let env = env?;
+    let mut env = env?;
+    if capped.is_some() && !env.proof.holds() {
+        // The tolerance phase follows proved envelopes only: the full ones, as without it.
+        capped = None;
+        env = envelopes_for(soup, options, tree.as_ref().map(|b| (&topo_in, b)))?;
+    }
     // An invariant of every command: no output from envelopes whose proof failed. Where
     // it fails, the faces it names are kept as they are and the rest tried again.
     if !env.proof.holds() {
@@ -661,6 +707,7 @@ pub fn simplify_with(
         (env, env_seconds),
         &used,
         None,
+        capped.map(|(e, _)| e),
         options,
         step,
         progress,
@@ -697,13 +744,62 @@ pub const CROSSINGS: [DegeneracyClass; 4] = [
     DegeneracyClass::DuplicateVertices,
 ];
 
+/// With the tolerance phase on and a constant epsilon above this part of the input's
+/// diagonal (and no border), the envelopes are built at this part instead, and the tolerance phase always
+/// runs, at the full epsilon, on what the step leaves. A choice, measured: the envelopes'
+/// growth costs most of a run at large epsilons (armadillo at 8%: 23 of 25 s), while
+/// there the envelopes, cut back where the surface is thin, stop the step anyway; the
+/// tolerance phase goes on from a step at 1% to fewer faces than from one at 2% or at the
+/// full epsilon, in less time.
+pub const TOLERANCE_ENVELOPE_CAP: f64 = 0.01;
+
+/// Without the cap, the tolerance phase runs when the envelopes were cut back: at least
+/// one requested vertex in 20 has an offset below this part of its epsilon (the
+/// envelopes' `achieved_p5`). Elsewhere the step is rarely stuck by the envelopes and the
+/// phase would cost time for a few faces.
+pub const TOLERANCE_WHEN_CUT_BELOW: f64 = 0.9;
+
+/// The constant epsilon `options` asks of `soup` (of topology `topology`) when the
+/// tolerance phase is on and it exceeds [`TOLERANCE_ENVELOPE_CAP`] of the diagonal:
+/// `(epsilon, cap)`. Not for an input with borders: the phase keeps border vertices, so
+/// they would stay where envelopes at the cap left them.
+fn tolerance_cap(
+    soup: &TriangleSoup,
+    topology: &Topology,
+    options: &SimplifyOptions,
+) -> Option<(f64, f64)> {
+    let EpsilonField::Constant(e) = options.epsilon else {
+        return None;
+    };
+    if topology.num_border_loops() > 0 {
+        return None;
+    }
+    let cap = TOLERANCE_ENVELOPE_CAP * soup.diagonal();
+    (options.tolerance_phase && cap > 0.0 && e > cap).then_some((e, cap))
+}
+
 /// The envelopes of `soup` for `options` (with its topology and face tree when known).
 pub(crate) fn envelopes_for(
     soup: &TriangleSoup,
     options: &SimplifyOptions,
     shared: Option<(&Topology, &Bvh)>,
 ) -> Result<Envelopes, DriverError> {
-    let field = options.epsilon.evaluate(&soup.positions)?;
+    envelopes_up_to(soup, options, shared, None)
+}
+
+/// [`envelopes_for`], every offset requested at most `cap` (see [`tolerance_cap`]).
+fn envelopes_up_to(
+    soup: &TriangleSoup,
+    options: &SimplifyOptions,
+    shared: Option<(&Topology, &Bvh)>,
+    cap: Option<f64>,
+) -> Result<Envelopes, DriverError> {
+    let mut field = options.epsilon.evaluate(&soup.positions)?;
+    if let Some(cap) = cap {
+        for e in &mut field {
+            *e = e.min(cap);
+        }
+    }
     let env_options = EnvelopeOptions {
         method: options.method,
         tube_segments: options.tube_segments,
@@ -755,6 +851,7 @@ struct Between {
     epsilon_abs: f64,
     epsilon_min_abs: f64,
     simplify_seconds: f64,
+    tolerance: Option<TolerancePhaseReport>,
 }
 
 impl Between {
@@ -805,6 +902,7 @@ impl Between {
             kept,
             method: self.method,
             method_details: self.details,
+            tolerance_phase: self.tolerance,
         }
     }
 }
@@ -835,27 +933,39 @@ fn envelope_report(env: &Envelopes, options: &SimplifyOptions, seconds: f64) -> 
 /// Sections 5.1-5.2 between proved envelopes: the barriers (envelopes, tubes, border walls,
 /// and the kept faces of a self-intersecting input with the vertices they share kept), the
 /// half-edge mesh of `soup`, and the step run on it. `used`: the referenced vertices of the
-/// whole input (whose requested epsilons bound the output).
+/// whole input (whose requested epsilons bound the output). `held_to`: the constant
+/// epsilon of `options` when the envelopes were built at less ([`tolerance_cap`]).
+#[allow(clippy::too_many_arguments)]
 fn simplify_between(
     soup: &TriangleSoup,
     topo_in: &Topology,
     (env, env_seconds): (Envelopes, f64),
     used: &[bool],
     kept: Option<&KeptRegion>,
+    held_to: Option<f64>,
     options: &SimplifyOptions,
     step: &dyn SimplifyStep,
     progress: &mut dyn Progress,
 ) -> Result<Between, DriverError> {
     let env_proved = env.proof.holds();
     let envelope = envelope_report(&env, options, env_seconds);
-    let (epsilon_abs, epsilon_min_abs) = env
+    let env_epsilon_abs = env
         .requested
         .iter()
         .zip(used)
         .filter(|(_, u)| **u)
-        .fold((0.0f64, f64::INFINITY), |(hi, lo), (&e, _)| {
-            (hi.max(e), lo.min(e))
-        });
+        .fold(0.0f64, |hi, (&e, _)| hi.max(e));
+    let (epsilon_abs, epsilon_min_abs) = match held_to {
+        Some(e) => (e, e),
+        None => env
+            .requested
+            .iter()
+            .zip(used)
+            .filter(|(_, u)| **u)
+            .fold((0.0f64, f64::INFINITY), |(hi, lo), (&e, _)| {
+                (hi.max(e), lo.min(e))
+            }),
+    };
     let tubes: Vec<TriangleSoup> = env.tubes.into_iter().map(|t| t.mesh).collect();
     // Without the walls, the space between the envelopes is open along the border and an
     // interior candidate triangle can leave it there (see `walls`).
@@ -925,8 +1035,38 @@ fn simplify_between(
         options,
         fiber_test: fiber_test.as_ref(),
     };
-    let outcome = step.run(&mut mesh, &input, progress)?;
+    let mut outcome = step.run(&mut mesh, &input, progress)?;
     go_on(progress)?;
+    let mut tolerance = None;
+    let cut_back = envelope.achieved_p5 < TOLERANCE_WHEN_CUT_BELOW;
+    if options.tolerance_phase
+        && kept.is_none()
+        && epsilon_abs == epsilon_min_abs
+        && (held_to.is_some() || cut_back)
+    {
+        let target = options.target_faces.map(TargetFaces);
+        let mut visitor = ProgressVisitor {
+            progress,
+            attempts: 0,
+            removed: 0,
+        };
+        let t_phase = Instant::now();
+        let past = simplify_past_envelopes(
+            &mut mesh,
+            soup,
+            epsilon_abs,
+            barriers.kept(),
+            target.as_ref().map(|t| t as &dyn StopRule),
+            &mut visitor,
+        )?;
+        outcome.stats.add_tolerance_phase(&past);
+        tolerance = Some(TolerancePhaseReport {
+            removed_vertices: past.removed,
+            seconds: t_phase.elapsed().as_secs_f64(),
+            envelope_epsilon_abs: env_epsilon_abs,
+        });
+        go_on(progress)?;
+    }
     Ok(Between {
         mesh,
         stats: outcome.stats,
@@ -936,6 +1076,7 @@ fn simplify_between(
         epsilon_abs,
         epsilon_min_abs,
         simplify_seconds: t_simp.elapsed().as_secs_f64(),
+        tolerance,
     })
 }
 
@@ -1036,6 +1177,7 @@ fn simplify_keeping(
         (env, env_seconds),
         used,
         Some(&region),
+        None,
         options,
         step,
         progress,

@@ -287,9 +287,17 @@ pub trait Filter: Sync {
     /// Whether replacing the approximation's triangles `old` by the accepted triangles `new`
     /// (the same boundary) is refused as a whole although each triangle passes: the envelope
     /// filter refuses one that carries a barrier component across
-    /// ([`Barriers::sweeps_across`]). By default nothing is refused.
-    fn refuses_replacement(&self, old: &[[DVec3; 3]], new: &[[DVec3; 3]]) -> bool {
-        let _ = (old, new);
+    /// ([`Barriers::sweeps_across`]); the tolerance filter one that leaves part of the input
+    /// farther than epsilon from the approximation. `rest` is the approximation without
+    /// `old` (its `excluded` faces are `old`'s; nothing placed). By default nothing is
+    /// refused.
+    fn refuses_replacement(
+        &self,
+        old: &[[DVec3; 3]],
+        new: &[[DVec3; 3]],
+        rest: &Approximation<'_>,
+    ) -> bool {
+        let _ = (old, new, rest);
         false
     }
 }
@@ -367,8 +375,13 @@ impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
         });
     }
 
-    fn refuses_replacement(&self, old: &[[DVec3; 3]], new: &[[DVec3; 3]]) -> bool {
-        self.base.refuses_replacement(old, new) || self.barriers.sweeps_across(old, new)
+    fn refuses_replacement(
+        &self,
+        old: &[[DVec3; 3]],
+        new: &[[DVec3; 3]],
+        rest: &Approximation<'_>,
+    ) -> bool {
+        self.base.refuses_replacement(old, new, rest) || self.barriers.sweeps_across(old, new)
     }
 }
 

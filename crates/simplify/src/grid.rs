@@ -242,6 +242,17 @@ impl FaceGrid {
         mut visit: impl FnMut(FaceId, [VertexId; 3]) -> bool,
     ) -> bool {
         let (qlo, qhi) = self.range(query);
+        // A query wider than the occupied cells (a tolerance reach at a huge epsilon) scans
+        // the stored faces instead: the work stays bounded by the mesh, each face visited
+        // once.
+        let span: f64 = (0..3)
+            .map(|k| f64::from(qhi[k]) - f64::from(qlo[k]) + 1.0)
+            .product();
+        if span > self.cells.len() as f64 {
+            return self.tris.iter().enumerate().any(|(i, &t)| {
+                t[0].is_valid() && self.boxes[i].overlaps(query) && visit(FaceId::from_index(i), t)
+            });
+        }
         for x in qlo[0]..=qhi[0] {
             for y in qlo[1]..=qhi[1] {
                 for z in qlo[2]..=qhi[2] {
@@ -361,6 +372,14 @@ mod tests {
                     .collect();
                 assert_eq!(got, want);
             }
+            // A query far wider than the mesh (the scan, not the cells): every face once.
+            let mut all = Vec::new();
+            g.any_overlapping(&Aabb::from_points(&[DVec3::ZERO]).inflated(1e20), |h, _| {
+                all.push(h);
+                false
+            });
+            all.sort();
+            assert_eq!(all, m.faces().collect::<Vec<_>>());
         };
         check(&g, &m);
         // Remove a few fans; grow the boxes by hand through a rebuild.

@@ -32,12 +32,14 @@ mod local;
 mod lod;
 pub mod policy;
 mod rules;
+mod tolerance;
 mod walls;
 
 pub use correspond::{Correspondence, correspondence};
 pub use driver::{
     CROSSINGS, DriverError, EnvelopeReport, KeptReport, LocalStep, Progress, SimplifyOptions,
-    SimplifyReport, SimplifyStep, Stage, StepInput, StepOutcome, VerifyReport, input_problems,
+    SimplifyReport, SimplifyStep, Stage, StepInput, StepOutcome, TOLERANCE_ENVELOPE_CAP,
+    TOLERANCE_WHEN_CUT_BELOW, TolerancePhaseReport, VerifyReport, input_problems,
     peak_memory_bytes, simplify, simplify_with,
 };
 pub use local::{HoleFilling, Order, Placement};

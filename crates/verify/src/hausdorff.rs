@@ -179,15 +179,22 @@ pub(crate) struct Target {
 
 impl Target {
     pub(crate) fn new(positions: &[DVec3], faces: &[[u32; 3]]) -> Target {
-        let tris: Vec<[DVec3; 3]> = faces
-            .iter()
-            .map(|f| f.map(|i| positions[i as usize]))
-            .collect();
+        Target::from_triangles(
+            faces
+                .iter()
+                .map(|f| f.map(|i| positions[i as usize]))
+                .collect(),
+        )
+    }
+
+    /// The target made of `tris` (repeated ones are kept once).
+    pub(crate) fn from_triangles(tris: Vec<[DVec3; 3]>) -> Target {
+        let faces = tris.len();
         let (keys, tris) = KeyTable::dedup(tris);
         let boxes: Vec<Aabb> = tris.iter().map(|&t| Aabb::from_triangle(t)).collect();
         let bvh = Bvh::new(&boxes);
         Target {
-            all_faces: tris.len() == faces.len(),
+            all_faces: tris.len() == faces,
             tris,
             boxes,
             bvh,
@@ -201,9 +208,50 @@ impl Target {
         self.all_faces.then_some(&self.bvh)
     }
 
+    /// Whether the target has no triangle.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.tris.is_empty()
+    }
+
+    /// Calls `f` with the number of each of the target's (distinct) triangles whose box
+    /// overlaps `query` ([`Target::triangle`] gives it).
+    pub(crate) fn for_each_overlapping(&self, query: &Aabb, f: impl FnMut(u32)) {
+        self.bvh.for_each_overlapping(query, f);
+    }
+
+    /// The largest side of any triangle's box (0 when empty).
+    pub(crate) fn largest_extent(&self) -> f64 {
+        self.boxes
+            .iter()
+            .map(|b| (b.max - b.min).max_element())
+            .fold(0.0, f64::max)
+    }
+
+    /// The triangle numbered `t`.
+    pub(crate) fn triangle(&self, t: u32) -> [DVec3; 3] {
+        self.tris[t as usize]
+    }
+
     /// Whether `t` is (bitwise) one of the target's triangles: then its distance is 0.
     fn has_triangle(&self, t: &[DVec3; 3]) -> bool {
         self.keys.contains(&self.tris, t)
+    }
+
+    /// Whether some point of `points` is estimated (f64, nearest-triangle search) farther
+    /// than `eps` from the target: an estimate, for shortcuts that may only refuse.
+    pub(crate) fn some_point_beyond(&self, points: &[DVec3], eps: f64) -> bool {
+        let mut stack = Vec::new();
+        let mut hint = None;
+        let e2 = eps * eps;
+        points
+            .iter()
+            .any(|&p| match self.nearest_approx_from(p, hint, &mut stack) {
+                Some((t, d2)) => {
+                    hint = Some(t);
+                    d2 > e2
+                }
+                None => true,
+            })
     }
 
     /// Approximate nearest triangle to `p` (f64 branch and bound); `None` when empty.
@@ -310,6 +358,11 @@ impl Tolerance {
             e2: (&e * &e),
             resolution,
         }
+    }
+
+    /// The tolerance.
+    pub(crate) fn eps(&self) -> f64 {
+        self.eps
     }
 
     /// Largest double `<= (eps - delta)^2`, or `None` when `eps - delta` may be <= 0.
@@ -1037,6 +1090,35 @@ impl Search<'_> {
 
 /// A face's index and its bounds.
 type IndexedBound = (usize, FaceBound);
+
+/// Whether every point of every triangle of `tris` is proved within `eps` of `target`,
+/// stopping at the first that is not (a few triangles on this thread, more on all): a witness and
+/// a triangle left undecided by the first pass's budget both answer `false` (never a wrong
+/// `true`).
+pub(crate) fn all_within(tris: &[[DVec3; 3]], target: &Target, tol: &Tolerance) -> bool {
+    let search = Search {
+        target,
+        tol,
+        tiny_budget: FIRST_PASS_TINY,
+    };
+    let proved = |scratch: &mut Scratch, (i, &t): (usize, &[DVec3; 3])| {
+        let r = search.face(FaceId::from_index(i), t, scratch);
+        r.witness.is_none() && !r.undecided
+    };
+    if tris.len() < PARALLEL_FROM {
+        let mut scratch = Scratch::default();
+        tris.iter().enumerate().all(|x| proved(&mut scratch, x))
+    } else {
+        tris.par_iter()
+            .enumerate()
+            .with_min_len(PARALLEL_FROM / 2)
+            .map_init(Scratch::default, proved)
+            .all(|ok| ok)
+    }
+}
+
+/// [`all_within`] splits lists at least this long between threads.
+const PARALLEL_FROM: usize = 4;
 
 /// Decides whether every point of the triangles `faces` of `positions` lies within `eps` of
 /// `target`, with a certified interval for the one-sided Hausdorff distance; with

@@ -640,6 +640,107 @@ pub fn one_sided(
     hausdorff::one_sided(&from.positions, &raw_faces(from), &target, &tol, false).0
 }
 
+/// Repeated one-sided questions against one surface: "is every point of these triangles
+/// within `epsilon` of it?", decided by the certificate's exact branch and bound, with the
+/// surface's tree built once. A simplifier's tolerance test asks it of each candidate
+/// triangle. An answer is `true` only when proved; a triangle the search leaves undecided
+/// within its budget answers `false`, like a witness (conservative: it may only refuse).
+///
+/// ```
+/// use envelope_mesh::TriangleSoup;
+/// use envelope_verify::Within;
+/// use glam::DVec3;
+/// let floor = TriangleSoup::from_raw(&[[0., 0., 0.], [4., 0., 0.], [0., 4., 0.]], &[[0, 1, 2]]);
+/// let within = Within::new(&floor, 1.0);
+/// let at = |z: f64| [DVec3::new(0., 0., z), DVec3::new(1., 0., z), DVec3::new(0., 1., z)];
+/// assert!(within.holds(&[at(1.0)]));
+/// assert!(!within.holds(&[at(0.5), at(1.25)]));
+/// ```
+pub struct Within {
+    target: hausdorff::Target,
+    tol: hausdorff::Tolerance,
+}
+
+impl Within {
+    /// The questions against `to` at `epsilon` (resolution `1e-6 * epsilon`, as
+    /// [`Options::new`]).
+    ///
+    /// # Panics
+    /// When `epsilon` is not positive and finite.
+    #[must_use]
+    pub fn new(to: &TriangleSoup, epsilon: f64) -> Within {
+        assert!(
+            epsilon > 0.0 && epsilon.is_finite(),
+            "epsilon must be positive and finite"
+        );
+        Within {
+            target: hausdorff::Target::new(&to.positions, &raw_faces(to)),
+            tol: hausdorff::Tolerance::new(epsilon, epsilon * 1e-6),
+        }
+    }
+
+    /// Whether every point of every triangle of `triangles` is proved within epsilon of
+    /// the surface (exact; `false` also when undecided).
+    #[must_use]
+    pub fn holds(&self, triangles: &[[DVec3; 3]]) -> bool {
+        triangles_within(triangles, &self.target, &self.tol)
+    }
+
+    /// The largest side of the bounding box of any of the surface's triangles (0 when
+    /// there is none).
+    #[must_use]
+    pub fn largest_extent(&self) -> f64 {
+        self.target.largest_extent()
+    }
+
+    /// A shortcut that may only refuse: whether some point of `points` is estimated (in
+    /// f64) farther than epsilon from the surface. Not a proof either way.
+    #[must_use]
+    pub fn some_point_beyond(&self, points: &[DVec3]) -> bool {
+        self.target.some_point_beyond(points, self.tol.eps())
+    }
+
+    /// The surface's triangles (each distinct one once) whose bounding boxes overlap one of
+    /// `regions`.
+    #[must_use]
+    pub fn triangles_overlapping(&self, regions: &[bvh::Aabb]) -> Vec<[DVec3; 3]> {
+        let mut ids = Vec::new();
+        for region in regions {
+            self.target.for_each_overlapping(region, |t| ids.push(t));
+        }
+        ids.sort_unstable();
+        ids.dedup();
+        ids.into_iter().map(|t| self.target.triangle(t)).collect()
+    }
+
+    /// A shortcut that may only refuse: false when some point of `points` is estimated (in
+    /// f64) farther than epsilon from the triangles `to`, looked at in order. Not a proof
+    /// either way.
+    #[must_use]
+    pub fn points_near(&self, points: &[DVec3], to: &[[DVec3; 3]]) -> bool {
+        let target = hausdorff::Target::from_triangles(to.to_vec());
+        !target.some_point_beyond(points, self.tol.eps())
+    }
+
+    /// Whether every point of `from` is proved within epsilon of the triangles `to` (exact;
+    /// `false` also when undecided), with this surface's epsilon: for questions against a
+    /// few triangles that change between calls.
+    #[must_use]
+    pub fn holds_against(&self, from: &[[DVec3; 3]], to: &[[DVec3; 3]]) -> bool {
+        let target = hausdorff::Target::from_triangles(to.to_vec());
+        triangles_within(from, &target, &self.tol)
+    }
+}
+
+/// `from` within the tolerance of `target`; an empty `target` covers nothing.
+fn triangles_within(
+    from: &[[DVec3; 3]],
+    target: &hausdorff::Target,
+    tol: &hausdorff::Tolerance,
+) -> bool {
+    from.is_empty() || (!target.is_empty() && hausdorff::all_within(from, target, tol))
+}
+
 /// Certifies `approx` against `orig`: two-sided Hausdorff distance at most `epsilon`,
 /// self-intersections of `approx`, topology of both (see [`Options`]).
 ///

@@ -66,6 +66,7 @@ use crate::rules::{
 use envelope_mesh::{HalfEdgeMesh, VertexId};
 pub use plan::{LocalSimplifier, Removal};
 use run::run;
+pub(crate) use run::tolerance_phase;
 use thiserror::Error;
 
 /// Vertices of larger valence are not tried (their candidate lists grow cubically).
@@ -127,6 +128,24 @@ pub struct Stats {
     /// Whether the moving phase ran (with [`Placement::Slide`] and [`Placement::Collapse`]
     /// always; with [`Placement::Auto`] when few vertices were left).
     pub moving_phase: bool,
+    /// Vertices removed by the tolerance phase after the step (crate module `tolerance`;
+    /// counted in `removed` and `collapsed` too).
+    pub tolerance_removed: usize,
+}
+
+impl Stats {
+    /// Adds the counts of a tolerance phase run on this step's output.
+    pub(crate) fn add_tolerance_phase(&mut self, phase: &Stats) {
+        self.attempts += phase.attempts;
+        self.removed += phase.removed;
+        self.no_valid_fill += phase.no_valid_fill;
+        self.refused += phase.refused;
+        self.candidate_tests += phase.candidate_tests;
+        self.collapsed += phase.collapsed;
+        self.tolerance_removed += phase.removed;
+        self.vertices_after = phase.vertices_after;
+        self.faces_after = phase.faces_after;
+    }
 }
 
 /// Counts a failed attempt at `v` and tells the visitor.

@@ -32,16 +32,24 @@ use glam::DVec3;
 /// place of the one-ring's; a slid or collapsed position outside that box is not tried, so
 /// the box holds. With `check_each_step`, one vertex at a time (same plans, other re-queue
 /// order).
+///
+/// With `reads_beyond = Some(margin)` (the tolerance phase, crate module `tolerance`): the
+/// first time round tries the plain removal too (the filter is another than the run's
+/// before), and the boxes are grown by `margin`: that filter reads the approximation up to
+/// twice `margin` beyond [`moving_box`], and plans whose grown boxes are apart change
+/// nothing the other reads.
 pub(super) fn moving_phase(
     local: &mut LocalSimplifier<'_>,
     policies: &Policies<'_>,
     stats: &mut Stats,
     visitor: &mut dyn Visitor,
+    reads_beyond: Option<f64>,
 ) -> Result<(), SimplifyError> {
+    let tolerance = reads_beyond.is_some();
     let mut queue = queue_vertices(local.mesh(), &Fifo);
     // Whether the vertex's neighbourhood changed since the subset run failed it.
     let mut changed = vec![
-        false;
+        tolerance;
         local
             .mesh()
             .vertices()
@@ -67,7 +75,10 @@ pub(super) fn moving_phase(
             independent_batch(
                 &mut queue,
                 local.mesh(),
-                |m, v| boxes.get(m, v, fibers),
+                |m, v| {
+                    let b = boxes.get(m, v, fibers);
+                    reads_beyond.map_or(b, |margin| b.inflated(margin))
+                },
                 |_| false,
             )
             .into_iter()

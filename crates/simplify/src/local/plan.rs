@@ -338,8 +338,17 @@ impl<'m> LocalSimplifier<'m> {
                 .chain(stay.iter().map(|&t| at(t, false)))
                 .collect();
             let new: Vec<[DVec3; 3]> = placed.iter().chain(&stay).map(|&t| at(t, true)).collect();
+            let rest = Approximation {
+                mesh: m,
+                grid: &self.grid,
+                placed: &[],
+                excluded,
+                moved: &moves,
+                extra: &[],
+                nearby: None,
+            };
             *tests += 1;
-            if filter.refuses_replacement(&old, &new) {
+            if filter.refuses_replacement(&old, &new, &rest) {
                 return Err(Rejection::NoValidFill);
             }
         }

@@ -151,8 +151,43 @@ pub(super) fn run(
         && (few_left || !policies.moving_if_few_left)
     {
         stats.moving_phase = true;
-        moving_phase(&mut local, policies, &mut stats, visitor)?;
+        moving_phase(&mut local, policies, &mut stats, visitor, None)?;
     }
+    stats.candidate_tests = local.candidate_tests;
+    stats.vertices_after = local.mesh().num_vertices();
+    stats.faces_after = local.mesh().num_faces();
+    Ok(stats)
+}
+
+/// The tolerance phase's loop (crate module `tolerance`): the moving phase alone, with
+/// `policies.filter` the tolerance filter, which reads the approximation up to twice
+/// `reads_beyond` outside the box of what an operation changes.
+pub(crate) fn tolerance_phase(
+    mesh: &mut HalfEdgeMesh,
+    policies: &Policies<'_>,
+    reads_beyond: f64,
+    visitor: &mut dyn Visitor,
+) -> Result<Stats, SimplifyError> {
+    if let Some(v) = mesh.vertices().find(|&v| !mesh.is_manifold_vertex(v)) {
+        return Err(SimplifyError::NonManifoldVertex(v));
+    }
+    let mut stats = Stats {
+        vertices_before: mesh.num_vertices(),
+        faces_before: mesh.num_faces(),
+        moving_phase: true,
+        ..Stats::default()
+    };
+    let mut local = LocalSimplifier::without_grid(mesh, policies.keep_border)
+        .with_keep(policies.keep)
+        .with_fiber_test(None);
+    local.grid = FaceGrid::from_mesh(local.mesh());
+    moving_phase(
+        &mut local,
+        policies,
+        &mut stats,
+        visitor,
+        Some(reads_beyond),
+    )?;
     stats.candidate_tests = local.candidate_tests;
     stats.vertices_after = local.mesh().num_vertices();
     stats.faces_after = local.mesh().num_faces();
