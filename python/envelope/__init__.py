@@ -113,7 +113,8 @@ def simplify(
         epsilon: an absolute length, or ``"1%"``, ``"1/64%"`` of the bounding-box diagonal.
         placement: where output vertices may lie: ``"subset"`` (input vertices), ``"slide"``
             (moved along their normals), ``"collapse"`` (anywhere between the envelopes), or
-            ``"auto"`` (subset, then the moving phase when few vertices are left).
+            ``"auto"`` (subset, then the moving phase: in full when few vertices are left,
+            light otherwise).
         method: ``"local"`` (5.2), ``"global"`` (5.3) or ``"hybrid"`` (5.4).
         envelope: how the envelopes find their offsets: ``"analytical"`` (4.1),
             ``"numerical"`` (4.2) or ``"auto"`` (analytical, grown numerically where short).

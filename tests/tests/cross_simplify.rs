@@ -319,7 +319,7 @@ fn outputs_pass_cgal() {
     println!("{}", log.join("\n"));
     assert_eq!(
         auto_ran,
-        ["auto: collapse", "auto: subset"].into(),
+        ["auto: collapse", "auto: light collapse"].into(),
         "the auto placement's branches that ran"
     );
     assert!(

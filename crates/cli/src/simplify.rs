@@ -126,9 +126,9 @@ pub(crate) enum PlacementArg {
     /// `slide`, then a vertex that still cannot go is removed by collapsing an edge into a
     /// neighbour moved to a quadric-optimal point between the envelopes.
     Collapse,
-    /// `subset`, then the moving phase of `collapse` only when the subset run left at most a
-    /// tenth of the vertices (large epsilons, where it is cheap); the report's placement says
-    /// which ran (default).
+    /// `subset`, then the moving phase of `collapse` when the subset run left at most a tenth
+    /// of the vertices (large epsilons, where it is cheap), else a light one (no slide, each
+    /// vertex's cheapest collapse only); the report's placement says which ran (default).
     Auto,
 }
 

@@ -83,7 +83,8 @@ pub mod defaults {
     pub const METHOD: Method = Method::Local;
     /// The analytical offsets (4.1), grown numerically (4.2) where they fall short.
     pub const ENVELOPE_METHOD: EnvelopeMethod = EnvelopeMethod::Auto;
-    /// Input vertices, then moved ones only when the subset run left few vertices.
+    /// Input vertices, then moved ones: every collapse position when the subset run left few
+    /// vertices, the cheapest only otherwise.
     pub const PLACEMENT: Placement = Placement::Auto;
     /// Vertices per border-tube ring (6.2).
     pub const TUBE_SEGMENTS: u32 = 8;

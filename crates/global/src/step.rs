@@ -115,7 +115,7 @@ impl SimplifyStep for GlobalStep {
             });
         }
         let local = LocalStep.run(mesh, input, progress)?.stats;
-        add_local(&mut stats, &local);
+        stats.add_later(&local);
         let mut details = g.to_json();
         if let Some(d) = details.as_object_mut() {
             d.insert("local_finish".into(), local_json(&local));
@@ -244,10 +244,10 @@ impl SimplifyStep for HybridStep {
         let g = run_global(&mut other, input, &options, progress)?;
         let mut stats = global_stats(&g);
         let local = LocalStep.run(&mut other, input, progress)?.stats;
-        add_local(&mut stats, &local);
+        stats.add_later(&local);
         let polish = self.run_polish(&mut other, input)?;
         if let Some(l) = &polish {
-            add_local(&mut stats, l);
+            stats.add_later(l);
         }
         let chosen = if other.num_faces() < mesh.num_faces() {
             *mesh = other;
@@ -336,14 +336,14 @@ impl HybridStep {
             let l = LocalStep
                 .run_from(mesh, input, changed.as_deref(), progress)?
                 .stats;
-            add_local(&mut stats, &l);
+            stats.add_later(&l);
             Some(l)
         } else {
             None
         };
         let polish = self.run_polish(mesh, input)?;
         if let Some(l) = &polish {
-            add_local(&mut stats, l);
+            stats.add_later(l);
         }
         Ok(StepOutcome {
             stats,
@@ -394,23 +394,9 @@ fn global_stats(g: &GlobalStats) -> Stats {
         slid: 0,
         collapsed: 0,
         moving_phase: false,
+        moving_phase_light: false,
         tolerance_removed: 0,
     }
-}
-
-fn add_local(stats: &mut Stats, local: &Stats) {
-    stats.vertices_after = local.vertices_after;
-    stats.faces_after = local.faces_after;
-    stats.attempts += local.attempts;
-    stats.removed += local.removed;
-    stats.no_valid_fill += local.no_valid_fill;
-    stats.no_fill_across_fiber += local.no_fill_across_fiber;
-    stats.answered_ahead += local.answered_ahead;
-    stats.refused += local.refused;
-    stats.candidate_tests += local.candidate_tests;
-    stats.slid += local.slid;
-    stats.collapsed += local.collapsed;
-    stats.moving_phase |= local.moving_phase;
 }
 
 fn local_json(l: &Stats) -> serde_json::Value {

@@ -328,11 +328,13 @@ pub struct SimplifyReport {
     /// Vertices removed.
     pub removed_vertices: usize,
     /// `"subset"`, `"slide"`, `"collapse"`, or with [`Placement::Auto`] what it ran:
-    /// `"auto: subset"` or `"auto: collapse"` ([`SimplifyOptions::placement`]).
+    /// `"auto: subset"` (the global method: nothing moves), `"auto: collapse"` or
+    /// `"auto: light collapse"` ([`SimplifyOptions::placement`]).
     pub placement: &'static str,
     /// Removals that slid neighbours along their fibers (0 with `"subset"`).
     pub slid_removals: usize,
-    /// Removals by an edge collapse (only with `"collapse"` and `"auto: collapse"`).
+    /// Removals by an edge collapse (with `"collapse"` and the `auto` collapses, and the
+    /// tolerance phase's).
     pub collapsed_removals: usize,
     /// Removal attempts.
     pub attempts: usize,
@@ -886,6 +888,7 @@ impl Between {
                 Placement::Subset => "subset",
                 Placement::Slide => "slide",
                 Placement::Collapse => "collapse",
+                Placement::Auto if stats.moving_phase_light => "auto: light collapse",
                 Placement::Auto if stats.moving_phase => "auto: collapse",
                 Placement::Auto => "auto: subset",
             },
@@ -1059,7 +1062,13 @@ fn simplify_between(
             target.as_ref().map(|t| t as &dyn StopRule),
             &mut visitor,
         )?;
-        outcome.stats.add_tolerance_phase(&past);
+        // Counted as the phase's removals; `moving_phase` stays the step's.
+        let moving = outcome.stats.moving_phase;
+        outcome.stats.add_later(&Stats {
+            tolerance_removed: past.removed,
+            ..past
+        });
+        outcome.stats.moving_phase = moving;
         tolerance = Some(TolerancePhaseReport {
             removed_vertices: past.removed,
             seconds: t_phase.elapsed().as_secs_f64(),

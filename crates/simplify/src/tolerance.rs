@@ -194,7 +194,7 @@ pub(crate) fn simplify_past_envelopes(
         check_each_step: false,
         fibers: None,
         collapse: true,
-        moving_if_few_left: false,
+        auto_moving: false,
         fiber_test: None,
     };
     // The filter reads faces within twice epsilon plus an input triangle of what an

@@ -396,7 +396,7 @@ fn exhaustive_fills_where_the_single_pass_gets_stuck() {
             fibers: None,
             fiber_test: None,
             collapse: false,
-            moving_if_few_left: false,
+            auto_moving: false,
         };
         simplify_local_with(&mut m, &policies, &mut ()).unwrap();
         assert_guarantees(&s, &m, &barriers);
@@ -482,7 +482,7 @@ fn stop_rule_and_visitor() {
         fibers: None,
         fiber_test: None,
         collapse: false,
-        moving_if_few_left: false,
+        auto_moving: false,
     };
     let stats = simplify_local_with(&mut m, &policies, &mut count).unwrap();
     assert!(

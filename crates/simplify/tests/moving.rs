@@ -444,7 +444,7 @@ proptest::proptest! {
 }
 
 #[test]
-fn auto_moves_vertices_only_when_the_subset_run_left_few() {
+fn auto_moves_vertices_in_full_only_when_the_subset_run_left_few() {
     let s = bumpy();
     let before = HalfEdgeMesh::from_soup(&s).unwrap().num_vertices();
     let mut branches = Vec::new();
@@ -455,19 +455,25 @@ fn auto_moves_vertices_only_when_the_subset_run_left_few() {
         let (auto, sa) = run(&s, &env, Placement::Auto);
         let few_left =
             subset.num_vertices() * envelope_simplify::policy::AUTO_MOVING_DIVISOR <= before;
-        let expected = if few_left { &collapse } else { &subset };
-        assert_eq!(
-            auto.to_soup(),
-            expected.to_soup(),
-            "eps {eps}, few left {few_left}"
-        );
-        assert_eq!(sa.moving_phase, few_left, "eps {eps}");
-        assert!(sc.moving_phase);
+        assert!(sa.moving_phase && sc.moving_phase, "eps {eps}");
+        assert_eq!(sa.moving_phase_light, !few_left, "eps {eps}");
         if few_left {
+            // The full phase: the collapse placement's output.
+            assert_eq!(auto.to_soup(), collapse.to_soup(), "eps {eps}");
             assert_ne!(
                 collapse.to_soup(),
                 subset.to_soup(),
                 "eps {eps}: nothing moved"
+            );
+        } else {
+            // The light phase: no slide, collapses that remove what the subset run left.
+            assert_eq!(sa.slid, 0, "eps {eps}");
+            assert!(sa.collapsed > 0, "eps {eps}: nothing collapsed");
+            assert!(
+                auto.num_faces() < subset.num_faces(),
+                "eps {eps}: {} faces, subset {}",
+                auto.num_faces(),
+                subset.num_faces()
             );
         }
         branches.push(few_left);

@@ -31,7 +31,7 @@
 //! | very large holes | vertices of valence above [`MAX_HOLE`] are kept (the candidate list is cubic in the valence) |
 //! | spatial index | a hashed uniform grid over the live faces, rebuilt coarser as faces grow ([`FaceGrid`]); barriers in a static BVH |
 //! | vertex positions | input positions ([`Placement::Subset`], the paper's 5.2); [`Placement::Slide`] adds the sliding the paper's section 8 proposes as future work, as a phase after the subset run (see [`LocalSimplifier::try_slide_remove`] for its choices); [`Placement::Collapse`] adds, in the same phase, edge collapses into a moved neighbour ([`LocalSimplifier::try_collapse`]; positions: memoryless quadrics, the midpoint, the neighbour's own, cheapest first, at most 8, none farther than 1.25 times the local offset from the planes around the edge) |
-//! | when to move vertices | [`Placement::Auto`] (the command line's default): the subset run, then the moving phase of [`Placement::Collapse`] only when the subset run left at most one vertex in [`AUTO_MOVING_DIVISOR`] of those it started with: the moving phase tries every vertex that is left, each at several positions, so it is cheap next to the subset run only when few are left; where many are left (small epsilons), the subset run's output already has fewer faces than CGAL's envelope collapse in the benchmark, and the collapse placement costs a multiple of the subset run's time there |
+//! | when to move vertices | [`Placement::Auto`] (the command line's default): the subset run, then the moving phase of [`Placement::Collapse`] when the subset run left at most one vertex in [`AUTO_MOVING_DIVISOR`] of those it started with; otherwise a light moving phase (no slide, only each vertex's cheapest collapse position): the full phase tries every vertex that is left, each at several positions, so it is cheap next to the subset run only when few are left, and costs a multiple of it where many are left (small epsilons); the light one keeps most of its removals there (measured in the changelog) |
 //! | moving phase | planned read-only with the planned positions (the faces around a moved vertex tested where they would be), batched like the subset run with two-ring-and-fiber boxes |
 //!
 //! The output is deterministic and the same for any number of threads. With the
@@ -72,8 +72,8 @@ use thiserror::Error;
 /// Vertices of larger valence are not tried (their candidate lists grow cubically).
 pub(crate) const MAX_HOLE: usize = 40;
 
-/// [`Placement::Auto`] runs the moving phase when the subset run left at most one vertex in
-/// this many of those it started with.
+/// [`Placement::Auto`] runs the moving phase in full when the subset run left at most one
+/// vertex in this many of those it started with, light otherwise.
 pub const AUTO_MOVING_DIVISOR: usize = 10;
 
 /// Why [`simplify_local`] stopped with an error.
@@ -125,26 +125,34 @@ pub struct Stats {
     pub slid: usize,
     /// Removals by an edge collapse to a moved neighbour ([`Placement::Collapse`]).
     pub collapsed: usize,
-    /// Whether the moving phase ran (with [`Placement::Slide`] and [`Placement::Collapse`]
-    /// always; with [`Placement::Auto`] when few vertices were left).
+    /// Whether the moving phase ran (with [`Placement::Slide`], [`Placement::Collapse`] and
+    /// [`Placement::Auto`]).
     pub moving_phase: bool,
+    /// Whether it ran light ([`Placement::Auto`] when many vertices were left).
+    pub moving_phase_light: bool,
     /// Vertices removed by the tolerance phase after the step (crate module `tolerance`;
     /// counted in `removed` and `collapsed` too).
     pub tolerance_removed: usize,
 }
 
 impl Stats {
-    /// Adds the counts of a tolerance phase run on this step's output.
-    pub(crate) fn add_tolerance_phase(&mut self, phase: &Stats) {
-        self.attempts += phase.attempts;
-        self.removed += phase.removed;
-        self.no_valid_fill += phase.no_valid_fill;
-        self.refused += phase.refused;
-        self.candidate_tests += phase.candidate_tests;
-        self.collapsed += phase.collapsed;
-        self.tolerance_removed += phase.removed;
-        self.vertices_after = phase.vertices_after;
-        self.faces_after = phase.faces_after;
+    /// Adds the counts of a `later` run on this one's output (a local stage of the hybrid,
+    /// the tolerance phase): its counters added, its output counts taken.
+    pub fn add_later(&mut self, later: &Stats) {
+        self.vertices_after = later.vertices_after;
+        self.faces_after = later.faces_after;
+        self.attempts += later.attempts;
+        self.removed += later.removed;
+        self.no_valid_fill += later.no_valid_fill;
+        self.no_fill_across_fiber += later.no_fill_across_fiber;
+        self.answered_ahead += later.answered_ahead;
+        self.refused += later.refused;
+        self.candidate_tests += later.candidate_tests;
+        self.slid += later.slid;
+        self.collapsed += later.collapsed;
+        self.moving_phase |= later.moving_phase;
+        self.moving_phase_light |= later.moving_phase_light;
+        self.tolerance_removed += later.tolerance_removed;
     }
 }
 
@@ -228,9 +236,10 @@ pub enum Placement {
     /// filter ([`LocalSimplifier::try_collapse`]). Output vertices lie anywhere between the
     /// envelopes; the guarantee is the same (the filter, then the certificate).
     Collapse,
-    /// The subset run, then the moving phase of [`Placement::Collapse`] only when the subset
-    /// run left at most one vertex in [`AUTO_MOVING_DIVISOR`] of those it started with (see
-    /// the module docs for why); otherwise the output is [`Placement::Subset`]'s.
+    /// The subset run, then the moving phase of [`Placement::Collapse`] when the subset run
+    /// left at most one vertex in [`AUTO_MOVING_DIVISOR`] of those it started with, and
+    /// otherwise a light one: no slide, each vertex's cheapest collapse position only (see
+    /// the module docs for why).
     Auto,
 }
 
@@ -288,9 +297,10 @@ pub struct Policies<'p> {
     /// Edge collapses after the subset run ([`Placement::Collapse`]; with `fibers`, after
     /// sliding).
     pub collapse: bool,
-    /// Run the moving phase (`fibers`, `collapse`) only when the subset run left at most one
-    /// vertex in [`AUTO_MOVING_DIVISOR`] of those it started with ([`Placement::Auto`]).
-    pub moving_if_few_left: bool,
+    /// The moving phase's extent follows the subset run ([`Placement::Auto`]): in full when
+    /// it left at most one vertex in [`AUTO_MOVING_DIVISOR`] of those it started with,
+    /// otherwise light (no slide, each vertex's cheapest collapse position only).
+    pub auto_moving: bool,
     /// The fiber test ([`FiberTest`]) before each plain removal's filling: its envelopes
     /// must be barriers of `filter` and apart from every face of the mesh (see its module).
     pub fiber_test: Option<&'p FiberTest<'p>>,
@@ -367,7 +377,7 @@ pub fn simplify_local_from(
         check_each_step: options.check_each_step,
         fibers: fibers.filter(|_| options.placement != Placement::Subset),
         collapse: matches!(options.placement, Placement::Collapse | Placement::Auto),
-        moving_if_few_left: options.placement == Placement::Auto,
+        auto_moving: options.placement == Placement::Auto,
         fiber_test,
     };
     run(mesh, &policies, seeds, visitor)

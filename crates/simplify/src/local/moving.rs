@@ -4,7 +4,7 @@
 //! [`Placement::Slide`]: super::Placement::Slide
 //! [`Placement::Collapse`]: super::Placement::Collapse
 
-use super::collapse::collapse_candidates;
+use super::collapse::{COLLAPSE_TRIES, collapse_candidates};
 use super::plan::{LocalSimplifier, Plan};
 use super::queue::{independent_batch, queue_vertices};
 use super::scheduler::plan_each;
@@ -33,6 +33,9 @@ use glam::DVec3;
 /// the box holds. With `check_each_step`, one vertex at a time (same plans, other re-queue
 /// order).
 ///
+/// `light`: no slide, and only each vertex's cheapest collapse position
+/// ([`Placement::Auto`] where many vertices are left).
+///
 /// With `reads_beyond = Some(margin)` (the tolerance phase, crate module `tolerance`): the
 /// first time round tries the plain removal too (the filter is another than the run's
 /// before), and the boxes are grown by `margin`: that filter reads the approximation up to
@@ -44,6 +47,7 @@ pub(super) fn moving_phase(
     stats: &mut Stats,
     visitor: &mut dyn Visitor,
     reads_beyond: Option<f64>,
+    light: bool,
 ) -> Result<(), SimplifyError> {
     let tolerance = reads_beyond.is_some();
     let mut queue = queue_vertices(local.mesh(), &Fifo);
@@ -62,7 +66,9 @@ pub(super) fn moving_phase(
         filter: policies.filter,
         filler: policies.filler,
         fibers,
+        slide: !light,
         collapse: policies.collapse,
+        collapse_tries: if light { 1 } else { COLLAPSE_TRIES },
     };
     let mut boxes = MovingBoxes::default();
     loop {
@@ -155,7 +161,11 @@ struct Ways<'p> {
     filter: &'p dyn Filter,
     filler: &'p dyn HoleFiller,
     fibers: Option<&'p VertexFibers<'p>>,
+    /// Slides (with `fibers`).
+    slide: bool,
     collapse: bool,
+    /// Collapse positions tried per vertex at most.
+    collapse_tries: usize,
 }
 
 /// How a removal of the moving phase went.
@@ -249,7 +259,8 @@ impl LocalSimplifier<'_> {
         }
         let fibers = ways.fibers;
         let reach = moving_box(m, v, fibers);
-        if let Some(moves) = fibers.and_then(|f| self.slide_moves(v, f).ok()) {
+        let slide = fibers.filter(|_| ways.slide);
+        if let Some(moves) = slide.and_then(|f| self.slide_moves(v, f).ok()) {
             if moves.iter().all(|&(_, q)| reach.contains(q)) {
                 let (plan, t) = self.plan_moved(v, moves, filter, filler);
                 tests += t;
@@ -259,7 +270,10 @@ impl LocalSimplifier<'_> {
             }
         }
         if ways.collapse {
-            for (_, w, p) in collapse_candidates(m, v, fibers) {
+            for (_, w, p) in collapse_candidates(m, v, fibers)
+                .into_iter()
+                .take(ways.collapse_tries)
+            {
                 if !reach.contains(p) {
                     continue;
                 }

@@ -11,20 +11,25 @@ use crate::grid::FaceGrid;
 use crate::rules::{Rejection, Visitor};
 use envelope_mesh::{HalfEdgeMesh, VertexId};
 
+/// The counts before a run on `mesh`, which must have manifold vertices only.
+fn starting_counts(mesh: &HalfEdgeMesh) -> Result<Stats, SimplifyError> {
+    if let Some(v) = mesh.vertices().find(|&v| !mesh.is_manifold_vertex(v)) {
+        return Err(SimplifyError::NonManifoldVertex(v));
+    }
+    Ok(Stats {
+        vertices_before: mesh.num_vertices(),
+        faces_before: mesh.num_faces(),
+        ..Stats::default()
+    })
+}
+
 pub(super) fn run(
     mesh: &mut HalfEdgeMesh,
     policies: &Policies<'_>,
     seeds: Option<&[VertexId]>,
     visitor: &mut dyn Visitor,
 ) -> Result<Stats, SimplifyError> {
-    if let Some(v) = mesh.vertices().find(|&v| !mesh.is_manifold_vertex(v)) {
-        return Err(SimplifyError::NonManifoldVertex(v));
-    }
-    let mut stats = Stats {
-        vertices_before: mesh.num_vertices(),
-        faces_before: mesh.num_faces(),
-        ..Stats::default()
-    };
+    let mut stats = starting_counts(mesh)?;
     let mut queue = match seeds {
         None => queue_vertices(mesh, policies.order),
         Some(seeds) => {
@@ -147,11 +152,11 @@ pub(super) fn run(
     }
     local.candidate_tests += verdicts.used_tests();
     let few_left = local.mesh().num_vertices() * AUTO_MOVING_DIVISOR <= stats.vertices_before;
-    if (policies.fibers.is_some() || policies.collapse)
-        && (few_left || !policies.moving_if_few_left)
-    {
+    let light = policies.auto_moving && !few_left;
+    if (policies.fibers.is_some() && !light) || policies.collapse {
         stats.moving_phase = true;
-        moving_phase(&mut local, policies, &mut stats, visitor, None)?;
+        stats.moving_phase_light = light;
+        moving_phase(&mut local, policies, &mut stats, visitor, None, light)?;
     }
     stats.candidate_tests = local.candidate_tests;
     stats.vertices_after = local.mesh().num_vertices();
@@ -168,14 +173,9 @@ pub(crate) fn tolerance_phase(
     reads_beyond: f64,
     visitor: &mut dyn Visitor,
 ) -> Result<Stats, SimplifyError> {
-    if let Some(v) = mesh.vertices().find(|&v| !mesh.is_manifold_vertex(v)) {
-        return Err(SimplifyError::NonManifoldVertex(v));
-    }
     let mut stats = Stats {
-        vertices_before: mesh.num_vertices(),
-        faces_before: mesh.num_faces(),
         moving_phase: true,
-        ..Stats::default()
+        ..starting_counts(mesh)?
     };
     let mut local = LocalSimplifier::without_grid(mesh, policies.keep_border)
         .with_keep(policies.keep)
@@ -187,6 +187,7 @@ pub(crate) fn tolerance_phase(
         &mut stats,
         visitor,
         Some(reads_beyond),
+        false,
     )?;
     stats.candidate_tests = local.candidate_tests;
     stats.vertices_after = local.mesh().num_vertices();
