@@ -952,23 +952,16 @@ fn simplify_between(
 ) -> Result<Between, DriverError> {
     let env_proved = env.proof.holds();
     let envelope = envelope_report(&env, options, env_seconds);
-    let env_epsilon_abs = env
+    let requested = env
         .requested
         .iter()
         .zip(used)
         .filter(|(_, u)| **u)
-        .fold(0.0f64, |hi, (&e, _)| hi.max(e));
-    let (epsilon_abs, epsilon_min_abs) = match held_to {
-        Some(e) => (e, e),
-        None => env
-            .requested
-            .iter()
-            .zip(used)
-            .filter(|(_, u)| **u)
-            .fold((0.0f64, f64::INFINITY), |(hi, lo), (&e, _)| {
-                (hi.max(e), lo.min(e))
-            }),
-    };
+        .fold((0.0f64, f64::INFINITY), |(hi, lo), (&e, _)| {
+            (hi.max(e), lo.min(e))
+        });
+    let env_epsilon_abs = requested.0;
+    let (epsilon_abs, epsilon_min_abs) = held_to.map_or(requested, |e| (e, e));
     let tubes: Vec<TriangleSoup> = env.tubes.into_iter().map(|t| t.mesh).collect();
     // Without the walls, the space between the envelopes is open along the border and an
     // interior candidate triangle can leave it there (see `walls`).
@@ -1062,13 +1055,7 @@ fn simplify_between(
             target.as_ref().map(|t| t as &dyn StopRule),
             &mut visitor,
         )?;
-        // Counted as the phase's removals; `moving_phase` stays the step's.
-        let moving = outcome.stats.moving_phase;
-        outcome.stats.add_later(&Stats {
-            tolerance_removed: past.removed,
-            ..past
-        });
-        outcome.stats.moving_phase = moving;
+        outcome.stats.add_later(&past);
         tolerance = Some(TolerancePhaseReport {
             removed_vertices: past.removed,
             seconds: t_phase.elapsed().as_secs_f64(),

@@ -70,14 +70,13 @@ use glam::DVec3;
 /// input near the removed faces stays within epsilon of the approximation.
 pub struct ToleranceFilter<'w> {
     within: &'w Within,
-    epsilon: f64,
 }
 
 impl<'w> ToleranceFilter<'w> {
-    /// The test against the input of `within`, at its epsilon `epsilon`.
+    /// The test against the input of `within`, at its epsilon.
     #[must_use]
-    pub fn new(within: &'w Within, epsilon: f64) -> Self {
-        Self { within, epsilon }
+    pub fn new(within: &'w Within) -> Self {
+        Self { within }
     }
 }
 
@@ -105,10 +104,7 @@ impl Filter for ToleranceFilter<'_> {
     /// point beyond epsilon from the input (a shortcut that only refuses; the proof is in
     /// [`Filter::refuses_replacement`], once the whole operation is known).
     fn accepts(&self, p: &CandidateProfile<'_>) -> bool {
-        let [a, b, c] = p.corners;
-        !envelope_predicates::collinear(a, b, c)
-            && !self.within.some_point_beyond(&samples(p.corners))
-            && !p.approximation.intersects(p.triangle, p.corners)
+        !self.refuses_anyway(p) && !p.approximation.intersects(p.triangle, p.corners)
     }
 
     /// The estimate of [`Filter::accepts`], which needs nothing of the approximation.
@@ -124,10 +120,11 @@ impl Filter for ToleranceFilter<'_> {
         new: &[[DVec3; 3]],
         rest: &Approximation<'_>,
     ) -> bool {
+        let epsilon = self.within.epsilon();
         // The input triangles within reach of a removed face.
         let reach: Vec<Aabb> = old
             .iter()
-            .map(|&t| Aabb::from_triangle(t).inflated(self.epsilon))
+            .map(|&t| Aabb::from_triangle(t).inflated(epsilon))
             .collect();
         let at_risk = self.within.triangles_overlapping(&reach);
         let Some(region) = at_risk
@@ -138,7 +135,7 @@ impl Filter for ToleranceFilter<'_> {
             return false;
         };
         // What covers them: the new triangles and the faces that stay within epsilon of them.
-        let reach = region.inflated(self.epsilon);
+        let reach = region.inflated(epsilon);
         let mut cover = new.to_vec();
         rest.grid.any_overlapping(&reach, |f, g| {
             if !rest.excluded.contains(&f) {
@@ -146,13 +143,12 @@ impl Filter for ToleranceFilter<'_> {
             }
             false
         });
+        let cover = Within::from_triangles(cover, epsilon);
         // Cheapest first: the input's corners estimated against the cover, the new
         // triangles proved against the input, the input proved against the cover.
-        !self
-            .within
-            .points_near(&corners_from(&at_risk, &region), &cover)
+        cover.some_point_beyond(&corners_from(&at_risk, &region))
             || !self.within.holds(new)
-            || !self.within.holds_against(&at_risk, &cover)
+            || !cover.holds(&at_risk)
     }
 }
 
@@ -183,7 +179,7 @@ pub(crate) fn simplify_past_envelopes(
     visitor: &mut dyn Visitor,
 ) -> Result<Stats, SimplifyError> {
     let within = Within::new(input, epsilon);
-    let filter = ToleranceFilter::new(&within, epsilon);
+    let filter = ToleranceFilter::new(&within);
     let policies = Policies {
         filter: &filter,
         order: &Fifo,
@@ -238,18 +234,18 @@ mod tests {
         };
         // The spike's tip is about 0.55 above the flat filling.
         let small = Within::new(&soup, 0.1);
-        assert!(ToleranceFilter::new(&small, 0.1).refuses_replacement(&old, &new, &rest));
+        assert!(ToleranceFilter::new(&small).refuses_replacement(&old, &new, &rest));
         // Within 0.75 of the filling; the input farther round is covered by the faces that
         // stay, which the test must count.
         let large = Within::new(&soup, 0.75);
-        assert!(!ToleranceFilter::new(&large, 0.75).refuses_replacement(&old, &new, &rest));
+        assert!(!ToleranceFilter::new(&large).refuses_replacement(&old, &new, &rest));
         // Without them, the far input is uncovered.
         let nothing_stays: Vec<FaceId> = mesh.faces().collect();
         let alone = Approximation {
             excluded: &nothing_stays,
             ..rest
         };
-        assert!(ToleranceFilter::new(&large, 0.75).refuses_replacement(&old, &new, &alone));
+        assert!(ToleranceFilter::new(&large).refuses_replacement(&old, &new, &alone));
     }
 
     #[test]

@@ -669,21 +669,47 @@ impl Within {
     /// When `epsilon` is not positive and finite.
     #[must_use]
     pub fn new(to: &TriangleSoup, epsilon: f64) -> Within {
+        Within::with_target(
+            hausdorff::Target::new(&to.positions, &raw_faces(to)),
+            epsilon,
+        )
+    }
+
+    /// [`Within::new`] against the triangles `to` (repeated ones count once): for
+    /// questions against a few triangles that change between calls.
+    ///
+    /// # Panics
+    /// When `epsilon` is not positive and finite.
+    #[must_use]
+    pub fn from_triangles(to: Vec<[DVec3; 3]>, epsilon: f64) -> Within {
+        Within::with_target(hausdorff::Target::from_triangles(to), epsilon)
+    }
+
+    fn with_target(target: hausdorff::Target, epsilon: f64) -> Within {
         assert!(
             epsilon > 0.0 && epsilon.is_finite(),
             "epsilon must be positive and finite"
         );
         Within {
-            target: hausdorff::Target::new(&to.positions, &raw_faces(to)),
+            target,
             tol: hausdorff::Tolerance::new(epsilon, epsilon * 1e-6),
         }
+    }
+
+    /// The epsilon the questions are asked at.
+    #[must_use]
+    pub fn epsilon(&self) -> f64 {
+        self.tol.eps()
     }
 
     /// Whether every point of every triangle of `triangles` is proved within epsilon of
     /// the surface (exact; `false` also when undecided).
     #[must_use]
     pub fn holds(&self, triangles: &[[DVec3; 3]]) -> bool {
-        triangles_within(triangles, &self.target, &self.tol)
+        // An empty surface covers nothing.
+        triangles.is_empty()
+            || (!self.target.is_empty()
+                && hausdorff::all_within(triangles, &self.target, &self.tol))
     }
 
     /// The largest side of the bounding box of any of the surface's triangles (0 when
@@ -712,33 +738,6 @@ impl Within {
         ids.dedup();
         ids.into_iter().map(|t| self.target.triangle(t)).collect()
     }
-
-    /// A shortcut that may only refuse: false when some point of `points` is estimated (in
-    /// f64) farther than epsilon from the triangles `to`, looked at in order. Not a proof
-    /// either way.
-    #[must_use]
-    pub fn points_near(&self, points: &[DVec3], to: &[[DVec3; 3]]) -> bool {
-        let target = hausdorff::Target::from_triangles(to.to_vec());
-        !target.some_point_beyond(points, self.tol.eps())
-    }
-
-    /// Whether every point of `from` is proved within epsilon of the triangles `to` (exact;
-    /// `false` also when undecided), with this surface's epsilon: for questions against a
-    /// few triangles that change between calls.
-    #[must_use]
-    pub fn holds_against(&self, from: &[[DVec3; 3]], to: &[[DVec3; 3]]) -> bool {
-        let target = hausdorff::Target::from_triangles(to.to_vec());
-        triangles_within(from, &target, &self.tol)
-    }
-}
-
-/// `from` within the tolerance of `target`; an empty `target` covers nothing.
-fn triangles_within(
-    from: &[[DVec3; 3]],
-    target: &hausdorff::Target,
-    tol: &hausdorff::Tolerance,
-) -> bool {
-    from.is_empty() || (!target.is_empty() && hausdorff::all_within(from, target, tol))
 }
 
 /// Certifies `approx` against `orig`: two-sided Hausdorff distance at most `epsilon`,

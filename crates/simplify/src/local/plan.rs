@@ -339,13 +339,9 @@ impl<'m> LocalSimplifier<'m> {
                 .collect();
             let new: Vec<[DVec3; 3]> = placed.iter().chain(&stay).map(|&t| at(t, true)).collect();
             let rest = Approximation {
-                mesh: m,
-                grid: &self.grid,
-                placed: &[],
                 excluded,
                 moved: &moves,
-                extra: &[],
-                nearby: None,
+                ..Approximation::of_mesh(m, &self.grid)
             };
             *tests += 1;
             if filter.refuses_replacement(&old, &new, &rest) {

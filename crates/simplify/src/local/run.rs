@@ -173,10 +173,7 @@ pub(crate) fn tolerance_phase(
     reads_beyond: f64,
     visitor: &mut dyn Visitor,
 ) -> Result<Stats, SimplifyError> {
-    let mut stats = Stats {
-        moving_phase: true,
-        ..starting_counts(mesh)?
-    };
+    let mut stats = starting_counts(mesh)?;
     let mut local = LocalSimplifier::without_grid(mesh, policies.keep_border)
         .with_keep(policies.keep)
         .with_fiber_test(None);
@@ -192,5 +189,6 @@ pub(crate) fn tolerance_phase(
     stats.candidate_tests = local.candidate_tests;
     stats.vertices_after = local.mesh().num_vertices();
     stats.faces_after = local.mesh().num_faces();
+    stats.tolerance_removed = stats.removed;
     Ok(stats)
 }
