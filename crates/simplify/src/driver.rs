@@ -747,12 +747,12 @@ pub const CROSSINGS: [DegeneracyClass; 4] = [
 ];
 
 /// With the tolerance phase on and a constant epsilon above this part of the input's
-/// diagonal (and no border), the envelopes are built at this part instead, and the tolerance phase always
-/// runs, at the full epsilon, on what the step leaves. A choice, measured: the envelopes'
-/// growth costs most of a run at large epsilons (armadillo at 8%: 23 of 25 s), while
-/// there the envelopes, cut back where the surface is thin, stop the step anyway; the
-/// tolerance phase goes on from a step at 1% to fewer faces than from one at 2% or at the
-/// full epsilon, in less time.
+/// diagonal (and no border), the envelopes are built at this part instead, and the
+/// tolerance phase always runs, at the full epsilon, on what the step leaves. A choice,
+/// measured (CHANGELOG.md, benches/runs): the envelopes' growth costs most of a run at
+/// large epsilons, while there the envelopes, cut back where the surface is thin, stop the
+/// step anyway; from a step at the cap the phase ends within a few faces of where it ends
+/// from one at the full epsilon, in less time.
 pub const TOLERANCE_ENVELOPE_CAP: f64 = 0.01;
 
 /// Without the cap, the tolerance phase runs when the envelopes were cut back: at least
