@@ -76,7 +76,8 @@ struct Case {
 }
 
 /// Thin shapes at epsilons above half their thickness, with the tolerance phase: a
-/// flattened sphere (an ear) and a thin ring.
+/// flattened sphere (an ear), a thin ring and a flattened open cylinder (two border loops,
+/// whose vertices the phase removes too).
 const THIN_PERCENTS: &[f64] = &[2.0, 4.0];
 
 fn thin_cases() -> Vec<Case> {
@@ -84,9 +85,14 @@ fn thin_cases() -> Vec<Case> {
     for p in &mut ear.positions {
         *p *= DVec3::new(1.0, 0.7, 0.02);
     }
+    let mut flat_tube = generate::open_cylinder(1.0, 2.0, 64, 8);
+    for p in &mut flat_tube.positions {
+        p.y *= 0.03;
+    }
     [
         ("ear (tolerance)", ear),
         ("ring (tolerance)", generate::torus(1.0, 0.02, 96, 8)),
+        ("flat open tube (tolerance)", flat_tube),
     ]
     .into_iter()
     .map(|(n, soup)| Case {
@@ -169,8 +175,9 @@ fn cases(log: &mut Vec<String>) -> Vec<Case> {
                         });
                     }
                 }
-                // The tolerance phase on a thin-limbed model, with the envelopes capped.
-                if name == "elephant.off" {
+                // The tolerance phase with the envelopes capped, on a thin-limbed model
+                // and on a part with four border loops.
+                if matches!(name, "elephant.off" | "mech-holes-shark.off") {
                     v.push(Case {
                         name: format!("{name} (tolerance)"),
                         soup: soup.clone(),

@@ -481,19 +481,18 @@ impl Global<'_> {
         };
         let cov =
             ok && (r.inside.len() == 1 || covers_removed(self.mesh, fibers, &interior, &placed));
-        // No barrier component carried across by the filling (an open region claims
-        // nothing there).
+        // No barrier component carried across by the filling.
         let cov = cov && {
             let new: Vec<[DVec3; 3]> = placed
                 .iter()
                 .map(|t| t.map(|x| self.mesh.position(x)))
                 .collect();
-            r.open
-                || !filter.refuses_replacement(
-                    &old,
-                    &new,
-                    &Approximation::of_mesh(self.mesh, &self.grid),
-                )
+            !filter.refuses_replacement(
+                &old,
+                &new,
+                &Approximation::of_mesh(self.mesh, &self.grid),
+                r.open,
+            )
         };
         let added = if cov {
             self.mesh.add_faces(&placed).ok()

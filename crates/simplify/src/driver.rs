@@ -644,9 +644,7 @@ pub fn simplify_with(
     let shared = soup
         .indices_in_range()
         .then(|| rayon::join(|| analyze(soup), || face_tree(soup)));
-    let mut capped = shared
-        .as_ref()
-        .and_then(|(topology, _)| tolerance_cap(soup, topology, options));
+    let mut capped = shared.as_ref().and_then(|_| tolerance_cap(soup, options));
     // The input check and the envelopes run side by side (much of the check is sequential);
     // the check's verdict comes first, whatever the envelopes made of a refused input.
     let ((problems, own_topology), (env, env_seconds)) = rayon::join(
@@ -747,7 +745,7 @@ pub const CROSSINGS: [DegeneracyClass; 4] = [
 ];
 
 /// With the tolerance phase on and a constant epsilon above this part of the input's
-/// diagonal (and no border), the envelopes are built at this part instead, and the
+/// diagonal, the envelopes are built at this part instead, and the
 /// tolerance phase always runs, at the full epsilon, on what the step leaves. A choice,
 /// measured (CHANGELOG.md, benches/runs): the envelopes' growth costs most of a run at
 /// large epsilons, while there the envelopes, cut back where the surface is thin, stop the
@@ -763,19 +761,11 @@ pub const TOLERANCE_WHEN_CUT_BELOW: f64 = 0.9;
 
 /// The constant epsilon `options` asks of `soup` (of topology `topology`) when the
 /// tolerance phase is on and it exceeds [`TOLERANCE_ENVELOPE_CAP`] of the diagonal:
-/// `(epsilon, cap)`. Not for an input with borders: the phase keeps border vertices, so
-/// they would stay where envelopes at the cap left them.
-fn tolerance_cap(
-    soup: &TriangleSoup,
-    topology: &Topology,
-    options: &SimplifyOptions,
-) -> Option<(f64, f64)> {
+/// `(epsilon, cap)`.
+fn tolerance_cap(soup: &TriangleSoup, options: &SimplifyOptions) -> Option<(f64, f64)> {
     let EpsilonField::Constant(e) = options.epsilon else {
         return None;
     };
-    if topology.num_border_loops() > 0 {
-        return None;
-    }
     let cap = TOLERANCE_ENVELOPE_CAP * soup.diagonal();
     (options.tolerance_phase && cap > 0.0 && e > cap).then_some((e, cap))
 }

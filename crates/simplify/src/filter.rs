@@ -289,15 +289,17 @@ pub trait Filter: Sync {
     /// filter refuses one that carries a barrier component across
     /// ([`Barriers::sweeps_across`]); the tolerance filter one that leaves part of the input
     /// farther than epsilon from the approximation. `rest` is the approximation without
-    /// `old` (its `excluded` faces are `old`'s; nothing placed). By default nothing is
-    /// refused.
+    /// `old` (its `excluded` faces are `old`'s; nothing placed). `open`: a border vertex's
+    /// fan, whose boundary is an open chain that `new` closes by a new border edge (the
+    /// envelope filter claims nothing there). By default nothing is refused.
     fn refuses_replacement(
         &self,
         old: &[[DVec3; 3]],
         new: &[[DVec3; 3]],
         rest: &Approximation<'_>,
+        open: bool,
     ) -> bool {
-        let _ = (old, new, rest);
+        let _ = (old, new, rest, open);
         false
     }
 }
@@ -380,8 +382,11 @@ impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
         old: &[[DVec3; 3]],
         new: &[[DVec3; 3]],
         rest: &Approximation<'_>,
+        open: bool,
     ) -> bool {
-        self.base.refuses_replacement(old, new, rest) || self.barriers.sweeps_across(old, new)
+        // An open chain's filling has no closed boundary to carry a component across.
+        self.base.refuses_replacement(old, new, rest, open)
+            || (!open && self.barriers.sweeps_across(old, new))
     }
 }
 

@@ -16,8 +16,7 @@
 //!    within epsilon of the input: the certificate's exact branch and bound
 //!    ([`envelope_verify::Within`]); its corners are not exactly collinear. The hole filler
 //!    chooses triangles by an estimate (sampled points within epsilon, f64); the proofs run
-//!    once the whole operation is known, with 3 (border vertices are kept, so every
-//!    operation is a closed hole, which the replacement test is asked about);
+//!    once the whole operation is known, with 3;
 //! 2. every new triangle meets the rest of the approximation only at the corners and edges
 //!    it shares with it (the 5.1 test, exact);
 //! 3. the operation as a whole: every input triangle whose box comes within epsilon of a
@@ -38,9 +37,13 @@
 //!   `old` lies in `t`'s box grown by epsilon, so its input triangle is among those 3
 //!   proves against a subset of the new approximation (distance to a subset bounds the
 //!   distance to the whole);
-//! - intersections: by 2, as in 5.1; topology: a closed hole (border vertices are kept)
-//!   refilled by a disc, or an edge collapse under the link condition, changes no genus,
-//!   component or border, and without intersections the surface stays embedded.
+//! - intersections: by 2, as in 5.1; topology: a closed hole refilled by a disc, an open
+//!   one (a border vertex's half disc) by a disc closed by the new border edge between its
+//!   two border neighbours (which must not already be an edge, so a loop keeps at least
+//!   three vertices), or an edge collapse under the link condition, changes no genus,
+//!   component or border loop, and without intersections the surface stays embedded.
+//!   Nothing here needs the border tubes of 6.2: the border's points are input points like
+//!   any other, covered by 3, and the new border edges are edges of triangles proved by 1.
 //!
 //! Every decision is exact; a search left undecided by its budget refuses. The certificate
 //! still judges the output.
@@ -53,7 +56,7 @@
 //! | operations | the moving phase's: the plain removal (greedy filling), then collapses into a neighbour at the collapse placement's positions (no fibers here, so no reach limit: 1 refuses the far ones) |
 //! | order | every vertex in id order, first in first out, neighbours of a change queued again |
 //! | parallelism | the moving phase's batches of operations planned side by side, with each operation's box grown by epsilon plus half the largest input triangle (3 reads the approximation up to twice epsilon plus an input triangle beyond what the operation changes), so that no plan of a batch reads what another changes; the output does not depend on the thread count |
-//! | borders | border vertices are kept (no tubes here): every hole is closed |
+//! | borders | border vertices are removed like the others (their open holes filled, the new border edge proved with its triangle), not moved: the collapses keep them, as the moving phase does |
 
 use crate::fill::Greedy;
 use crate::filter::{Approximation, CandidateProfile, Filter};
@@ -119,6 +122,7 @@ impl Filter for ToleranceFilter<'_> {
         old: &[[DVec3; 3]],
         new: &[[DVec3; 3]],
         rest: &Approximation<'_>,
+        _open: bool,
     ) -> bool {
         let epsilon = self.within.epsilon();
         // The input triangles within reach of a removed face.
@@ -185,7 +189,7 @@ pub(crate) fn simplify_past_envelopes(
         order: &Fifo,
         filler: &Greedy::default(),
         stop: stop.unwrap_or(&Exhaust),
-        keep_border: true,
+        keep_border: false,
         keep,
         check_each_step: false,
         fibers: None,
@@ -234,18 +238,18 @@ mod tests {
         };
         // The spike's tip is about 0.55 above the flat filling.
         let small = Within::new(&soup, 0.1);
-        assert!(ToleranceFilter::new(&small).refuses_replacement(&old, &new, &rest));
+        assert!(ToleranceFilter::new(&small).refuses_replacement(&old, &new, &rest, false));
         // Within 0.75 of the filling; the input farther round is covered by the faces that
         // stay, which the test must count.
         let large = Within::new(&soup, 0.75);
-        assert!(!ToleranceFilter::new(&large).refuses_replacement(&old, &new, &rest));
+        assert!(!ToleranceFilter::new(&large).refuses_replacement(&old, &new, &rest, false));
         // Without them, the far input is uncovered.
         let nothing_stays: Vec<FaceId> = mesh.faces().collect();
         let alone = Approximation {
             excluded: &nothing_stays,
             ..rest
         };
-        assert!(ToleranceFilter::new(&large).refuses_replacement(&old, &new, &alone));
+        assert!(ToleranceFilter::new(&large).refuses_replacement(&old, &new, &alone, false));
     }
 
     #[test]

@@ -16,8 +16,9 @@ fn scaled(mut soup: TriangleSoup, by: DVec3) -> TriangleSoup {
     soup
 }
 
-/// A flattened sphere (an ear), a thin ring and a spindle (a thin cylinder closed at both
-/// ends): each far thinner than the epsilons below.
+/// A flattened sphere (an ear), a thin ring, a spindle (a thin cylinder closed at both
+/// ends) and a flattened open cylinder (two border loops): each far thinner than the
+/// epsilons below.
 fn thin_shapes() -> Vec<(&'static str, TriangleSoup)> {
     vec![
         (
@@ -30,6 +31,13 @@ fn thin_shapes() -> Vec<(&'static str, TriangleSoup)> {
             scaled(
                 generate::uv_sphere(12, 48, 1.0),
                 DVec3::new(0.03, 0.03, 1.0),
+            ),
+        ),
+        (
+            "flat open tube",
+            scaled(
+                generate::open_cylinder(1.0, 2.0, 64, 8),
+                DVec3::new(1.0, 0.03, 1.0),
             ),
         ),
     ]
@@ -88,6 +96,33 @@ fn thin_shapes_go_on_past_the_envelopes() {
             "{name}: {faces:?} faces at 2% and 4%"
         );
     }
+}
+
+/// The border vertices on a loop of `soup`.
+fn border_vertices(soup: &TriangleSoup) -> usize {
+    let mesh = envelope_mesh::HalfEdgeMesh::from_soup(soup).expect("a manifold mesh");
+    mesh.vertices()
+        .filter(|&v| mesh.is_border_vertex(v))
+        .count()
+}
+
+#[test]
+fn the_phase_removes_border_vertices() {
+    // Two circles of 96 segments, round within a thousandth: at 4 % (the envelopes built
+    // at the 1 % cap) the phase goes on along the borders past where the step at 1 % left
+    // them, and the two loops stay.
+    let soup = generate::open_cylinder(1.0, 0.5, 96, 4);
+    let (at_cap, cap_report) = run(&soup, 1.0, true);
+    let (past, report) = run(&soup, 4.0, true);
+    assert_certified("open cylinder", &soup, &at_cap, &cap_report);
+    assert_certified("open cylinder", &soup, &past, &report);
+    let (before, after) = (border_vertices(&at_cap), border_vertices(&past));
+    eprintln!("open cylinder: {before} border vertices at 1 %, {after} at 4 %");
+    assert!(report.tolerance_phase.is_some());
+    assert!(
+        3 * after < 2 * before,
+        "{after} border vertices at 4 %, {before} at 1 %"
+    );
 }
 
 #[test]

@@ -286,7 +286,8 @@ pub struct Policies<'p> {
     pub filler: &'p dyn HoleFiller,
     /// Stop rule.
     pub stop: &'p dyn StopRule,
-    /// Keep every border vertex (set when there is no border tube).
+    /// Keep every border vertex (the envelope filter's when there is no border tube, whose
+    /// test an open hole's new border edge needs; the tolerance filter proves it instead).
     pub keep_border: bool,
     /// Vertices never removed nor moved, by id ([`Barriers::with_kept`]; empty: none).
     pub keep: &'p [bool],

@@ -320,9 +320,9 @@ impl<'m> LocalSimplifier<'m> {
                 return Err(Rejection::NoValidFill);
             }
         }
-        // The filling and the moved stars must not carry a barrier component across (an
-        // open hole claims nothing there: its boundary is not the fan's).
-        if !border {
+        // The replacement as a whole (the filling and the moved stars): no barrier
+        // component carried across, the input still covered (the filter's to say).
+        {
             let at = |t: [VertexId; 3], moved: bool| {
                 t.map(|x| {
                     if moved {
@@ -344,7 +344,7 @@ impl<'m> LocalSimplifier<'m> {
                 ..Approximation::of_mesh(m, &self.grid)
             };
             *tests += 1;
-            if filter.refuses_replacement(&old, &new, &rest) {
+            if filter.refuses_replacement(&old, &new, &rest, border) {
                 return Err(Rejection::NoValidFill);
             }
         }
