@@ -324,10 +324,11 @@ fn outputs_pass_cgal() {
         }
     }
     println!("{}", log.join("\n"));
-    assert_eq!(
-        auto_ran,
-        ["auto: collapse", "auto: light collapse"].into(),
-        "the auto placement's branches that ran"
+    assert!(
+        ["auto: collapse", "auto: light collapse"]
+            .iter()
+            .all(|b| auto_ran.contains(*b)),
+        "the auto placement's branches that ran: {auto_ran:?}"
     );
     assert!(
         failures.is_empty(),

@@ -395,6 +395,7 @@ fn global_stats(g: &GlobalStats) -> Stats {
         collapsed: 0,
         moving_phase: false,
         moving_phase_light: false,
+        light_gave_up: false,
         tolerance_removed: 0,
     }
 }

@@ -328,8 +328,9 @@ pub struct SimplifyReport {
     /// Vertices removed.
     pub removed_vertices: usize,
     /// `"subset"`, `"slide"`, `"collapse"`, or with [`Placement::Auto`] what it ran:
-    /// `"auto: subset"` (the global method: nothing moves), `"auto: collapse"` or
-    /// `"auto: light collapse"` ([`SimplifyOptions::placement`]).
+    /// `"auto: subset"` (the global method: nothing moves), `"auto: collapse"`,
+    /// `"auto: light collapse"` or `"auto: light collapse, given up"` (its removals too
+    /// rare, it stopped early) ([`SimplifyOptions::placement`]).
     pub placement: &'static str,
     /// Removals that slid neighbours along their fibers (0 with `"subset"`).
     pub slid_removals: usize,
@@ -878,6 +879,7 @@ impl Between {
                 Placement::Subset => "subset",
                 Placement::Slide => "slide",
                 Placement::Collapse => "collapse",
+                Placement::Auto if stats.light_gave_up => "auto: light collapse, given up",
                 Placement::Auto if stats.moving_phase_light => "auto: light collapse",
                 Placement::Auto if stats.moving_phase => "auto: collapse",
                 Placement::Auto => "auto: subset",

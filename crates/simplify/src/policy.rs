@@ -24,8 +24,8 @@ pub use crate::filter::{
 };
 pub use crate::grid::FaceGrid;
 pub use crate::local::{
-    AUTO_MOVING_DIVISOR, LocalSimplifier, Options, Policies, Removal, SimplifyError, Stats,
-    simplify_local, simplify_local_from, simplify_local_with,
+    AUTO_MOVING_DIVISOR, LIGHT_GIVE_UP_BELOW, LIGHT_PROBE, LocalSimplifier, Options, Policies,
+    Removal, SimplifyError, Stats, simplify_local, simplify_local_from, simplify_local_with,
 };
 pub use crate::rules::{
     Exhaust, Fifo, FlatFirst, QueueOrder, Rejection, StopRule, TargetFaces, Visitor, aspect_ratio,

@@ -31,7 +31,7 @@
 //! | very large holes | vertices of valence above [`MAX_HOLE`] are kept (the candidate list is cubic in the valence) |
 //! | spatial index | a hashed uniform grid over the live faces, rebuilt coarser as faces grow ([`FaceGrid`]); barriers in a static BVH |
 //! | vertex positions | input positions ([`Placement::Subset`], the paper's 5.2); [`Placement::Slide`] adds the sliding the paper's section 8 proposes as future work, as a phase after the subset run (see [`LocalSimplifier::try_slide_remove`] for its choices); [`Placement::Collapse`] adds, in the same phase, edge collapses into a moved neighbour ([`LocalSimplifier::try_collapse`]; positions: memoryless quadrics, the midpoint, the neighbour's own, cheapest first, at most 8, none farther than 1.25 times the local offset from the planes around the edge) |
-//! | when to move vertices | [`Placement::Auto`] (the command line's default): the subset run, then the moving phase of [`Placement::Collapse`] when the subset run left at most one vertex in [`AUTO_MOVING_DIVISOR`] of those it started with; otherwise a light moving phase (no slide, only each vertex's cheapest collapse position): the full phase tries every vertex that is left, each at several positions, so it is cheap next to the subset run only when few are left, and costs a multiple of it where many are left (small epsilons); the light one keeps most of its removals there (measured in the changelog) |
+//! | when to move vertices | [`Placement::Auto`] (the command line's default): the subset run, then the moving phase of [`Placement::Collapse`] when the subset run left at most one vertex in [`AUTO_MOVING_DIVISOR`] of those it started with; otherwise a light moving phase (no slide, only each vertex's cheapest collapse position; it gives up when its removals are rare, [`LIGHT_GIVE_UP_BELOW`]): the full phase tries every vertex that is left, each at several positions, so it is cheap next to the subset run only when few are left, and costs a multiple of it where many are left (small epsilons); the light one keeps most of its removals there (measured in the changelog) |
 //! | moving phase | planned read-only with the planned positions (the faces around a moved vertex tested where they would be), batched like the subset run with two-ring-and-fiber boxes |
 //!
 //! The output is deterministic and the same for any number of threads. With the
@@ -75,6 +75,17 @@ pub(crate) const MAX_HOLE: usize = 40;
 /// [`Placement::Auto`] runs the moving phase in full when the subset run left at most one
 /// vertex in this many of those it started with, light otherwise.
 pub const AUTO_MOVING_DIVISOR: usize = 10;
+
+/// Attempts of the light moving phase before it may give up (see [`LIGHT_GIVE_UP_BELOW`]).
+pub const LIGHT_PROBE: usize = 2048;
+
+/// The light moving phase gives up, once it made [`LIGHT_PROBE`] attempts, when fewer than
+/// one attempt in this many removed a vertex (checked between batches, so the output does
+/// not depend on the thread count). Each removal there costs the attempts of this many
+/// vertices plus the certificate's proofs of the moved faces: where the subset run left a
+/// surface that is coarse against epsilon, the phase doubled the run's time for a few
+/// percent of its faces (measured in the changelog).
+pub const LIGHT_GIVE_UP_BELOW: usize = 25;
 
 /// Why [`simplify_local`] stopped with an error.
 #[derive(Clone, Debug, PartialEq, Eq, Error)]
@@ -130,6 +141,8 @@ pub struct Stats {
     pub moving_phase: bool,
     /// Whether it ran light ([`Placement::Auto`] when many vertices were left).
     pub moving_phase_light: bool,
+    /// Whether the light phase gave up early, its removals too rare (`LIGHT_GIVE_UP_BELOW`).
+    pub light_gave_up: bool,
     /// Vertices removed by the tolerance phase after the step (crate module `tolerance`;
     /// counted in `removed` and `collapsed` too).
     pub tolerance_removed: usize,
@@ -152,6 +165,7 @@ impl Stats {
         self.collapsed += later.collapsed;
         self.moving_phase |= later.moving_phase;
         self.moving_phase_light |= later.moving_phase_light;
+        self.light_gave_up |= later.light_gave_up;
         self.tolerance_removed += later.tolerance_removed;
     }
 }

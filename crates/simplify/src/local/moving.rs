@@ -8,7 +8,9 @@ use super::collapse::{COLLAPSE_TRIES, collapse_candidates};
 use super::plan::{LocalSimplifier, Plan};
 use super::queue::{independent_batch, queue_vertices};
 use super::scheduler::plan_each;
-use super::{Policies, SimplifyError, Stats, VertexFibers, rejected};
+use super::{
+    LIGHT_GIVE_UP_BELOW, LIGHT_PROBE, Policies, SimplifyError, Stats, VertexFibers, rejected,
+};
 use crate::fill::HoleFiller;
 use crate::filter::Filter;
 use crate::rules::{Fifo, Rejection, Visitor};
@@ -34,7 +36,10 @@ use glam::DVec3;
 /// order).
 ///
 /// `light`: no slide, and only each vertex's cheapest collapse position
-/// ([`Placement::Auto`] where many vertices are left).
+/// ([`Placement::Auto`] where many vertices are left); it gives up once
+/// [`LIGHT_PROBE`] attempts have been made and fewer than one in
+/// [`LIGHT_GIVE_UP_BELOW`] of them removed a vertex (decided between batches, so the
+/// output does not depend on the thread count).
 ///
 /// With `reads_beyond = Some(margin)` (the tolerance phase, crate module `tolerance`): the
 /// first time round tries the plain removal too (the filter is another than the run's
@@ -71,9 +76,14 @@ pub(super) fn moving_phase(
         collapse_tries: if light { 1 } else { COLLAPSE_TRIES },
     };
     let mut boxes = MovingBoxes::default();
+    let (mut attempts, mut removals) = (0usize, 0usize);
     loop {
         if visitor.cancelled() {
             return Err(SimplifyError::Cancelled);
+        }
+        if light && attempts >= LIGHT_PROBE && removals * LIGHT_GIVE_UP_BELOW < attempts {
+            stats.light_gave_up = true;
+            return Ok(());
         }
         let batch: Vec<VertexId> = if policies.check_each_step {
             queue.pop().into_iter().collect()
@@ -115,6 +125,7 @@ pub(super) fn moving_phase(
                 return Ok(());
             }
             stats.attempts += 1;
+            attempts += 1;
             visitor.on_attempt(v);
             local.candidate_tests += tests;
             let result = plan.and_then(|(plan, way)| {
@@ -124,6 +135,7 @@ pub(super) fn moving_phase(
             match result {
                 Ok((removal, way, moved)) => {
                     stats.removed += 1;
+                    removals += 1;
                     stats.slid += usize::from(way == Way::Slid);
                     stats.collapsed += usize::from(way == Way::Collapsed);
                     visitor.on_removed(v, &removal.faces);
