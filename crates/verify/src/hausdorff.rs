@@ -20,7 +20,12 @@
 //!   cut by a plane through the shared edge of two triangles (exact sides, f64 crossing
 //!   points with proved error bounds), each piece against the triangle on its side, by its
 //!   vertices (`Search::split_within_f64`); ties at exactly `eps` use the same cut in
-//!   rationals (`Search::split_within_exactly`).
+//!   rationals (`Search::split_within_exactly`). Over a vertex of `to`, the corners are
+//!   nearest to faces of its fan that share only that vertex: up to `cuts::PIECE_CUTS` rounds
+//!   of cuts, through shared edges and through shared corners, each piece an f64 polygon
+//!   taken exactly and proved against one triangle, the crossing points' error bounds added
+//!   up over the rounds (`Search::pieces_within`). Their vertices are lower-bound
+//!   candidates too, less their error bounds.
 //! * **Witness.** A violation is reported only for a point exactly on `T`: a corner whose f64
 //!   value is exact (`delta == 0`, checked with the f64 predicates) or, otherwise, the exact
 //!   rational corner, checked with rational arithmetic. It must exceed `eps` against every
@@ -47,21 +52,26 @@
 //! Speed without changing what is proved: faces are processed in fixed chunks, each chunk
 //! sequentially, so the nearest-triangle search of a face starts from the triangle found for
 //! the previous face (spatial coherence prunes the BVH descent; the search result is only an
-//! estimate that the exact predicates then check), and scratch buffers are reused.
+//! estimate that the exact predicates then check), and scratch buffers are reused. A
+//! sub-triangle's candidates drop the triangles whose estimated distance to one of its
+//! corners exceeds eps plus its diameter (widely rounded: a triangle dropped in error costs
+//! a proof, never a wrong one, as witnesses ask the tree), and exact tests are skipped
+//! where the estimates already promise a bound above eps.
 
 use envelope_mesh::FaceId;
 use envelope_predicates::bvh::{Aabb, Bvh, NodeId, NodeKind};
 use envelope_predicates::exact_num::Rational;
-use envelope_predicates::{Orientation, Sign, cmp_point_triangle, collinear, next_up, orient3d};
+use envelope_predicates::{Sign, cmp_point_triangle, next_up};
 use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::numeric::{
-    RPoint, add_up, approx_sq_dist, barycentric_point, cross, crossing_with_bound, dot,
-    orient3d_with_bound, rational, rpoint, sq_dist_exact, sqrt_down, sqrt_up, square_down,
-    square_up, sub,
+    RPoint, add_up, approx_sq_dist, barycentric_point, rational, rpoint, sq_dist_exact, sqrt_down,
+    sqrt_up, square_down, square_up,
 };
 use crate::{FaceBound, OneSided, Verdict, Witness};
+
+mod cuts;
 
 /// Subdivision depth limit (barycentric numerators stay in `u64`).
 const MAX_LEVEL: u32 = 60;
@@ -489,12 +499,36 @@ fn midpoint(u: &Corner, v: &Corner) -> Corner {
     }
 }
 
+/// A lower-bound candidate: (approximate squared distance, f64 point, a proved bound on its
+/// distance to a point of `from`, 0 for a point on it).
+type Low = (f64, DVec3, f64);
+
+/// The certified lower bound a candidate gives: its point's certified distance to `to`, less
+/// its error.
+fn low_bound(target: &Target, &(_, p, err): &Low) -> f64 {
+    let d = target.certified_lower(p);
+    if err == 0.0 {
+        d
+    } else {
+        envelope_predicates::next_down(d - err).max(0.0)
+    }
+}
+
+/// Keeps the farther of two lower-bound candidates (`best` on ties).
+fn farther(best: &mut Option<Low>, other: Option<Low>) {
+    if let Some(o) = other
+        && best.is_none_or(|b| o.0 > b.0)
+    {
+        *best = Some(o);
+    }
+}
+
 /// Everything learnt about one triangle of `from`.
 #[derive(Default)]
 struct FaceResult {
     upper: f64,
-    /// Best lower-bound candidate: (approximate squared distance, exact f64 point on `from`).
-    lower_candidate: Option<(f64, DVec3)>,
+    /// Best lower-bound candidate ([`Low`]).
+    lower_candidate: Option<Low>,
     witness: Option<Witness>,
     undecided: bool,
     subdivisions: u64,
@@ -603,7 +637,15 @@ impl Search<'_> {
 
     /// Proves the sub-triangle within `eps`, returning a proved upper bound. `face` is the
     /// whole triangle the sub-triangle's barycentric corners refer to.
-    fn prove(&self, face: &[DVec3; 3], s: &Sub, est: &Estimate, delta: f64) -> Option<f64> {
+    /// A proof by cut pieces (`pieces_within`) leaves in `low` its farthest piece vertex.
+    fn prove(
+        &self,
+        face: &[DVec3; 3],
+        s: &Sub,
+        est: &Estimate,
+        delta: f64,
+        low: &mut Option<Low>,
+    ) -> Option<f64> {
         let (t, m) = est.best?;
         // Largest double below (eps - delta)^2; 0 when eps - delta may be <= 0, so that only
         // the exact corners below can prove anything.
@@ -614,10 +656,14 @@ impl Search<'_> {
         }
         // No single triangle: each corner within epsilon of its nearest one, to the
         // estimate's precision, and they differ: cut by a plane between two of them.
-        if est.corner_min.iter().all(|&d| d < self.tol.e2lo)
-            && let Some(u) = self.split_within_f64(s, est, delta)
-        {
-            return Some(u);
+        if est.corner_min.iter().all(|&d| d < self.tol.e2lo) {
+            if let Some(u) = self.split_within_f64(s, est, delta) {
+                return Some(u);
+            }
+            if let Some((u, far)) = self.pieces_within(s, est, delta) {
+                farther(low, Some(far));
+                return Some(u);
+            }
         }
         let near = self.tol.e2hi * (1.0 + 2f64.powi(-20));
         // The split below is for ties (a corner at epsilon, to the estimate's precision) and
@@ -649,114 +695,6 @@ impl Search<'_> {
             return Some(self.tol.eps);
         }
         (split && self.split_within_exactly(face, s, &est.nearest())).then_some(self.tol.eps)
-    }
-
-    /// [`Self::split_within_exactly`] in f64 with proved error bounds, for the f64
-    /// sub-triangle `s` (its exact one is within `delta`): for each pair of the corners'
-    /// nearest triangles that share an edge, cut `s` by the plane through that edge (exact
-    /// signs of the corners; crossing points with [`crossing_with_bound`]) and certify
-    /// each piece against the triangle on its side by its vertices, each vertex's bound plus
-    /// its crossing error. Returns the proved upper bound when it is at most `eps`; `None`
-    /// otherwise (ties at exactly `eps` are left to the rational cut).
-    fn split_within_f64(&self, s: &Sub, est: &Estimate, delta: f64) -> Option<f64> {
-        let ts = est.nearest();
-        let corners = s.c.map(|c| c.p);
-        for (i, &t1) in ts.iter().enumerate() {
-            for &t2 in &ts[i + 1..] {
-                let (a, b) = (
-                    &self.target.tris[t1 as usize],
-                    &self.target.tris[t2 as usize],
-                );
-                let Some([p, q, r]) = bisector_points(a, b) else {
-                    continue;
-                };
-                let side = corners.map(|x| orient3d(p, q, r, x));
-                let approx = corners.map(|x| orient3d_with_bound(p, q, r, x));
-                // (point, error) of each piece: side <= 0 goes with one triangle, >= 0 with
-                // the other.
-                let mut lo: Vec<(DVec3, f64)> = Vec::with_capacity(4);
-                let mut hi: Vec<(DVec3, f64)> = Vec::with_capacity(4);
-                for k in 0..3 {
-                    let j = (k + 1) % 3;
-                    if side[k] != Orientation::Positive {
-                        lo.push((corners[k], 0.0));
-                    }
-                    if side[k] != Orientation::Negative {
-                        hi.push((corners[k], 0.0));
-                    }
-                    let opposite = matches!(
-                        (side[k], side[j]),
-                        (Orientation::Negative, Orientation::Positive)
-                            | (Orientation::Positive, Orientation::Negative)
-                    );
-                    if opposite {
-                        let x = crossing_with_bound(corners[k], corners[j], approx[k], approx[j]);
-                        lo.push(x);
-                        hi.push(x);
-                    }
-                }
-                let bound = |piece: &[(DVec3, f64)], t: &[DVec3; 3]| -> Option<f64> {
-                    piece.iter().try_fold(0.0f64, |u, &(v, e)| {
-                        // Crossing points often lie exactly on `t` (coplanar faces): a
-                        // floor of eps * 2^-10 keeps the filter decisive there.
-                        let c = self
-                            .tol
-                            .certification_value(approx_sq_dist(v, t))
-                            .max(self.tol.e2lo * 2f64.powi(-20));
-                        within(v, t, c).then(|| u.max(add_up(sqrt_up(c), e)))
-                    })
-                };
-                for (x, y) in [(a, b), (b, a)] {
-                    if let (Some(u), Some(w)) = (bound(&lo, x), bound(&hi, y)) {
-                        let total = add_up(u.max(w), delta);
-                        if total <= self.tol.eps {
-                            return Some(total);
-                        }
-                    }
-                }
-            }
-        }
-        None
-    }
-
-    /// A sub-triangle that straddles the shared edge of two close triangles `t1`, `t2`
-    /// (a tie along a curve: each point within `eps` of one of them, no single one covering
-    /// all): cut it exactly by a plane through that edge and prove each piece within `eps`
-    /// of the triangle on its side, by its exact vertices (convexity again). The plane holds
-    /// the edge and the sum of the two unit normals, rounded to f64: any plane through the
-    /// edge is sound, this one makes the proof succeed where the nearest-triangle regions
-    /// meet.
-    fn split_within_exactly(&self, face: &[DVec3; 3], s: &Sub, close: &[u32]) -> bool {
-        let corners: Vec<RPoint> =
-            s.c.iter()
-                .map(|c| {
-                    if c.delta == 0.0 {
-                        rpoint(c.p)
-                    } else {
-                        barycentric_point(face, c.bary, s.level)
-                    }
-                })
-                .collect();
-        for (i, &t1) in close.iter().enumerate() {
-            for &t2 in &close[i + 1..] {
-                let (a, b) = (
-                    &self.target.tris[t1 as usize],
-                    &self.target.tris[t2 as usize],
-                );
-                let Some(plane) = bisector(a, b) else {
-                    continue;
-                };
-                let side: Vec<Rational> = corners.iter().map(|q| plane.side(q)).collect();
-                let (lo, hi) = clip_by_sign(&corners, &side);
-                let within = |piece: &[RPoint], t: &[DVec3; 3]| {
-                    piece.iter().all(|q| sq_dist_exact(q, t) <= self.tol.e2)
-                };
-                if (within(&lo, a) && within(&hi, b)) || (within(&lo, b) && within(&hi, a)) {
-                    return true;
-                }
-            }
-        }
-        false
     }
 
     /// Every exact corner of the sub-triangle within `eps` of `t` (then all of it is, by
@@ -858,11 +796,13 @@ impl Search<'_> {
                 corner_min: d,
                 corner_best: [t0; 3],
             };
-            if let Some(u) = self.prove(&tri, &s0, &est, 0.0) {
+            let mut low = None;
+            if let Some(u) = self.prove(&tri, &s0, &est, 0.0, &mut low) {
                 // `d` over-estimates each corner's distance: only a ranking for the lower
                 // bound, which is certified separately.
                 let j = (0..3).max_by(|&a, &b| d[a].total_cmp(&d[b])).unwrap_or(0);
-                out.lower_candidate = Some((d[j], tri[j]));
+                out.lower_candidate = Some((d[j], tri[j], 0.0));
+                farther(&mut out.lower_candidate, low);
                 out.upper = u;
                 out.subdivisions = 1;
                 return out;
@@ -893,17 +833,19 @@ impl Search<'_> {
                 if s.c[j].delta == 0.0
                     && out
                         .lower_candidate
-                        .is_none_or(|(d, _)| est.corner_min[j] > d)
+                        .is_none_or(|(d, _, _)| est.corner_min[j] > d)
                 {
-                    out.lower_candidate = Some((est.corner_min[j], s.c[j].p));
+                    out.lower_candidate = Some((est.corner_min[j], s.c[j].p, 0.0));
                 }
             }
             if out.witness.is_some() {
                 out.upper = out.upper.max(self.upper_bound(&s, &est, delta));
                 continue;
             }
-            if let Some(u) = self.prove(&tri, &s, &est, delta) {
+            let mut low = None;
+            if let Some(u) = self.prove(&tri, &s, &est, delta, &mut low) {
                 out.upper = out.upper.max(u);
+                farther(&mut out.lower_candidate, low);
                 continue;
             }
             for j in 0..3 {
@@ -957,9 +899,24 @@ impl Search<'_> {
             ([bc, ca, ab], [&dbc, &dca, &dab]),
         ];
         for (corners, dists) in children {
-            let query = Aabb::from_triangle(corners.map(|c| c.p)).inflated(self.tol.eps);
+            let points = corners.map(|c| c.p);
+            let query = Aabb::from_triangle(points).inflated(self.tol.eps);
+            // A triangle farther than eps + diam from a corner is farther than eps from
+            // every point of the child (each within diam of that corner): it can prove
+            // nothing there. Estimated distances, with a wide margin; a triangle kept in
+            // error only costs time, one dropped in error only a proof (witnesses and
+            // bounds ask the tree, not this list).
+            let diam = (0..3)
+                .map(|j| (points[j] - points[(j + 1) % 3]).length())
+                .fold(0.0, f64::max);
+            let slack = corners.iter().map(|c| c.delta).fold(0.0, f64::max);
+            let reach = (self.tol.eps + diam + 2.0 * slack) * (1.0 + 1e-6);
+            let reach2 = reach * reach;
             let keep: Vec<usize> = (0..s.cands.len())
-                .filter(|&i| self.target.boxes[s.cands[i] as usize].overlaps(&query))
+                .filter(|&i| {
+                    self.target.boxes[s.cands[i] as usize].overlaps(&query)
+                        && dists.iter().all(|d| d[i] <= reach2)
+                })
                 .collect();
             stack.push(Sub {
                 c: corners,
@@ -985,7 +942,7 @@ struct Summary {
     undecided: usize,
     witness: Option<Witness>,
     /// The most distant lower-bound candidates, at most [`LOWS`], farthest first.
-    lows: Vec<(f64, DVec3)>,
+    lows: Vec<Low>,
     subdivisions: u64,
 }
 
@@ -1040,7 +997,8 @@ fn face_bound(search: &Search<'_>, face: FaceId, tri: [DVec3; 3], r: &FaceResult
     let target = search.target;
     let mut lower = r
         .lower_candidate
-        .map_or(0.0, |(_, p)| target.certified_lower(p));
+        .as_ref()
+        .map_or(0.0, |low| low_bound(target, low));
     if let Some(w) = &r.witness {
         lower = lower.max(w.distance);
     }
@@ -1232,7 +1190,7 @@ pub(crate) fn one_sided(
     let mut lower = lows
         .iter()
         .take(LOWS)
-        .map(|&(_, p)| target.certified_lower(p))
+        .map(|low| low_bound(target, low))
         .fold(0.0, f64::max);
     if let Some(w) = &witness {
         lower = lower.max(w.distance);
@@ -1271,74 +1229,6 @@ pub(crate) fn one_sided(
         subdivisions,
     };
     (one, per_face)
-}
-
-/// A plane through three points, exactly: `side(q)` is the sign-carrying determinant.
-struct Plane {
-    origin: RPoint,
-    normal: RPoint,
-}
-
-impl Plane {
-    fn side(&self, q: &RPoint) -> Rational {
-        dot(&sub(q, &self.origin), &self.normal)
-    }
-}
-
-/// Three f64 points spanning the plane through the shared edge of two triangles that also
-/// holds the sum of their unit normals (any rounding is harmless: any plane through the edge
-/// is sound, see `split_within_exactly`); `None` when they share no edge or the plane
-/// degenerates.
-fn bisector_points(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<[DVec3; 3]> {
-    let shared: Vec<DVec3> = a.iter().copied().filter(|p| b.contains(p)).collect();
-    let [p, q] = shared[..] else {
-        return None;
-    };
-    let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
-    let (na, nb) = (normal(a), normal(b));
-    // Opposite orientations: the sum is not a bisector, the difference is.
-    let d = if na.dot(nb) >= 0.0 { na + nb } else { na - nb };
-    let r = p + d;
-    if !r.is_finite() || d == DVec3::ZERO || collinear(p, q, r) {
-        return None;
-    }
-    Some([p, q, r])
-}
-
-/// The plane through the shared edge of two triangles that also holds the sum of their unit
-/// normals (f64, any rounding is harmless: see `split_within_exactly`); `None` when they
-/// share no edge or the plane degenerates.
-fn bisector(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<Plane> {
-    let [p, q, r] = bisector_points(a, b)?;
-    let (p, q, r) = (rpoint(p), rpoint(q), rpoint(r));
-    let normal = cross(&sub(&q, &p), &sub(&r, &p));
-    Some(Plane { origin: p, normal })
-}
-
-/// Splits a convex polygon by the signs of its vertices: (side <= 0, side >= 0), the
-/// crossing points computed exactly.
-fn clip_by_sign(poly: &[RPoint], side: &[Rational]) -> (Vec<RPoint>, Vec<RPoint>) {
-    let (mut lo, mut hi) = (Vec::new(), Vec::new());
-    for i in 0..poly.len() {
-        let j = (i + 1) % poly.len();
-        let (si, sj) = (&side[i], &side[j]);
-        if *si <= 0 {
-            lo.push(poly[i].clone());
-        }
-        if *si >= 0 {
-            hi.push(poly[i].clone());
-        }
-        if (*si < 0 && *sj > 0) || (*si > 0 && *sj < 0) {
-            let t = si / (si - sj);
-            let x: RPoint = std::array::from_fn(|k| {
-                let dk = &poly[j][k] - &poly[i][k];
-                &poly[i][k] + (&dk * &t)
-            });
-            lo.push(x.clone());
-            hi.push(x);
-        }
-    }
-    (lo, hi)
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
-//! The f64 cut (`split_within_f64` in `hausdorff.rs`): a sub-triangle that no single
-//! triangle covers, but whose part on each side of a plane through the shared edge of two
-//! triangles is within epsilon of the triangle on that side, is proved at once instead of
-//! being subdivided along the edge down to about epsilon.
+//! The f64 cuts (`split_within_f64` and `pieces_within` in `hausdorff.rs`): a sub-triangle
+//! that no single triangle covers, but whose parts on the sides of planes through the
+//! shared edges and corners of triangles are each within epsilon of one triangle, is proved
+//! at once instead of being subdivided along the edges down to about epsilon.
 
 use envelope_mesh::{TriangleSoup, VertexId};
 use envelope_verify::{Verdict, one_sided};
@@ -55,4 +55,132 @@ fn a_folded_quad_against_its_other_split() {
     let s = one_sided(&valley, &ridge, 0.001, 0.001e-6);
     assert_eq!(s.verdict, Verdict::Violated, "{s:?}");
     assert!(s.lower > 0.001, "{s:?}");
+}
+
+/// A shallow cone: `n` triangles around an apex at height `h` over the origin, the rim at
+/// radius 1 in the plane `z = 0`.
+fn cone(n: u32, h: f64) -> TriangleSoup {
+    let mut p = vec![DVec3::new(0.0, 0.0, h)];
+    for k in 0..n {
+        let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
+        p.push(DVec3::new(a.cos(), a.sin(), 0.0));
+    }
+    let faces: Vec<[u32; 3]> = (0..n).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect();
+    soup(p, &faces)
+}
+
+/// One flat triangle over the cone's apex, its corners at radius 0.8 between rim vertices.
+fn over_apex() -> TriangleSoup {
+    let p = (0..3)
+        .map(|k| {
+            let a = std::f64::consts::TAU * (f64::from(k) / 3.0 + 1.0 / 12.0);
+            DVec3::new(0.8 * a.cos(), 0.8 * a.sin(), 0.0)
+        })
+        .collect();
+    soup(p, &[[0, 1, 2]])
+}
+
+#[test]
+fn a_triangle_over_a_vertex_is_proved_in_pieces() {
+    // The triangle's corners are nearest to three faces of the cone that share only the
+    // apex: no single face and no cut through a shared edge covers it, cuts through the apex
+    // do (`pieces_within`). Its farthest point from the cone is near the apex's foot, at
+    // about h (the cone is shallow).
+    let h = 0.01;
+    let (flat, cone) = (over_apex(), cone(6, h));
+    let s = one_sided(&flat, &cone, 1.5 * h, 1e-9);
+    assert_eq!(s.verdict, Verdict::Holds, "{s:?}");
+    // Subdividing alone takes 89 sub-triangles here (measured with the pieces turned off).
+    assert!(s.subdivisions <= 48, "{s:?}");
+    assert!(s.upper <= 1.5 * h, "{s:?}");
+    // The lower bound still sees the far points the cuts went through.
+    assert!(s.lower >= 0.9 * h, "{s:?}");
+    // Below the apex's distance, a violation is found all the same.
+    let s = one_sided(&flat, &cone, 0.9 * h, 1e-9);
+    assert_eq!(s.verdict, Verdict::Violated, "{s:?}");
+    assert!(s.lower > 0.9 * h, "{s:?}");
+}
+
+/// The distance from `p` to the triangle `t` (Ericson's closest point, f64: off by
+/// rounding only).
+fn distance(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return ap.length();
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return bp.length();
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return (p - (a + ab * (d1 / (d1 - d3)))).length();
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return cp.length();
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return (p - (a + ac * (d2 / (d2 - d6)))).length();
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return (p - (b + (c - b) * w)).length();
+    }
+    let denom = 1.0 / (va + vb + vc);
+    (p - (a + ab * (vb * denom) + ac * (vc * denom))).length()
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+    /// Triangles over the apex of cones of random valence, height and tilt, at epsilons
+    /// around their distance: no sampled point farther than what is proved, and none
+    /// farther than epsilon in what holds.
+    #[test]
+    fn cut_pieces_prove_only_what_holds(
+        n in 3u32..10,
+        h in 0.002f64..0.05,
+        turn in 0.0f64..1.0,
+        lift in -0.01f64..0.01,
+        tilt in -0.02f64..0.02,
+        ratio in 0.6f64..1.6,
+    ) {
+        let cone = cone(n, h);
+        let mut flat = over_apex();
+        let (s, c) = (turn * std::f64::consts::TAU).sin_cos();
+        for p in &mut flat.positions {
+            *p = DVec3::new(c * p.x - s * p.y, s * p.x + c * p.y, lift + tilt * p.x);
+        }
+        let tri = [flat.positions[0], flat.positions[1], flat.positions[2]];
+        let faces: Vec<[DVec3; 3]> = cone
+            .faces
+            .iter()
+            .map(|f| f.map(|v| cone.positions[v.index()]))
+            .collect();
+        // The farthest sampled point of the triangle from the cone: a lower estimate of the
+        // true distance, up to rounding.
+        let m = 96;
+        let mut far = 0.0f64;
+        for i in 0..=m {
+            for j in 0..=m - i {
+                let (a, b) = (f64::from(i) / f64::from(m), f64::from(j) / f64::from(m));
+                let p = tri[0] + (tri[1] - tri[0]) * a + (tri[2] - tri[0]) * b;
+                let d = faces.iter().map(|&t| distance(p, t)).fold(f64::INFINITY, f64::min);
+                far = far.max(d);
+            }
+        }
+        let eps = ratio * h;
+        let r = one_sided(&flat, &cone, eps, eps * 1e-6);
+        let rounding = 1e-12;
+        proptest::prop_assert!(r.upper >= far - rounding, "{r:?} far {far}");
+        if far > eps + rounding {
+            proptest::prop_assert!(r.verdict != Verdict::Holds, "{r:?} far {far}");
+        }
+        proptest::prop_assert!(r.lower <= r.upper, "{r:?}");
+    }
 }

@@ -1,0 +1,420 @@
+//! Proofs by cuts: a sub-triangle that no single triangle of the other mesh covers, cut
+//! by planes through the shared edges and corners of the triangles nearest to its corners,
+//! each piece proved against one triangle (the module docs of `hausdorff`, "Cuts").
+
+use envelope_predicates::exact_num::Rational;
+use envelope_predicates::{Orientation, collinear, orient3d};
+use glam::DVec3;
+
+use super::{Estimate, Low, Search, Sub, farther, within};
+use crate::numeric::{
+    RPoint, add_up, approx_sq_dist, barycentric_point, cross, crossing_with_bound, dot,
+    orient3d_with_bound, rpoint, sq_dist_exact, sqrt_up, sub,
+};
+
+/// Rounds of cuts [`Search::pieces_within`] makes at most (up to `2^PIECE_CUTS` pieces).
+pub(super) const PIECE_CUTS: u32 = 3;
+
+impl Search<'_> {
+    /// Like [`Self::split_within_f64`], with cuts in several rounds (at most
+    /// [`PIECE_CUTS`] deep) and also between triangles that share only a corner (a plane
+    /// through it, [`vertex_bisector_points`]): where a sub-triangle lies over a vertex of
+    /// `to` its corners are nearest to triangles of that vertex's fan that share no edge,
+    /// and one cut between two of them does not settle it. Each piece is an f64 polygon
+    /// whose points are taken as they are (its sides by exact signs); the exact piece it
+    /// stands for is within the crossing points' error bounds of it, so that a piece
+    /// proved within `u` of a triangle by its vertices (the proof's convexity) proves the
+    /// exact one within `u` plus those bounds, added up over the rounds, plus `delta`.
+    /// The pieces choose among the candidates that share a corner with a triangle nearest
+    /// to a corner of `s` (the fan around a vertex, the two sides of an edge): a choice
+    /// that only bounds the work. Also returns the pieces' farthest vertex, a lower-bound
+    /// candidate.
+    pub(super) fn pieces_within(&self, s: &Sub, est: &Estimate, delta: f64) -> Option<(f64, Low)> {
+        let nearest: Vec<[DVec3; 3]> = est
+            .nearest()
+            .iter()
+            .map(|&t| self.target.tris[t as usize])
+            .collect();
+        // Cuts are through shared corners and edges only.
+        let shares = |a: &[DVec3; 3], b: &[DVec3; 3]| a.iter().any(|p| b.contains(p));
+        if (0..nearest.len())
+            .any(|i| (i + 1..nearest.len()).any(|j| !shares(&nearest[i], &nearest[j])))
+        {
+            return None;
+        }
+        // Around a corner all of them share, its fan; else whatever touches one of them.
+        let common: Vec<DVec3> = nearest[0]
+            .iter()
+            .copied()
+            .filter(|p| nearest.iter().all(|n| n.contains(p)))
+            .collect();
+        let keep: Vec<usize> = (0..s.cands.len())
+            .filter(|&i| {
+                let t = &self.target.tris[s.cands[i] as usize];
+                if common.is_empty() {
+                    nearest.iter().any(|n| t.iter().any(|p| n.contains(p)))
+                } else {
+                    common.iter().any(|p| t.contains(p))
+                }
+            })
+            .collect();
+        let cands: Vec<u32> = keep.iter().map(|&i| s.cands[i]).collect();
+        let d: Vec<Vec<f64>> =
+            s.d.iter()
+                .map(|v| keep.iter().map(|&i| v[i]).collect())
+                .collect();
+        let poly: Vec<DVec3> = s.c.iter().map(|c| c.p).collect();
+        let (u, far) = self.piece_within(&cands, &poly, &d, delta, PIECE_CUTS)?;
+        (u <= self.tol.eps).then_some((u, far))
+    }
+
+    /// A proved bound of the distance of the polygon `poly` (f64 points, taken exactly,
+    /// convex) to `to`, plus `err`, when at most `eps` (see [`Self::pieces_within`]), and
+    /// the farthest vertex of its pieces (each within its piece's `err` of a point of the
+    /// exact polygon). `d[k][i]`: the estimated squared distance of `poly[k]` to `cands[i]`.
+    fn piece_within(
+        &self,
+        cands: &[u32],
+        poly: &[DVec3],
+        d: &[Vec<f64>],
+        err: f64,
+        cuts: u32,
+    ) -> Option<(f64, Low)> {
+        // Each vertex's nearest candidate, by the estimate; all must be within eps.
+        let mut nearest: Vec<u32> = Vec::with_capacity(poly.len());
+        let mut far: Option<Low> = None;
+        for (k, dk) in d.iter().enumerate() {
+            let (i, &m) = dk.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1))?;
+            if m >= self.tol.e2lo {
+                return None;
+            }
+            if !nearest.contains(&cands[i]) {
+                nearest.push(cands[i]);
+            }
+            farther(&mut far, Some((m, poly[k], err)));
+        }
+        let far = far?;
+        // One triangle for the whole piece, by its vertices: the estimates first, the exact
+        // tests only where they promise a proof.
+        for &t in &nearest {
+            let Some(i) = cands.iter().position(|&c| c == t) else {
+                continue;
+            };
+            // Cut points often lie exactly on a triangle (coplanar faces): a floor of
+            // eps * 2^-10 keeps the filter decisive there.
+            let value = |k: usize| {
+                self.tol
+                    .certification_value(d[k][i])
+                    .max(self.tol.e2lo * 2f64.powi(-20))
+            };
+            let promised = (0..poly.len()).map(value).fold(0.0, f64::max);
+            if promised > self.tol.e2hi || add_up(sqrt_up(promised), err) > self.tol.eps {
+                continue;
+            }
+            let tri = &self.target.tris[t as usize];
+            let bound = (0..poly.len()).try_fold(0.0f64, |u, k| {
+                let c = value(k);
+                within(poly[k], tri, c).then(|| u.max(sqrt_up(c)))
+            });
+            if let Some(u) = bound {
+                let total = add_up(u, err);
+                if total <= self.tol.eps {
+                    return Some((total, far));
+                }
+            }
+        }
+        if cuts == 0 {
+            return None;
+        }
+        // A cut between the first two nearest triangles that have a plane between them.
+        for (i, &t1) in nearest.iter().enumerate() {
+            for &t2 in &nearest[i + 1..] {
+                let (a, b) = (
+                    &self.target.tris[t1 as usize],
+                    &self.target.tris[t2 as usize],
+                );
+                let Some([p, q, r]) =
+                    bisector_points(a, b).or_else(|| vertex_bisector_points(a, b))
+                else {
+                    continue;
+                };
+                let side: Vec<Orientation> = poly.iter().map(|&x| orient3d(p, q, r, x)).collect();
+                if !side.contains(&Orientation::Positive) || !side.contains(&Orientation::Negative)
+                {
+                    continue;
+                }
+                let mut lo: Vec<(DVec3, f64)> = Vec::with_capacity(poly.len() + 1);
+                let mut hi: Vec<(DVec3, f64)> = Vec::with_capacity(poly.len() + 1);
+                for k in 0..poly.len() {
+                    let j = (k + 1) % poly.len();
+                    if side[k] != Orientation::Positive {
+                        lo.push((poly[k], 0.0));
+                    }
+                    if side[k] != Orientation::Negative {
+                        hi.push((poly[k], 0.0));
+                    }
+                    let opposite = matches!(
+                        (side[k], side[j]),
+                        (Orientation::Negative, Orientation::Positive)
+                            | (Orientation::Positive, Orientation::Negative)
+                    );
+                    if opposite {
+                        let x = crossing_with_bound(
+                            poly[k],
+                            poly[j],
+                            orient3d_with_bound(p, q, r, poly[k]),
+                            orient3d_with_bound(p, q, r, poly[j]),
+                        );
+                        lo.push(x);
+                        hi.push(x);
+                    }
+                }
+                let piece = |part: &[(DVec3, f64)]| -> Option<(f64, Low)> {
+                    let points: Vec<DVec3> = part.iter().map(|x| x.0).collect();
+                    let e = part.iter().map(|x| x.1).fold(err, add_up);
+                    // Distances of the old vertices are known; the cut points' are new.
+                    let dist: Vec<Vec<f64>> = points
+                        .iter()
+                        .map(|&x| match poly.iter().position(|&y| y == x) {
+                            Some(k) => d[k].clone(),
+                            None => self.distances(x, cands),
+                        })
+                        .collect();
+                    self.piece_within(cands, &points, &dist, e, cuts - 1)
+                };
+                let (u, mut far) = piece(&lo)?;
+                let (w, other) = piece(&hi)?;
+                if other.0 > far.0 {
+                    far = other;
+                }
+                return Some((u.max(w), far));
+            }
+        }
+        None
+    }
+
+    /// [`Self::split_within_exactly`] in f64 with proved error bounds, for the f64
+    /// sub-triangle `s` (its exact one is within `delta`): for each pair of the corners'
+    /// nearest triangles that share an edge, cut `s` by the plane through that edge (exact
+    /// signs of the corners; crossing points with [`crossing_with_bound`]) and certify
+    /// each piece against the triangle on its side by its vertices, each vertex's bound plus
+    /// its crossing error. Returns the proved upper bound when it is at most `eps`; `None`
+    /// otherwise (ties at exactly `eps` are left to the rational cut).
+    pub(super) fn split_within_f64(&self, s: &Sub, est: &Estimate, delta: f64) -> Option<f64> {
+        let ts = est.nearest();
+        let corners = s.c.map(|c| c.p);
+        for (i, &t1) in ts.iter().enumerate() {
+            for &t2 in &ts[i + 1..] {
+                let (a, b) = (
+                    &self.target.tris[t1 as usize],
+                    &self.target.tris[t2 as usize],
+                );
+                let Some([p, q, r]) = bisector_points(a, b) else {
+                    continue;
+                };
+                let side = corners.map(|x| orient3d(p, q, r, x));
+                let approx = corners.map(|x| orient3d_with_bound(p, q, r, x));
+                // (point, error) of each piece: side <= 0 goes with one triangle, >= 0 with
+                // the other.
+                let mut lo: Vec<(DVec3, f64)> = Vec::with_capacity(4);
+                let mut hi: Vec<(DVec3, f64)> = Vec::with_capacity(4);
+                for k in 0..3 {
+                    let j = (k + 1) % 3;
+                    if side[k] != Orientation::Positive {
+                        lo.push((corners[k], 0.0));
+                    }
+                    if side[k] != Orientation::Negative {
+                        hi.push((corners[k], 0.0));
+                    }
+                    let opposite = matches!(
+                        (side[k], side[j]),
+                        (Orientation::Negative, Orientation::Positive)
+                            | (Orientation::Positive, Orientation::Negative)
+                    );
+                    if opposite {
+                        let x = crossing_with_bound(corners[k], corners[j], approx[k], approx[j]);
+                        lo.push(x);
+                        hi.push(x);
+                    }
+                }
+                let bound = |piece: &[(DVec3, f64)], t: &[DVec3; 3]| -> Option<f64> {
+                    // Crossing points often lie exactly on `t` (coplanar faces): a floor of
+                    // eps * 2^-10 keeps the filter decisive there.
+                    let values: Vec<f64> = piece
+                        .iter()
+                        .map(|&(v, _)| {
+                            self.tol
+                                .certification_value(approx_sq_dist(v, t))
+                                .max(self.tol.e2lo * 2f64.powi(-20))
+                        })
+                        .collect();
+                    // The bound the exact tests would prove, from the estimates: no exact
+                    // test where it already exceeds eps (the same answer, sooner).
+                    let promised = piece
+                        .iter()
+                        .zip(&values)
+                        .map(|(&(_, e), &c)| add_up(sqrt_up(c), e))
+                        .fold(0.0, f64::max);
+                    if add_up(promised, delta) > self.tol.eps {
+                        return None;
+                    }
+                    piece
+                        .iter()
+                        .zip(&values)
+                        .try_fold(0.0f64, |u, (&(v, e), &c)| {
+                            within(v, t, c).then(|| u.max(add_up(sqrt_up(c), e)))
+                        })
+                };
+                for (x, y) in [(a, b), (b, a)] {
+                    if let (Some(u), Some(w)) = (bound(&lo, x), bound(&hi, y)) {
+                        let total = add_up(u.max(w), delta);
+                        if total <= self.tol.eps {
+                            return Some(total);
+                        }
+                    }
+                }
+            }
+        }
+        None
+    }
+
+    /// A sub-triangle that straddles the shared edge of two close triangles `t1`, `t2`
+    /// (a tie along a curve: each point within `eps` of one of them, no single one covering
+    /// all): cut it exactly by a plane through that edge and prove each piece within `eps`
+    /// of the triangle on its side, by its exact vertices (convexity again). The plane holds
+    /// the edge and the sum of the two unit normals, rounded to f64: any plane through the
+    /// edge is sound, this one makes the proof succeed where the nearest-triangle regions
+    /// meet.
+    pub(super) fn split_within_exactly(&self, face: &[DVec3; 3], s: &Sub, close: &[u32]) -> bool {
+        let corners: Vec<RPoint> =
+            s.c.iter()
+                .map(|c| {
+                    if c.delta == 0.0 {
+                        rpoint(c.p)
+                    } else {
+                        barycentric_point(face, c.bary, s.level)
+                    }
+                })
+                .collect();
+        for (i, &t1) in close.iter().enumerate() {
+            for &t2 in &close[i + 1..] {
+                let (a, b) = (
+                    &self.target.tris[t1 as usize],
+                    &self.target.tris[t2 as usize],
+                );
+                let Some(plane) = bisector(a, b) else {
+                    continue;
+                };
+                let side: Vec<Rational> = corners.iter().map(|q| plane.side(q)).collect();
+                let (lo, hi) = clip_by_sign(&corners, &side);
+                let within = |piece: &[RPoint], t: &[DVec3; 3]| {
+                    piece.iter().all(|q| sq_dist_exact(q, t) <= self.tol.e2)
+                };
+                if (within(&lo, a) && within(&hi, b)) || (within(&lo, b) && within(&hi, a)) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+}
+
+/// A plane through three points, exactly: `side(q)` is the sign-carrying determinant.
+struct Plane {
+    origin: RPoint,
+    normal: RPoint,
+}
+
+impl Plane {
+    fn side(&self, q: &RPoint) -> Rational {
+        dot(&sub(q, &self.origin), &self.normal)
+    }
+}
+
+/// Three f64 points spanning the plane through the shared edge of two triangles that also
+/// holds the sum of their unit normals (any rounding is harmless: any plane through the edge
+/// is sound, see `split_within_exactly`); `None` when they share no edge or the plane
+/// degenerates.
+fn bisector_points(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<[DVec3; 3]> {
+    let shared: Vec<DVec3> = a.iter().copied().filter(|p| b.contains(p)).collect();
+    let [p, q] = shared[..] else {
+        return None;
+    };
+    let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+    let (na, nb) = (normal(a), normal(b));
+    // Opposite orientations: the sum is not a bisector, the difference is.
+    let d = if na.dot(nb) >= 0.0 { na + nb } else { na - nb };
+    let r = p + d;
+    if !r.is_finite() || d == DVec3::ZERO || collinear(p, q, r) {
+        return None;
+    }
+    Some([p, q, r])
+}
+
+/// Three f64 points spanning a plane between two triangles that share exactly one corner
+/// `v`: through `v`, holding the sum of their unit normals, and turned so that it separates
+/// the directions from `v` to their centroids (f64; any plane is a sound cut, this one only
+/// makes the pieces likely to be near their triangles). `None` when they share no single
+/// corner or the plane degenerates.
+fn vertex_bisector_points(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<[DVec3; 3]> {
+    let shared: Vec<DVec3> = a.iter().copied().filter(|p| b.contains(p)).collect();
+    let [v] = shared[..] else {
+        return None;
+    };
+    let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+    let (na, nb) = (normal(a), normal(b));
+    let n = if na.dot(nb) >= 0.0 { na + nb } else { na - nb }.normalize_or_zero();
+    let towards = |t: &[DVec3; 3]| ((t[0] + t[1] + t[2]) / 3.0 - v).normalize_or_zero();
+    let m = towards(a) - towards(b);
+    let m = (m - n * m.dot(n)).normalize_or_zero();
+    let scale = (a[0] - a[1])
+        .length()
+        .max((a[1] - a[2]).length())
+        .max((a[2] - a[0]).length());
+    let (q, r) = (v + n * scale, v + n.cross(m) * scale);
+    if n == DVec3::ZERO
+        || m == DVec3::ZERO
+        || !q.is_finite()
+        || !r.is_finite()
+        || collinear(v, q, r)
+    {
+        return None;
+    }
+    Some([v, q, r])
+}
+
+/// The plane through the shared edge of two triangles that also holds the sum of their unit
+/// normals (f64, any rounding is harmless: see `split_within_exactly`); `None` when they
+/// share no edge or the plane degenerates.
+fn bisector(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<Plane> {
+    let [p, q, r] = bisector_points(a, b)?;
+    let (p, q, r) = (rpoint(p), rpoint(q), rpoint(r));
+    let normal = cross(&sub(&q, &p), &sub(&r, &p));
+    Some(Plane { origin: p, normal })
+}
+
+/// Splits a convex polygon by the signs of its vertices: (side <= 0, side >= 0), the
+/// crossing points computed exactly.
+fn clip_by_sign(poly: &[RPoint], side: &[Rational]) -> (Vec<RPoint>, Vec<RPoint>) {
+    let (mut lo, mut hi) = (Vec::new(), Vec::new());
+    for i in 0..poly.len() {
+        let j = (i + 1) % poly.len();
+        let (si, sj) = (&side[i], &side[j]);
+        if *si <= 0 {
+            lo.push(poly[i].clone());
+        }
+        if *si >= 0 {
+            hi.push(poly[i].clone());
+        }
+        if (*si < 0 && *sj > 0) || (*si > 0 && *sj < 0) {
+            let t = si / (si - sj);
+            let x: RPoint = std::array::from_fn(|k| {
+                let dk = &poly[j][k] - &poly[i][k];
+                &poly[i][k] + (&dk * &t)
+            });
+            lo.push(x.clone());
+            hi.push(x);
+        }
+    }
+    (lo, hi)
+}
