@@ -76,8 +76,8 @@ struct Case {
 }
 
 /// Thin shapes at epsilons above half their thickness, with the tolerance phase: a
-/// flattened sphere (an ear), a thin ring and a flattened open cylinder (two border loops,
-/// whose vertices the phase removes too).
+/// flattened sphere (an ear), a thin ring, a flattened open cylinder (two border loops,
+/// whose vertices the phase removes too) and a block with a narrow fin.
 const THIN_PERCENTS: &[f64] = &[2.0, 4.0];
 
 fn thin_cases() -> Vec<Case> {
@@ -93,6 +93,7 @@ fn thin_cases() -> Vec<Case> {
         ("ear (tolerance)", ear),
         ("ring (tolerance)", generate::torus(1.0, 0.02, 96, 8)),
         ("flat open tube (tolerance)", flat_tube),
+        ("block with fin (tolerance)", generate::block_with_fin(0.04)),
     ]
     .into_iter()
     .map(|(n, soup)| Case {

@@ -394,6 +394,26 @@ pub fn plate_with_holes(k: u32) -> TriangleSoup {
     )
 }
 
+/// A block of `8 x 8 x 8` unit cubes with a fin of `7 x 8` cubes one layer high on one
+/// side, squeezed to `thickness` from one cube out of the block on (it tapers over the
+/// first cube): a thin part on a thick body. Closed, genus 0.
+///
+/// ```
+/// let fin = envelope_mesh::generate::block_with_fin(0.04);
+/// let t = envelope_mesh::analyze(&fin);
+/// assert_eq!((t.genus, t.num_border_loops(), t.manifold), (Some(0), 0, true));
+/// ```
+#[must_use]
+pub fn block_with_fin(thickness: f64) -> TriangleSoup {
+    let mut s = voxel_surface(16, 8, 8, |i, _, k| i < 8 || k == 4, DVec3::ONE);
+    for p in &mut s.positions {
+        if p.x > 8.5 {
+            p.z = 4.5 + (p.z - 4.5) * thickness;
+        }
+    }
+    s
+}
+
 /// A `3 x 3 x 3` block of unit cubes with the central column removed: genus 1.
 #[must_use]
 pub fn box_with_tunnel() -> TriangleSoup {

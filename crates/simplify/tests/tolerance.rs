@@ -17,8 +17,8 @@ fn scaled(mut soup: TriangleSoup, by: DVec3) -> TriangleSoup {
 }
 
 /// A flattened sphere (an ear), a thin ring, a spindle (a thin cylinder closed at both
-/// ends) and a flattened open cylinder (two border loops): each far thinner than the
-/// epsilons below.
+/// ends), a block with a narrow fin and a flattened open cylinder (two border loops): each
+/// far thinner (the fin: its fin) than the epsilons below.
 fn thin_shapes() -> Vec<(&'static str, TriangleSoup)> {
     vec![
         (
@@ -33,6 +33,7 @@ fn thin_shapes() -> Vec<(&'static str, TriangleSoup)> {
                 DVec3::new(0.03, 0.03, 1.0),
             ),
         ),
+        ("fin", generate::block_with_fin(0.04)),
         (
             "flat open tube",
             scaled(
