@@ -143,32 +143,7 @@ impl Search<'_> {
                 {
                     continue;
                 }
-                let mut lo: Vec<(DVec3, f64)> = Vec::with_capacity(poly.len() + 1);
-                let mut hi: Vec<(DVec3, f64)> = Vec::with_capacity(poly.len() + 1);
-                for k in 0..poly.len() {
-                    let j = (k + 1) % poly.len();
-                    if side[k] != Orientation::Positive {
-                        lo.push((poly[k], 0.0));
-                    }
-                    if side[k] != Orientation::Negative {
-                        hi.push((poly[k], 0.0));
-                    }
-                    let opposite = matches!(
-                        (side[k], side[j]),
-                        (Orientation::Negative, Orientation::Positive)
-                            | (Orientation::Positive, Orientation::Negative)
-                    );
-                    if opposite {
-                        let x = crossing_with_bound(
-                            poly[k],
-                            poly[j],
-                            orient3d_with_bound(p, q, r, poly[k]),
-                            orient3d_with_bound(p, q, r, poly[j]),
-                        );
-                        lo.push(x);
-                        hi.push(x);
-                    }
-                }
+                let (lo, hi) = clip_f64(poly, &side, [p, q, r]);
                 let piece = |part: &[(DVec3, f64)]| -> Option<(f64, Low)> {
                     let points: Vec<DVec3> = part.iter().map(|x| x.0).collect();
                     let e = part.iter().map(|x| x.1).fold(err, add_up);
@@ -213,30 +188,8 @@ impl Search<'_> {
                     continue;
                 };
                 let side = corners.map(|x| orient3d(p, q, r, x));
-                let approx = corners.map(|x| orient3d_with_bound(p, q, r, x));
-                // (point, error) of each piece: side <= 0 goes with one triangle, >= 0 with
-                // the other.
-                let mut lo: Vec<(DVec3, f64)> = Vec::with_capacity(4);
-                let mut hi: Vec<(DVec3, f64)> = Vec::with_capacity(4);
-                for k in 0..3 {
-                    let j = (k + 1) % 3;
-                    if side[k] != Orientation::Positive {
-                        lo.push((corners[k], 0.0));
-                    }
-                    if side[k] != Orientation::Negative {
-                        hi.push((corners[k], 0.0));
-                    }
-                    let opposite = matches!(
-                        (side[k], side[j]),
-                        (Orientation::Negative, Orientation::Positive)
-                            | (Orientation::Positive, Orientation::Negative)
-                    );
-                    if opposite {
-                        let x = crossing_with_bound(corners[k], corners[j], approx[k], approx[j]);
-                        lo.push(x);
-                        hi.push(x);
-                    }
-                }
+                // Side <= 0 goes with one triangle, >= 0 with the other.
+                let (lo, hi) = clip_f64(&corners, &side, [p, q, r]);
                 let bound = |piece: &[(DVec3, f64)], t: &[DVec3; 3]| -> Option<f64> {
                     // Crossing points often lie exactly on `t` (coplanar faces): a floor of
                     // eps * 2^-10 keeps the filter decisive there.
@@ -317,6 +270,45 @@ impl Search<'_> {
         }
         false
     }
+}
+
+/// A part of a cut polygon: f64 points, each with a proved bound on its distance to the
+/// exact point it stands for.
+type Piece = Vec<(DVec3, f64)>;
+
+/// Cuts the convex polygon `poly` (f64 points, taken exactly) by the plane through
+/// `[p, q, r]`, whose exact sides of `poly`'s points are `side`: the (point, error bound)
+/// lists of its parts on the side `<= 0` and `>= 0`, in order, the crossing points of the
+/// edges whose ends lie strictly apart computed in f64 with proved bounds on their distance
+/// to the exact ones ([`crossing_with_bound`]); the polygon's own points have bound 0.
+fn clip_f64(poly: &[DVec3], side: &[Orientation], [p, q, r]: [DVec3; 3]) -> (Piece, Piece) {
+    let mut lo: Piece = Vec::with_capacity(poly.len() + 1);
+    let mut hi: Piece = Vec::with_capacity(poly.len() + 1);
+    for k in 0..poly.len() {
+        let j = (k + 1) % poly.len();
+        if side[k] != Orientation::Positive {
+            lo.push((poly[k], 0.0));
+        }
+        if side[k] != Orientation::Negative {
+            hi.push((poly[k], 0.0));
+        }
+        let opposite = matches!(
+            (side[k], side[j]),
+            (Orientation::Negative, Orientation::Positive)
+                | (Orientation::Positive, Orientation::Negative)
+        );
+        if opposite {
+            let x = crossing_with_bound(
+                poly[k],
+                poly[j],
+                orient3d_with_bound(p, q, r, poly[k]),
+                orient3d_with_bound(p, q, r, poly[j]),
+            );
+            lo.push(x);
+            hi.push(x);
+        }
+    }
+    (lo, hi)
 }
 
 /// A plane through three points, exactly: `side(q)` is the sign-carrying determinant.
