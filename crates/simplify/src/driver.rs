@@ -645,7 +645,7 @@ pub fn simplify_with(
     let shared = soup
         .indices_in_range()
         .then(|| rayon::join(|| analyze(soup), || face_tree(soup)));
-    let mut capped = shared.as_ref().and_then(|_| tolerance_cap(soup, options));
+    let mut capped = tolerance_cap(soup, options);
     // The input check and the envelopes run side by side (much of the check is sequential);
     // the check's verdict comes first, whatever the envelopes made of a refused input.
     let ((problems, own_topology), (env, env_seconds)) = rayon::join(
@@ -760,9 +760,8 @@ pub const TOLERANCE_ENVELOPE_CAP: f64 = 0.01;
 /// phase would cost time for a few faces.
 pub const TOLERANCE_WHEN_CUT_BELOW: f64 = 0.9;
 
-/// The constant epsilon `options` asks of `soup` (of topology `topology`) when the
-/// tolerance phase is on and it exceeds [`TOLERANCE_ENVELOPE_CAP`] of the diagonal:
-/// `(epsilon, cap)`.
+/// The constant epsilon `options` asks of `soup` when the tolerance phase is on and it
+/// exceeds [`TOLERANCE_ENVELOPE_CAP`] of the diagonal: `(epsilon, cap)`.
 fn tolerance_cap(soup: &TriangleSoup, options: &SimplifyOptions) -> Option<(f64, f64)> {
     let EpsilonField::Constant(e) = options.epsilon else {
         return None;

@@ -395,6 +395,13 @@ impl Tolerance {
             .max(f64::MIN_POSITIVE)
     }
 
+    /// [`Self::certification_value`] for a cut piece's point, not below `eps^2 * 2^-20`:
+    /// crossing points often lie exactly on a triangle (coplanar faces), and the higher
+    /// floor keeps the filtered predicate decisive there.
+    fn piece_value(&self, m: f64) -> f64 {
+        self.certification_value(m).max(self.e2lo * 2f64.powi(-20))
+    }
+
     /// `dist(p, t) > eps`, exactly, for an f64 point.
     fn exceeds(&self, p: DVec3, t: [DVec3; 3]) -> bool {
         if cmp_point_triangle(p, t, self.e2hi) == Sign::Positive {

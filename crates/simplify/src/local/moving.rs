@@ -76,11 +76,16 @@ pub(super) fn moving_phase(
         collapse_tries: if light { 1 } else { COLLAPSE_TRIES },
     };
     let mut boxes = MovingBoxes::default();
-    let (mut attempts, mut removals) = (0usize, 0usize);
+    // The light phase's own counts: `stats` holds the subset run's too.
+    let (attempts_before, removed_before) = (stats.attempts, stats.removed);
     loop {
         if visitor.cancelled() {
             return Err(SimplifyError::Cancelled);
         }
+        let (attempts, removals) = (
+            stats.attempts - attempts_before,
+            stats.removed - removed_before,
+        );
         if light && attempts >= LIGHT_PROBE && removals * LIGHT_GIVE_UP_BELOW < attempts {
             stats.light_gave_up = true;
             return Ok(());
@@ -125,7 +130,6 @@ pub(super) fn moving_phase(
                 return Ok(());
             }
             stats.attempts += 1;
-            attempts += 1;
             visitor.on_attempt(v);
             local.candidate_tests += tests;
             let result = plan.and_then(|(plan, way)| {
@@ -135,7 +139,6 @@ pub(super) fn moving_phase(
             match result {
                 Ok((removal, way, moved)) => {
                     stats.removed += 1;
-                    removals += 1;
                     stats.slid += usize::from(way == Way::Slid);
                     stats.collapsed += usize::from(way == Way::Collapsed);
                     visitor.on_removed(v, &removal.faces);

@@ -100,13 +100,7 @@ impl Search<'_> {
             let Some(i) = cands.iter().position(|&c| c == t) else {
                 continue;
             };
-            // Cut points often lie exactly on a triangle (coplanar faces): a floor of
-            // eps * 2^-10 keeps the filter decisive there.
-            let value = |k: usize| {
-                self.tol
-                    .certification_value(d[k][i])
-                    .max(self.tol.e2lo * 2f64.powi(-20))
-            };
+            let value = |k: usize| self.tol.piece_value(d[k][i]);
             let promised = (0..poly.len()).map(value).fold(0.0, f64::max);
             if promised > self.tol.e2hi || add_up(sqrt_up(promised), err) > self.tol.eps {
                 continue;
@@ -144,7 +138,7 @@ impl Search<'_> {
                     continue;
                 }
                 let (lo, hi) = clip_f64(poly, &side, [p, q, r]);
-                let piece = |part: &[(DVec3, f64)]| -> Option<(f64, Low)> {
+                let piece = |part: &Piece| -> Option<(f64, Low)> {
                     let points: Vec<DVec3> = part.iter().map(|x| x.0).collect();
                     let e = part.iter().map(|x| x.1).fold(err, add_up);
                     // Distances of the old vertices are known; the cut points' are new.
@@ -190,16 +184,10 @@ impl Search<'_> {
                 let side = corners.map(|x| orient3d(p, q, r, x));
                 // Side <= 0 goes with one triangle, >= 0 with the other.
                 let (lo, hi) = clip_f64(&corners, &side, [p, q, r]);
-                let bound = |piece: &[(DVec3, f64)], t: &[DVec3; 3]| -> Option<f64> {
-                    // Crossing points often lie exactly on `t` (coplanar faces): a floor of
-                    // eps * 2^-10 keeps the filter decisive there.
+                let bound = |piece: &Piece, t: &[DVec3; 3]| -> Option<f64> {
                     let values: Vec<f64> = piece
                         .iter()
-                        .map(|&(v, _)| {
-                            self.tol
-                                .certification_value(approx_sq_dist(v, t))
-                                .max(self.tol.e2lo * 2f64.powi(-20))
-                        })
+                        .map(|&(v, _)| self.tol.piece_value(approx_sq_dist(v, t)))
                         .collect();
                     // The bound the exact tests would prove, from the estimates: no exact
                     // test where it already exceeds eps (the same answer, sooner).
