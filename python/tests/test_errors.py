@@ -153,7 +153,7 @@ def test_lod_and_genus_arguments(sphere):
         envelope.lod(*sphere, "1%", rule="x")
     with pytest.raises(envelope.InvalidArgumentError, match="^beta must be strictly between 0 and 180 degrees, got 190"):
         envelope.genus(*sphere, "1%", beta_degrees=190)
-    with pytest.raises(envelope.InvalidArgumentError, match='source must be one of sharp_edges, prism_union; got "x"'):
+    with pytest.raises(envelope.InvalidArgumentError, match='source must be one of sharp_edges, prism_union, closing; got "x"'):
         envelope.genus(*sphere, "1%", source="x")
     with pytest.raises(envelope.InvalidEpsilonError):
         envelope.genus(*sphere, -1.0)

@@ -16,8 +16,10 @@
 //! issue 37's target (at most the closing's genus plus `max(1, genus_in / 10)`).
 //!
 //! `cargo run --release -p envelope-benches --bin genus_table -- [--quick] [--corpus DIR]
-//! [--eps PCT] [--alpha PCT] [--only NAME] [--union] [--closing]`; `--union` runs the genus-reducing
-//! step with the union-of-alpha-prisms rims (`TessellationSource::PrismUnion`); `--quick` runs one small part (`anchor` at
+//! [--eps PCT] [--alpha PCT] [--only NAME] [--union | --fill-closing] [--closing]`; `--union`
+//! runs the genus-reducing step with the union-of-alpha-prisms rims
+//! (`TessellationSource::PrismUnion`), `--fill-closing` with the closing's regions after the
+//! sharp rims (`TessellationSource::Closing`, `envelope genus --closing`); `--quick` runs one small part (`anchor` at
 //! alpha 5 % unless `--alpha` is given, or a generated plate when the corpus is absent) for a
 //! CI smoke run, and exits 1 when a row fails.
 
@@ -198,6 +200,8 @@ fn main() -> ExitCode {
     let only = arg_value(&args, "--only");
     let source = if args.iter().any(|a| a == "--union") {
         TessellationSource::PrismUnion
+    } else if args.iter().any(|a| a == "--fill-closing") {
+        TessellationSource::Closing
     } else {
         TessellationSource::SharpEdges
     };

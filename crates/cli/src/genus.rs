@@ -28,8 +28,13 @@ pub struct Args {
     pub beta: f64,
     /// Also take rims from the union of alpha-prisms (fills narrow tunnels and holes through
     /// smooth, non-sharp surfaces; slower: every face's prism is paired).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "closing")]
     pub union: bool,
+    /// After the sharp-edge rims, fill the regions the L-infinity closing by the cube
+    /// swallows (estimated on voxels, every cap checked exactly): networks of tunnels whose
+    /// junctions are not sharp. Slower (a voxel grid of alpha/8).
+    #[arg(long)]
+    pub closing: bool,
     /// Write the report as JSON here (its directory must exist).
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -40,13 +45,8 @@ pub(crate) fn reduce(
     mesh: &Mesh,
     alpha: f64,
     beta: f64,
-    union: bool,
+    source: TessellationSource,
 ) -> Result<(Mesh, GenusReport), String> {
-    let source = if union {
-        TessellationSource::PrismUnion
-    } else {
-        TessellationSource::SharpEdges
-    };
     Genus::new(Epsilon::absolute(alpha))
         .beta_degrees(beta)
         .source(source)
@@ -65,7 +65,14 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
     let alpha = args
         .alpha
         .resolve("--alpha", &args.input.display().to_string(), mesh.soup())?;
-    let (out, report) = reduce(&mesh, alpha, args.beta, args.union)
+    let source = if args.closing {
+        TessellationSource::Closing
+    } else if args.union {
+        TessellationSource::PrismUnion
+    } else {
+        TessellationSource::SharpEdges
+    };
+    let (out, report) = reduce(&mesh, alpha, args.beta, source)
         .map_err(|e| format!("{}: {e}", args.input.display()))?;
     if !mesh.attributes().is_empty() {
         // The tessellation makes new surface: its corners would need values from nowhere.
@@ -82,6 +89,7 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
         json["alpha"] = serde_json::json!(alpha);
         json["beta_degrees"] = serde_json::json!(args.beta);
         json["union"] = serde_json::json!(args.union);
+        json["closing"] = serde_json::json!(args.closing);
         json["input"] = serde_json::json!(args.input.display().to_string());
         let text = serde_json::to_string_pretty(&json).map_err(|e| e.to_string())?;
         staging.text(path, &(text + "\n"))?;

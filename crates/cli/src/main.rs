@@ -85,7 +85,7 @@ enum Command {
     /// Varshney 1997) and write OUT atomically.
     Genus(genus::Args),
     /// Alternate genus-preserving (eX) and genus-reducing (aX; uX with the union of
-    /// alpha-prisms) steps; writes
+    /// alpha-prisms, cX with the closing's regions) steps; writes
     /// OUTDIR/stage-0.off (the input), stage-1.off, ... and summary.json.
     Pipeline(pipeline::Args),
     /// Simplify every item of a JSON Lines manifest into OUTDIR/<id>/, resumably (a rerun

@@ -1,6 +1,7 @@
 //! `envelope pipeline IN OUTDIR --steps "e0.5%,a2%,e1%,a5%,e2%"`: alternating genus-preserving
 //! (`e`, the local simplifier at that epsilon) and genus-reducing (`a`, `envelope genus` at
-//! that alpha; `u`, the same with the union-of-alpha-prisms rims, `envelope genus --union`)
+//! that alpha; `u`, the same with the union-of-alpha-prisms rims, `envelope genus --union`;
+//! `c`, the same followed by the closing's regions, `envelope genus --closing`)
 //! steps, as in Fig. 11 and Table 1 of El-Sana and Varshney (1997). Percentages
 //! are of the *input's* bounding-box diagonal (the paper's convention). Writes
 //! OUTDIR/stage-0.off (the input), stage-1.off, ... and summary.json, all put in place
@@ -13,7 +14,7 @@ use std::time::Instant;
 
 use envelope::advanced::io::Format;
 use envelope::advanced::mesh::{TriangleSoup, analyze};
-use envelope::{Epsilon, Placement, Simplifier};
+use envelope::{Epsilon, Placement, Simplifier, TessellationSource};
 use serde_json::json;
 
 use crate::genus::reduce;
@@ -29,7 +30,8 @@ pub struct Args {
     /// replaced only when every step has run.
     pub out_dir: PathBuf,
     /// Comma-separated steps: `eX` genus-preserving at epsilon X, `aX` genus-reducing at
-    /// alpha X, `uX` genus-reducing at alpha X with the union-of-prisms rims (`--union`);
+    /// alpha X, `uX` genus-reducing at alpha X with the union-of-prisms rims (`--union`), `cX`
+    /// with the closing's regions (`--closing`);
     /// each X > 0, absolute or a percentage of the input diagonal.
     #[arg(long, default_value = "e0.5%,a2%,e1%,a5%,e2%", value_parser = parse_steps)]
     pub steps: Steps,
@@ -43,8 +45,8 @@ pub struct Args {
 enum Kind {
     /// Genus-preserving simplification (`e`).
     Preserve,
-    /// Genus reduction (`a`), with the union-of-prisms rims (`u`) when true.
-    Reduce(bool),
+    /// Genus reduction from these rims (`a` sharp edges, `u` union of prisms, `c` closing).
+    Reduce(TessellationSource),
 }
 
 /// The parsed `--steps` (their text is kept for the summary).
@@ -61,11 +63,12 @@ fn parse_steps(s: &str) -> Result<Steps, String> {
         let mut chars = t.chars();
         let kind = match chars.next() {
             Some('e') => Kind::Preserve,
-            Some('a') => Kind::Reduce(false),
-            Some('u') => Kind::Reduce(true),
+            Some('a') => Kind::Reduce(TessellationSource::SharpEdges),
+            Some('u') => Kind::Reduce(TessellationSource::PrismUnion),
+            Some('c') => Kind::Reduce(TessellationSource::Closing),
             _ => {
                 return Err(format!(
-                    "step {} {t:?} must start with 'e' (genus-preserving), 'a' or 'u' (genus-reducing)",
+                    "step {} {t:?} must start with 'e' (genus-preserving), 'a', 'u' or 'c' (genus-reducing)",
                     i + 1
                 ));
             }
@@ -133,8 +136,9 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
         let (kind, length) = &args.steps.steps[k];
         let letter = match kind {
             Kind::Preserve => 'e',
-            Kind::Reduce(false) => 'a',
-            Kind::Reduce(true) => 'u',
+            Kind::Reduce(TessellationSource::SharpEdges) => 'a',
+            Kind::Reduce(TessellationSource::PrismUnion) => 'u',
+            Kind::Reduce(TessellationSource::Closing) => 'c',
         };
         format!(
             "{}: --steps step {} {letter}{}: {e}",
@@ -157,9 +161,9 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
                 mesh = done.into_mesh();
                 ("genus-preserving", eps, json!({}))
             }
-            (Kind::Reduce(union), alpha) => {
+            (Kind::Reduce(source), alpha) => {
                 let (out, report) =
-                    reduce(&mesh, alpha, args.beta, union).map_err(|e| fail(k, e))?;
+                    reduce(&mesh, alpha, args.beta, source).map_err(|e| fail(k, e))?;
                 mesh = out;
                 ("genus-reducing", alpha, report.to_json())
             }
@@ -206,14 +210,22 @@ mod tests {
         let s = parse_steps("e1%, a0.5").unwrap();
         assert_eq!(
             resolve_steps(&s, "t", &tri).unwrap(),
-            vec![(Kind::Preserve, 0.1), (Kind::Reduce(false), 0.5)]
+            vec![
+                (Kind::Preserve, 0.1),
+                (Kind::Reduce(TessellationSource::SharpEdges), 0.5)
+            ]
         );
         let s = parse_steps("u2%").unwrap();
         assert_eq!(
             resolve_steps(&s, "t", &tri).unwrap(),
-            vec![(Kind::Reduce(true), 0.2)]
+            vec![(Kind::Reduce(TessellationSource::PrismUnion), 0.2)]
         );
-        for bad in ["u", "x1", "e-1", "a", "", "e1%,"] {
+        let s = parse_steps("c5%").unwrap();
+        assert_eq!(
+            resolve_steps(&s, "t", &tri).unwrap(),
+            vec![(Kind::Reduce(TessellationSource::Closing), 0.5)]
+        );
+        for bad in ["u", "c", "x1", "e-1", "a", "", "e1%,"] {
             assert!(parse_steps(bad).is_err(), "{bad}");
         }
     }

@@ -193,3 +193,44 @@ fn genus_union_fills_the_smooth_torus_hole() {
     assert_eq!(stages[1]["genus"], 1);
     assert_eq!(stages[2]["genus"], 0);
 }
+
+#[test]
+fn genus_closing_fills_a_smooth_torus_and_pipeline_takes_c_steps() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("torus.off");
+    // Central hole of radius 0.6, no sharp edge: only the closing's regions fill it.
+    write_path(&input, &generate::torus(1.0, 0.4, 48, 24), Format::Off).unwrap();
+    let output = dir.path().join("out.off");
+    let report = dir.path().join("r.json");
+    let run = |extra: &[&str]| {
+        let out = envelope()
+            .args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
+            .args(["--alpha", "0.75", "--report", report.to_str().unwrap()])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert_ok(&out);
+        read_json(&report)
+    };
+    let sharp = run(&[]);
+    assert_eq!(
+        (&sharp["genus_out"], &sharp["closing"]),
+        (&1.into(), &false.into())
+    );
+    let closing = run(&["--closing"]);
+    assert_eq!(
+        (&closing["genus_out"], &closing["closing"]),
+        (&0.into(), &true.into())
+    );
+    assert_eq!(analyze(&read_path(&output).unwrap().0).genus, Some(0));
+    // --union and --closing are two answers to one question.
+    let both = envelope()
+        .args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
+        .args(["--alpha", "0.75", "--union", "--closing"])
+        .output()
+        .unwrap();
+    assert_eq!(both.status.code(), Some(2));
+
+    let stages = pipeline(&input, &dir.path().join("p"), "c0.75");
+    assert_eq!(stages.last().unwrap()["genus"], 0);
+}

@@ -39,6 +39,27 @@ pub(crate) fn farther(c: DVec3, n: DVec3, r: DVec3) -> bool {
     Filtered::dot(c, n, n, r) == Sign::Positive
 }
 
+/// Unit roundoff of f64.
+const U: f64 = f64::EPSILON / 2.0;
+
+/// `|p - q|_inf <= r` decided in f64 where the rounding cannot change the answer, `None`
+/// where it could. A computed difference is the true one times `(1 + d)`, `|d| <= U`, so a
+/// margin of `4 U` relative to `r` on either side leaves the comparison certain (an
+/// overflowing difference is infinite, correctly beyond any finite `r`).
+fn linf_within_filter(p: DVec3, q: DVec3, r: f64) -> Option<bool> {
+    if !r.is_finite() {
+        return None;
+    }
+    let d = (p - q).abs().max_element();
+    if d <= r * (1.0 - 4.0 * U) {
+        Some(true)
+    } else if d >= r * (1.0 + 4.0 * U) {
+        Some(false)
+    } else {
+        None
+    }
+}
+
 /// Whether `|p - q|_inf <= 2 alpha`, exactly: a cube of side `2 alpha` can hold both points
 /// (the paper's diagonal-edge rule of section 3.4).
 ///
@@ -50,6 +71,9 @@ pub(crate) fn farther(c: DVec3, n: DVec3, r: DVec3) -> bool {
 /// ```
 #[must_use]
 pub fn linf_close(p: DVec3, q: DVec3, alpha: f64) -> bool {
+    if let Some(known) = linf_within_filter(p, q, 2.0 * alpha) {
+        return known;
+    }
     let two_alpha = rational(alpha) * 2u32;
     (0..3).all(|a| {
         let d = (rational(p[a]) - rational(q[a])).abs();
@@ -77,6 +101,30 @@ pub fn covered_by_corner_cubes(t: [DVec3; 3], alpha: f64) -> bool {
     if collinear(t[0], t[1], t[2]) || !(alpha.is_finite() && alpha > 0.0) {
         return false;
     }
+    // Filters with certain answers. Corners pairwise within alpha: every point of the
+    // triangle, a convex combination, is within alpha of each corner.
+    let pairwise = [(0, 1), (1, 2), (2, 0)].map(|(i, j)| linf_within_filter(t[i], t[j], alpha));
+    if pairwise.iter().all(|&k| k == Some(true)) {
+        return true;
+    }
+    // The centroid beyond every corner's cube by more than its rounding (a generous bound
+    // on the error of the f64 centroid and differences): not covered.
+    let scale = t
+        .iter()
+        .map(|p| p.abs().max_element())
+        .fold(alpha, f64::max);
+    let centroid = (t[0] + t[1] + t[2]) / 3.0;
+    let beyond = alpha + 16.0 * U * scale;
+    if t.iter()
+        .all(|&p| (centroid - p).abs().max_element() > beyond)
+    {
+        return false;
+    }
+    covered_exactly(t, alpha)
+}
+
+/// [`covered_by_corner_cubes`] without its filters: the triangle cut on rationals.
+fn covered_exactly(t: [DVec3; 3], alpha: f64) -> bool {
     let al = rational(alpha);
     let corners: Vec<[Rational; 3]> = t
         .iter()
@@ -160,4 +208,43 @@ fn split(
         }
     }
     (below, above)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// [`linf_close`] on rationals only.
+    fn close_exactly(p: DVec3, q: DVec3, alpha: f64) -> bool {
+        let two_alpha = rational(alpha) * 2u32;
+        (0..3).all(|a| (rational(p[a]) - rational(q[a])).abs() <= two_alpha)
+    }
+
+    proptest! {
+        /// The f64 filters give the rational answer, also where alpha is exactly a
+        /// coordinate difference (the boundary) or a rounding away from it.
+        #[test]
+        fn filters_agree_with_the_exact_tests(
+            c in prop::array::uniform9(-4.0f64..4.0),
+            scale in prop::sample::select(vec![1e-3, 1.0, 1e5]),
+            pick in 0usize..9,
+            nudge in -2i32..3,
+        ) {
+            let t = [0, 3, 6].map(|i| DVec3::new(c[i], c[i + 1], c[i + 2]) * scale);
+            // alpha on a coordinate difference, possibly moved by a few ulps.
+            let (i, a) = (pick / 3, pick % 3);
+            let mut alpha = (t[i][a] - t[(i + 1) % 3][a]).abs().max(1e-300);
+            for _ in 0..nudge.unsigned_abs() {
+                alpha = if nudge > 0 { alpha.next_up() } else { alpha.next_down() };
+            }
+            for half in [alpha, alpha / 2.0] {
+                prop_assert_eq!(
+                    covered_by_corner_cubes(t, half),
+                    !collinear(t[0], t[1], t[2]) && covered_exactly(t, half)
+                );
+                prop_assert_eq!(linf_close(t[0], t[1], half), close_exactly(t[0], t[1], half));
+            }
+        }
+    }
 }

@@ -14,6 +14,10 @@
 //!   option "from the full union of alpha-prisms"): also the rims of the regions swallowed
 //!   by the union of prisms (faces whose prism meets the prism of a face facing them across
 //!   empty space and far away on the surface; see [`union`]), so smooth narrow tunnels fill.
+//! * [`reduce_genus_with`] with [`TessellationSource::Closing`] (issue 37): after the sharp
+//!   rims, the regions the L-infinity closing by the cube swallows (estimated on voxels,
+//!   `closing`) replaced by caps over their loops, peeled back where a loop cannot be capped
+//!   (`fill`); every cap through the same exact test and validation.
 //!
 //! Where the paper is open or garbled, the module docs say which reading we chose
 //! ([`prism`] for the hull, `tessellation` and `reduce` for regions and acceptance; the
@@ -28,7 +32,9 @@
 //! ```
 #![forbid(unsafe_code)]
 
+mod closing;
 mod exact;
+mod fill;
 mod neighbourhood;
 pub mod prism;
 mod reduce;

@@ -40,8 +40,9 @@ use crate::exact::{covered_by_corner_cubes, linf_close};
 use crate::tessellation::{
     EdgeMap, Patches, face_normals, link_chains, normal_variation, patches, tessellation_edges,
 };
-use crate::triangulate::triangulate_loop;
+use crate::triangulate::{constrained_triangulation, triangulate_loop};
 use crate::union::{TessellationSource, union_rims};
+use glam::DVec3;
 
 /// Options of [`reduce_genus`].
 #[derive(Clone, Debug, PartialEq)]
@@ -152,13 +153,13 @@ impl GenusReport {
 
 /// A candidate rim and its cap.
 #[derive(Clone, Debug)]
-struct Candidate {
+pub(crate) struct Candidate {
     /// Loop vertices, run as the kept patch runs them.
-    vertices: Vec<VertexId>,
+    pub(crate) vertices: Vec<VertexId>,
     /// The kept patch's face on each loop edge.
-    keep: Vec<FaceId>,
+    pub(crate) keep: Vec<FaceId>,
     /// Key of the undirected edge cycle (for the two-sided ambiguity).
-    key: Vec<(VertexId, VertexId)>,
+    pub(crate) key: Vec<(VertexId, VertexId)>,
     /// Normal variation of the kept patch.
     variation: f64,
     /// A plug: another candidate run the other way (its cap reversed), never preferred, so
@@ -166,7 +167,29 @@ struct Candidate {
     /// cell whose own side has no candidate on these edges (see [`select`]).
     plug: bool,
     /// The cap.
-    cap: Vec<[VertexId; 3]>,
+    pub(crate) cap: Vec<[VertexId; 3]>,
+}
+
+impl Candidate {
+    /// A rim that is not a plug, with its key and no cap yet.
+    pub(crate) fn rim(vertices: Vec<VertexId>, keep: Vec<FaceId>) -> Self {
+        let n = vertices.len();
+        let mut key: Vec<Edge> = (0..n)
+            .map(|i| {
+                let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+                (a.min(b), a.max(b))
+            })
+            .collect();
+        key.sort_unstable();
+        Candidate {
+            vertices,
+            keep,
+            key,
+            variation: 0.0,
+            plug: false,
+            cap: Vec::new(),
+        }
+    }
 }
 
 /// Classes of the input that the paper cannot handle (section 6) and we refuse.
@@ -325,31 +348,17 @@ pub fn reduce_genus_with(
     }
     let num_candidates = candidates.len();
     // Caps accepted by the alpha test.
-    candidates.retain_mut(|c| {
-        let distinct: BTreeSet<VertexId> = c.vertices.iter().copied().collect();
-        if distinct.len() != c.vertices.len() {
-            refused_shape += 1;
-            return false;
+    candidates.retain_mut(|c| match cap_of(soup, c, alpha) {
+        Ok(cap) => {
+            c.cap = cap;
+            true
         }
-        let Some(cap) = triangulate_loop(soup, &c.vertices) else {
-            refused_shape += 1;
-            return false;
-        };
-        let loop_edges: HashSet<(VertexId, VertexId)> = c.key.iter().copied().collect();
-        let ok = cap.iter().all(|t| {
-            (0..3).all(|k| {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                loop_edges.contains(&(a.min(b), a.max(b)))
-                    || linf_close(soup.position(a), soup.position(b), alpha)
-            }) && covered_by_corner_cubes(t.map(|v| soup.position(v)), alpha)
-        });
-        if folds_onto_kept(soup, c, &cap) {
-            refused_shape += 1;
-            return false;
+        Err((cap, shape)) => {
+            c.cap = cap;
+            refused_shape += usize::from(shape);
+            refused_wide += usize::from(!shape);
+            false
         }
-        c.cap = cap;
-        refused_wide += usize::from(!ok);
-        ok
     });
     // Plugs: each edge cycle with a cap from one side only also runs the other way.
     let mut plugs: Vec<Candidate> = Vec::new();
@@ -391,7 +400,7 @@ pub fn reduce_genus_with(
     let mut refused: HashSet<usize> = HashSet::new();
     let mut refused_validation: HashSet<usize> = HashSet::new();
     let mut baseline: Option<HashMap<DegeneracyClass, usize>> = None;
-    let (out, added, removed, active, filled) = loop {
+    let (out, added, _, active, filled) = loop {
         let (active, filled) = select(&edges, &candidates, &cells, &refused);
         let (out, added, removed, cap_of_face) = assemble(soup, &candidates, &active);
         if cap_of_face.is_empty() {
@@ -441,6 +450,25 @@ pub fn reduce_genus_with(
     } else {
         crate::alpha_close_pairs(soup, alpha, Some(&rim_faces))?.len()
     };
+    let (mut out, mut added, mut holes_filled) = (out, added, active.len());
+    if source == TessellationSource::Closing {
+        let base = baseline.get_or_insert_with(|| class_counts(soup));
+        let mut is_cap = vec![false; out.num_faces()];
+        for &f in &added {
+            is_cap[f] = true;
+        }
+        let filled = crate::fill::fill_closing(&out, &is_cap, alpha, base);
+        out = filled.soup;
+        added = filled.added;
+        holes_filled += filled.caps;
+        swallowed_faces = filled.swallowed;
+        union_candidates = filled.loops_tried;
+        refused_shape += filled.refused_shape;
+        refused_wide += filled.refused_wide;
+        refused_by_validation += filled.refused_validation;
+    }
+    // Input faces gone: the faces of the output that are not caps are input faces.
+    let removed = soup.num_faces() - (out.num_faces() - added.len());
     let (out, added_faces) = compact(&out, added);
     let topo_out = analyze(&out);
     let report = GenusReport {
@@ -461,7 +489,7 @@ pub fn reduce_genus_with(
         refused_enclosure,
         refused_validation: refused_by_validation,
         internal_rims,
-        holes_filled: active.len(),
+        holes_filled,
         triangles_added: added_faces.len(),
         triangles_removed: removed,
         alpha_close_pairs: alpha_close,
@@ -471,12 +499,75 @@ pub fn reduce_genus_with(
     Ok((out, report))
 }
 
+/// A cap, or what was built and whether it was refused for its shape (see [`cap_of`]).
+pub(crate) type Capped = Result<Vec<[VertexId; 3]>, (Vec<[VertexId; 3]>, bool)>;
+
+/// The cap of `c` if the alpha test accepts it (see the module docs); otherwise what was
+/// built and whether it was refused for its shape (repeated vertex, no triangulation, folding
+/// back over its kept face) rather than as wider than the cube.
+pub(crate) fn cap_of(soup: &TriangleSoup, c: &Candidate, alpha: f64) -> Capped {
+    let distinct: BTreeSet<VertexId> = c.vertices.iter().copied().collect();
+    if distinct.len() != c.vertices.len() {
+        return Err((Vec::new(), true));
+    }
+    let loop_edges: HashSet<(VertexId, VertexId)> = c.key.iter().copied().collect();
+    let accepted = |cap: &[[VertexId; 3]]| {
+        cap.iter().all(|t| {
+            (0..3).all(|k| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                loop_edges.contains(&(a.min(b), a.max(b)))
+                    || linf_close(soup.position(a), soup.position(b), alpha)
+            }) && covered_by_corner_cubes(t.map(|v| soup.position(v)), alpha)
+        })
+    };
+    let first = match triangulate_loop(soup, &c.vertices) {
+        Some(cap) if folds_onto_kept(soup, c, &cap) => Err((cap, true)),
+        Some(cap) if accepted(&cap) => return Ok(cap),
+        Some(cap) => Err((cap, false)),
+        None => Err((Vec::new(), true)),
+    };
+    // The least-area cap among those the alpha test accepts triangle by triangle (the
+    // Delaunay or shortest-diagonal cap may have failed where another succeeds).
+    let n = c.vertices.len();
+    let pts: Vec<DVec3> = c.vertices.iter().map(|&v| soup.position(v)).collect();
+    let rim_edge = |i: usize, j: usize| j == i + 1 || (i == 0 && j == n - 1);
+    let cap = constrained_triangulation(
+        &pts,
+        &c.vertices,
+        |i, j| linf_close(pts[i], pts[j], alpha),
+        |i, k, j| {
+            // A triangle on a rim edge must not fold over that edge's kept face.
+            let folds = [(i, k, j), (k, j, i), (i, j, k)].iter().any(|&(p, q, x)| {
+                let (lo, hi) = (p.min(q), p.max(q));
+                if !rim_edge(lo, hi) {
+                    return false;
+                }
+                // The loop runs lo -> hi, except its closing edge, which runs n-1 -> 0.
+                let (a, b) = if lo == 0 && hi == n - 1 {
+                    (n - 1, 0)
+                } else {
+                    (lo, hi)
+                };
+                folds_over(soup, c.vertices[a], c.vertices[b], c.vertices[x], c.keep[a])
+            });
+            !folds && covered_by_corner_cubes([pts[i], pts[k], pts[j]], alpha)
+        },
+    );
+    match cap {
+        Some(cap) if accepted(&cap) && !folds_onto_kept(soup, c, &cap) => Ok(cap),
+        _ => first,
+    }
+}
+
 /// An undirected edge `(min, max)`.
 type Edge = (VertexId, VertexId);
 
 /// Splits a closed loop through a vertex more than once into simple loops (each keeps its
 /// edges' faces); pieces with fewer than three vertices (slits run both ways) are dropped.
-fn split_simple(vertices: &[VertexId], faces: &[FaceId]) -> Vec<(Vec<VertexId>, Vec<FaceId>)> {
+pub(crate) fn split_simple(
+    vertices: &[VertexId],
+    faces: &[FaceId],
+) -> Vec<(Vec<VertexId>, Vec<FaceId>)> {
     let mut out = Vec::new();
     let mut path: Vec<(VertexId, FaceId)> = Vec::new();
     let mut pos: HashMap<VertexId, usize> = HashMap::new();
@@ -516,24 +607,27 @@ fn folds_onto_kept(soup: &TriangleSoup, c: &Candidate, cap: &[[VertexId; 3]]) ->
     }
     (0..n).any(|i| {
         let (a, b) = (c.vertices[i], c.vertices[(i + 1) % n]);
-        let Some(&x) = third.get(&(a.min(b), a.max(b))) else {
-            return false;
-        };
-        let Some(&d) = soup.faces[c.keep[i].index()]
-            .iter()
-            .find(|&&v| v != a && v != b)
-        else {
-            return false;
-        };
-        let [pa, pb, px, pd] = [a, b, x, d].map(|v| soup.position(v));
-        if !orient3d(pa, pb, pd, px).is_degenerate() {
-            return false;
-        }
-        let proj = crate::exact::dominant_projection((pb - pa).cross(pd - pa));
-        let (sa, sb) = (proj(pa), proj(pb));
-        let (ox, od) = (orient2d(sa, sb, proj(px)), orient2d(sa, sb, proj(pd)));
-        !ox.is_degenerate() && ox == od
+        third
+            .get(&(a.min(b), a.max(b)))
+            .is_some_and(|&x| folds_over(soup, a, b, x, c.keep[i]))
     })
+}
+
+/// Whether the cap triangle `(b, a, x)` on the rim edge `a -> b` lies in the plane of the
+/// kept face `keep` on that edge and on the same side of the edge (exact; see
+/// [`folds_onto_kept`]).
+fn folds_over(soup: &TriangleSoup, a: VertexId, b: VertexId, x: VertexId, keep: FaceId) -> bool {
+    let Some(&d) = soup.faces[keep.index()].iter().find(|&&v| v != a && v != b) else {
+        return false;
+    };
+    let [pa, pb, px, pd] = [a, b, x, d].map(|v| soup.position(v));
+    if !orient3d(pa, pb, pd, px).is_degenerate() {
+        return false;
+    }
+    let proj = crate::exact::dominant_projection((pb - pa).cross(pd - pa));
+    let (sa, sb) = (proj(pa), proj(pb));
+    let (ox, od) = (orient2d(sa, sb, proj(px)), orient2d(sa, sb, proj(pd)));
+    !ox.is_degenerate() && ox == od
 }
 
 /// Six times the signed volume (f64 heuristic): negative when the faces are oriented inward.
@@ -898,7 +992,7 @@ fn assemble(
 }
 
 /// Classes the output must not have more of than the input.
-const VALIDATED: [DegeneracyClass; 7] = [
+pub(crate) const VALIDATED: [DegeneracyClass; 7] = [
     DegeneracyClass::CoincidentTriangles,
     DegeneracyClass::DuplicateTriangles,
     DegeneracyClass::IntersectingTriangles,
@@ -923,7 +1017,7 @@ fn class_counts(soup: &TriangleSoup) -> HashMap<DegeneracyClass, usize> {
 }
 
 /// `None` when the output is clean; otherwise the candidates implicated (possibly none).
-fn validate(
+pub(crate) fn validate(
     out: &TriangleSoup,
     cap_of_face: &HashMap<usize, usize>,
     baseline: &HashMap<DegeneracyClass, usize>,

@@ -182,3 +182,165 @@ fn ear_clip(pts: &[DVec3], loop_: &[VertexId]) -> Option<Vec<[VertexId; 3]>> {
     out.push([loop_[c], loop_[b], loop_[a]]);
     Some(out)
 }
+
+/// Longest loop [`constrained_triangulation`] takes (its tables are quadratic in the loop's
+/// length).
+pub(crate) const MAX_CONSTRAINED_LOOP: usize = 400;
+
+/// Most triangles [`constrained_triangulation`] asks `allowed` about (exact tests cost), per
+/// loop; past it the loop gets no triangulation.
+pub(crate) const MAX_TRIANGLE_TESTS: usize = 4000;
+
+/// The least-area triangulation of the closed loop `loop_` (no new vertex) among the
+/// triangulations whose diagonals `diagonal(i, j)` accepts and whose triangles `allowed(i, k,
+/// j)` accepts (`i < k < j`, loop positions), by dynamic programming over the loop's
+/// sub-chains; `None` when there is none or the loop is longer than
+/// [`MAX_CONSTRAINED_LOOP`] or needs more than [`MAX_TRIANGLE_TESTS`] tests. Triangles are
+/// oriented against the loop. Areas are f64 and only
+/// rank the choices; acceptance is the callers' (exact) `diagonal` and `allowed`, and each
+/// sub-chain tries its splits cheapest first, so `allowed` is asked as little as possible.
+pub(crate) fn constrained_triangulation(
+    pts: &[DVec3],
+    loop_: &[VertexId],
+    diagonal: impl Fn(usize, usize) -> bool,
+    mut allowed: impl FnMut(usize, usize, usize) -> bool,
+) -> Option<Vec<[VertexId; 3]>> {
+    let n = pts.len();
+    if !(3..=MAX_CONSTRAINED_LOOP).contains(&n) || loop_.len() != n {
+        return None;
+    }
+    let at = |i: usize, j: usize| i * n + j;
+    let mut edge = vec![false; n * n];
+    for i in 0..n {
+        for j in i + 1..n {
+            edge[at(i, j)] = j == i + 1 || (i == 0 && j == n - 1) || diagonal(i, j);
+        }
+    }
+    let mut cost = vec![f64::INFINITY; n * n];
+    let mut split = vec![usize::MAX; n * n];
+    for i in 0..n - 1 {
+        cost[at(i, i + 1)] = 0.0;
+    }
+    let area = |i: usize, k: usize, j: usize| (pts[k] - pts[i]).cross(pts[j] - pts[i]).length();
+    let mut options: Vec<(f64, usize)> = Vec::new();
+    let mut tests = 0;
+    for d in 2..n {
+        for i in 0..n - d {
+            let j = i + d;
+            if !edge[at(i, j)] {
+                continue;
+            }
+            options.clear();
+            for k in i + 1..j {
+                if edge[at(i, k)] && edge[at(k, j)] {
+                    let c = cost[at(i, k)] + cost[at(k, j)];
+                    if c.is_finite() {
+                        options.push((c + area(i, k, j), k));
+                    }
+                }
+            }
+            options.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let mut found = None;
+            for &(c, k) in &options {
+                tests += 1;
+                if tests > MAX_TRIANGLE_TESTS {
+                    return None;
+                }
+                if allowed(i, k, j) {
+                    found = Some((c, k));
+                    break;
+                }
+            }
+            if let Some((c, k)) = found {
+                cost[at(i, j)] = c;
+                split[at(i, j)] = k;
+            }
+        }
+    }
+    if !cost[at(0, n - 1)].is_finite() {
+        return None;
+    }
+    let mut out = Vec::with_capacity(n - 2);
+    let mut stack = vec![(0, n - 1)];
+    while let Some((i, j)) = stack.pop() {
+        if j <= i + 1 {
+            continue;
+        }
+        let k = split[at(i, j)];
+        out.push([loop_[j], loop_[k], loop_[i]]);
+        stack.push((i, k));
+        stack.push((k, j));
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashMap;
+
+    /// Every loop edge once, run against the loop; every diagonal twice, once each way.
+    fn assert_closes_the_loop(loop_: &[VertexId], cap: &[[VertexId; 3]]) {
+        let n = loop_.len();
+        assert_eq!(cap.len(), n - 2);
+        let mut runs: HashMap<(VertexId, VertexId), i32> = HashMap::new();
+        for t in cap {
+            for k in 0..3 {
+                *runs.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+            }
+        }
+        for i in 0..n {
+            let (a, b) = (loop_[i], loop_[(i + 1) % n]);
+            assert_eq!(runs.get(&(b, a)), Some(&1), "loop edge {a:?}-{b:?}");
+            assert_eq!(
+                runs.get(&(a, b)),
+                None,
+                "loop edge {a:?}-{b:?} run the loop's way"
+            );
+        }
+        for (&(a, b), &k) in &runs {
+            assert_eq!(k, 1);
+            let on_loop = (0..n).any(|i| (loop_[(i + 1) % n], loop_[i]) == (a, b));
+            assert!(
+                on_loop || runs.get(&(b, a)) == Some(&1),
+                "diagonal {a:?}-{b:?} once"
+            );
+        }
+    }
+
+    #[test]
+    fn least_area_among_the_allowed_triangles() {
+        // A bent strip: two rows of 6 points, the second row lifted out of the plane.
+        let pts: Vec<DVec3> = (0..6)
+            .map(|i| DVec3::new(f64::from(i), 0.0, 0.0))
+            .chain(
+                (0..6)
+                    .rev()
+                    .map(|i| DVec3::new(f64::from(i), 1.0, 0.3 * f64::from(i))),
+            )
+            .collect();
+        let ids: Vec<VertexId> = (0..12).map(VertexId).collect();
+        let cap = constrained_triangulation(&pts, &ids, |_, _| true, |_, _, _| true).unwrap();
+        assert_closes_the_loop(&ids, &cap);
+        // Only "rungs" between the rows within one step in x: the strip triangulation.
+        let near = |i: usize, j: usize| (pts[i].x - pts[j].x).abs() <= 1.0;
+        let strip = constrained_triangulation(&pts, &ids, near, |_, _, _| true).unwrap();
+        assert_closes_the_loop(&ids, &strip);
+        let area = |c: &[[VertexId; 3]]| -> f64 {
+            c.iter()
+                .map(|t| {
+                    let [a, b, d] = t.map(|v| pts[v.index()]);
+                    (b - a).cross(d - a).length()
+                })
+                .sum()
+        };
+        assert!(area(&cap) <= area(&strip) + 1e-12);
+        // No triangle allowed: no triangulation; and a loop too long is refused.
+        assert!(constrained_triangulation(&pts, &ids, near, |_, _, _| false).is_none());
+        let many: Vec<DVec3> = (0..=MAX_CONSTRAINED_LOOP)
+            .map(|i| DVec3::new((i as f64).cos(), (i as f64).sin(), 0.0))
+            .collect();
+        let many_ids: Vec<VertexId> = (0..many.len() as u32).map(VertexId).collect();
+        assert!(constrained_triangulation(&many, &many_ids, |_, _| true, |_, _, _| true).is_none());
+    }
+}

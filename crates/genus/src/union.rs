@@ -50,7 +50,7 @@ use envelope_predicates::{Orientation, orient3d};
 use rayon::prelude::*;
 
 use crate::neighbourhood::alpha_close_pairs_where;
-use crate::tessellation::{EdgeMap, face_normals, patches};
+use crate::tessellation::{EdgeMap, Patches, face_normals, patches};
 use crate::{AlphaPrism, GenusError};
 
 /// Where the tessellation rims come from.
@@ -62,6 +62,10 @@ pub enum TessellationSource {
     /// Sharp and border edges, plus the rims of the regions swallowed by the union of
     /// alpha-prisms (see the [`crate::union`] module docs).
     PrismUnion,
+    /// The sharp-edge step, then the regions the L-infinity closing by the cube of side
+    /// `2 alpha` swallows (estimated on voxels) replaced by caps over their loops, with
+    /// peeling where a loop cannot be capped (see the crate README, issue 37).
+    Closing,
 }
 
 /// Two facing faces are on opposite sides of a passage when the cosine of the angle between
@@ -158,14 +162,14 @@ pub(crate) fn union_rims(
         if !swallowed.iter().any(|&s| s) {
             break;
         }
-        fill_islands(soup, edges, &mut swallowed);
+        fill_islands(soup, edges, &mut swallowed, false);
         out.rims.extend(region_rims(soup, edges, &swallowed));
     }
     Ok(out)
 }
 
 /// The edges between swallowed and other faces.
-fn cut_edges(edges: &EdgeMap, swallowed: &[bool]) -> HashSet<(VertexId, VertexId)> {
+pub(crate) fn cut_edges(edges: &EdgeMap, swallowed: &[bool]) -> HashSet<(VertexId, VertexId)> {
     edges
         .faces
         .iter()
@@ -174,42 +178,63 @@ fn cut_edges(edges: &EdgeMap, swallowed: &[bool]) -> HashSet<(VertexId, VertexId
         .collect()
 }
 
-/// Swallows single-loop unswallowed patches that are smaller than the swallowed patch
-/// around them (islands).
-fn fill_islands(soup: &TriangleSoup, edges: &EdgeMap, swallowed: &mut [bool]) {
+/// Swallows unswallowed patches bounded only by swallowed faces and smaller than the largest
+/// swallowed patch around them (islands): with one loop only, or with any number of loops
+/// when `any_loops` (a kept piece of wall inside a closed-off pocket, whose outer loop could
+/// only be capped over the piece itself).
+pub(crate) fn fill_islands(
+    soup: &TriangleSoup,
+    edges: &EdgeMap,
+    swallowed: &mut [bool],
+    any_loops: bool,
+) {
     let cut = cut_edges(edges, swallowed);
     let pat = patches(soup, edges, &cut);
     let mut size = vec![0usize; pat.count];
-    for &p in &pat.of_face {
+    let mut first_face = vec![usize::MAX; pat.count];
+    for (f, &p) in pat.of_face.iter().enumerate() {
         if p != usize::MAX {
             size[p] += 1;
+            if first_face[p] == usize::MAX {
+                first_face[p] = f;
+            }
         }
     }
+    // With any number of loops, the largest kept patch (the part's outside) is never an island.
+    let main = (0..pat.count)
+        .filter(|&p| first_face[p] != usize::MAX && !swallowed[first_face[p]])
+        .max_by_key(|&p| size[p]);
     let mut island = vec![false; pat.count];
     for (p, loops) in pat.loops.iter().enumerate() {
-        let Some(first) = pat.of_face.iter().position(|&x| x == p) else {
-            continue;
-        };
-        if swallowed[first] || loops.len() != 1 {
+        if any_loops && Some(p) == main {
             continue;
         }
-        let lp = &loops[0];
-        let n = lp.vertices.len();
-        let around: HashSet<usize> = (0..n)
-            .filter_map(|i| {
-                edges
-                    .across(lp.faces[i], lp.vertices[i], lp.vertices[(i + 1) % n])
-                    .map(|g| pat.of_face[g.index()])
+        let first = first_face[p];
+        if first == usize::MAX || swallowed[first] || loops.is_empty() {
+            continue;
+        }
+        if loops.len() != 1 && !any_loops {
+            continue;
+        }
+        let mut around: HashSet<usize> = HashSet::new();
+        let enclosed = loops.iter().all(|lp| {
+            let n = lp.vertices.len();
+            (0..n).all(|i| {
+                match edges.across(lp.faces[i], lp.vertices[i], lp.vertices[(i + 1) % n]) {
+                    Some(g) if swallowed[g.index()] => {
+                        around.insert(pat.of_face[g.index()]);
+                        true
+                    }
+                    _ => false,
+                }
             })
-            .collect();
-        if around.len() == 1
-            && around.iter().all(|&q| q != usize::MAX && size[q] > size[p])
-            && (0..n).all(|i| {
-                edges
-                    .across(lp.faces[i], lp.vertices[i], lp.vertices[(i + 1) % n])
-                    .is_some_and(|g| swallowed[g.index()])
-            })
-        {
+        });
+        let largest = around
+            .iter()
+            .filter(|&&q| q != usize::MAX)
+            .map(|&q| size[q])
+            .max();
+        if enclosed && (any_loops || around.len() == 1) && largest.is_some_and(|s| s > size[p]) {
             island[p] = true;
         }
     }
@@ -226,6 +251,20 @@ fn fill_islands(soup: &TriangleSoup, edges: &EdgeMap, swallowed: &mut [bool]) {
 fn region_rims(soup: &TriangleSoup, edges: &EdgeMap, swallowed: &[bool]) -> Vec<UnionRim> {
     let cut = cut_edges(edges, swallowed);
     let pat = patches(soup, edges, &cut);
+    patch_rims(edges, swallowed, &pat)
+        .into_iter()
+        .filter_map(|(_, _, rim)| rim)
+        .collect()
+}
+
+/// Each loop of a swallowed patch with at least two loops: the patch, the loop's vertices,
+/// and the loop reversed (kept side on the left) with the kept face on each edge, `None`
+/// when an edge lacks a kept face.
+pub(crate) fn patch_rims(
+    edges: &EdgeMap,
+    swallowed: &[bool],
+    pat: &Patches,
+) -> Vec<(usize, Vec<VertexId>, Option<UnionRim>)> {
     let mut first_face = vec![usize::MAX; pat.count];
     for (f, &p) in pat.of_face.iter().enumerate() {
         if p != usize::MAX && first_face[p] == usize::MAX {
@@ -237,19 +276,22 @@ fn region_rims(soup: &TriangleSoup, edges: &EdgeMap, swallowed: &[bool]) -> Vec<
         if first_face[p] == usize::MAX || !swallowed[first_face[p]] || loops.len() < 2 {
             continue;
         }
-        'loops: for lp in loops {
+        for lp in loops {
             let n = lp.vertices.len();
-            let mut across = Vec::with_capacity(n);
-            for i in 0..n {
-                let (a, b) = (lp.vertices[i], lp.vertices[(i + 1) % n]);
-                match edges.across(lp.faces[i], a, b) {
-                    Some(g) if !swallowed[g.index()] => across.push(g),
-                    _ => continue 'loops,
-                }
-            }
-            let vertices: Vec<VertexId> = lp.vertices.iter().rev().copied().collect();
-            let keep: Vec<FaceId> = (0..n).map(|j| across[(2 * n - 2 - j) % n]).collect();
-            rims.push((vertices, keep));
+            let across: Option<Vec<FaceId>> = (0..n)
+                .map(|i| {
+                    let (a, b) = (lp.vertices[i], lp.vertices[(i + 1) % n]);
+                    edges
+                        .across(lp.faces[i], a, b)
+                        .filter(|g| !swallowed[g.index()])
+                })
+                .collect();
+            let rim = across.map(|across| {
+                let vertices: Vec<VertexId> = lp.vertices.iter().rev().copied().collect();
+                let keep: Vec<FaceId> = (0..n).map(|j| across[(2 * n - 2 - j) % n]).collect();
+                (vertices, keep)
+            });
+            rims.push((p, lp.vertices.clone(), rim));
         }
     }
     rims

@@ -130,7 +130,9 @@ fn voxel_closing_counts_known_parts() {
 fn plate_with_holes_of_several_widths() {
     let plate = plate_with_square_holes(&[1, 1, 2, 3, 5], 1, 1.0);
     for alpha in [0.75, 1.25, 1.75, 3.0] {
-        assert_near_closing(&plate, alpha, 0.25, TessellationSource::SharpEdges);
+        for source in [TessellationSource::SharpEdges, TessellationSource::Closing] {
+            assert_near_closing(&plate, alpha, 0.25, source);
+        }
     }
 }
 
@@ -148,7 +150,9 @@ fn block_with_tunnels_along_three_axes() {
     );
     assert!(analyze(&block).genus.unwrap() >= 5);
     for alpha in [0.75, 1.25] {
-        assert_near_closing(&block, alpha, 0.25, TessellationSource::SharpEdges);
+        for source in [TessellationSource::SharpEdges, TessellationSource::Closing] {
+            assert_near_closing(&block, alpha, 0.25, source);
+        }
     }
 }
 
@@ -161,8 +165,46 @@ fn cheese_block_of_crossing_tunnels() {
         for source in [
             TessellationSource::SharpEdges,
             TessellationSource::PrismUnion,
+            TessellationSource::Closing,
         ] {
             assert_near_closing(&cheese, alpha, 0.25, source);
+        }
+    }
+}
+
+#[test]
+fn the_closing_fills_a_smooth_torus_that_has_no_sharp_rim() {
+    // Central hole of radius 0.6 (width 1.2 against the cube's 2 alpha).
+    let torus = generate::torus(1.0, 0.4, 48, 24);
+    for (alpha, closed) in [(0.75, 0), (0.1, 1)] {
+        assert_eq!(closing_genus(&torus, alpha, 0.05), closed);
+        let (_, sharp) = certified(&torus, alpha, TessellationSource::SharpEdges);
+        assert_eq!(sharp.genus_out, Some(1), "no sharp rim to cap");
+        let (_, r) = certified(&torus, alpha, TessellationSource::Closing);
+        assert_eq!(r.genus_out, Some(u32::try_from(closed).unwrap()), "{r:?}");
+        assert_eq!(r.holes_filled > 0, closed == 0, "{r:?}");
+    }
+}
+
+#[test]
+fn the_closing_never_leaves_more_genus_than_the_sharp_rims() {
+    // The closing step runs on the sharp-edge step's output and only fills: on every part
+    // here it ends at or below the sharp-edge genus.
+    let parts = [
+        cheese_block(2),
+        plate_with_square_holes(&[1, 2, 3], 1, 1.0),
+        block_with_tunnels([9, 9, 6], &[(2, 1, 1, 1), (0, 6, 2, 1), (1, 1, 7, 1)]),
+    ];
+    for part in &parts {
+        for alpha in [0.625, 1.125, 1.875] {
+            let (_, sharp) = certified(part, alpha, TessellationSource::SharpEdges);
+            let (_, closing) = certified(part, alpha, TessellationSource::Closing);
+            assert!(
+                closing.genus_out <= sharp.genus_out,
+                "alpha {alpha}: closing {:?}, sharp {:?}",
+                closing.genus_out,
+                sharp.genus_out
+            );
         }
     }
 }
@@ -199,5 +241,6 @@ proptest! {
         };
         let block = block_with_tunnels([13, 13, 3], &tunnels);
         assert_near_closing(&block, alpha, 0.125, TessellationSource::SharpEdges);
+        assert_near_closing(&block, alpha, 0.125, TessellationSource::Closing);
     }
 }

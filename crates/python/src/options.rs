@@ -79,6 +79,7 @@ const RULES: &Table<LodRule> = &[("cumulative", LodRule::Cumulative), ("sum", Lo
 const SOURCES: &Table<TessellationSource> = &[
     ("sharp_edges", TessellationSource::SharpEdges),
     ("prism_union", TessellationSource::PrismUnion),
+    ("closing", TessellationSource::Closing),
 ];
 
 /// The library's names ([`Method::as_str`]).

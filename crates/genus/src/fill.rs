@@ -1,0 +1,289 @@
+//! Filling what the L-infinity closing swallows (issue 37): the driver of
+//! [`crate::TessellationSource::Closing`], run after the sharp-edge step.
+//!
+//! El-Sana and Varshney fill what the cube of side `2 alpha` cannot reach. [`crate::closing`]
+//! estimates, on voxels, which faces that is; here the swallowed faces are cut into regions
+//! (connected across edges) and each region with two or more boundary loops (a tunnel, a
+//! network of tunnels) is replaced by caps over its loops. What keeps the guarantees is
+//! exact and shared with [`crate::reduce_genus`]: every cap passes the alpha test (diagonals
+//! within the cube, triangles inside their corners' cubes, no fold over the kept face), and
+//! the output is validated with `envelope-check` against the input's counts.
+//!
+//! **Peeling (our choice; the paper has one region per rim).** On real parts the closing's
+//! boundary is ragged where a pocket or a groove wider than a tunnel meets the network, and
+//! one region can hold a whole network of tunnels. A region is filled only if every one of
+//! its loops gets a cap, so where a loop is refused (by the alpha test, or by the validation
+//! for a cap that crosses or duplicates something) the region's faces at that loop go back to
+//! the kept side and its new loops are tried, up to [`PEEL_ROUNDS`] times; at the last round
+//! a region still refused is kept whole. A tunnel whose mouth cannot be capped is so kept up
+//! to where it joins the rest of its network, which is capped there.
+//!
+//! **Levels.** The closing is taken at `alpha`, then at [`LEVELS`] of it on the result: a
+//! region refused at the full radius (its loops too wide) often fills at a smaller one, where
+//! the closing's boundary runs deeper inside the tunnels. Every cap's corners are input
+//! vertices, so every cap of every level lies in the union of the input's alpha-prisms.
+
+use std::collections::{HashMap, HashSet};
+
+use envelope_check::{CheckOptions, DegeneracyClass, Element, check};
+use envelope_mesh::{FaceId, TriangleSoup, VertexId};
+
+use crate::reduce::{Candidate, Capped, VALIDATED, cap_of, split_simple};
+use crate::tessellation::{EdgeMap, patches};
+use crate::union::{cut_edges, fill_islands, patch_rims};
+
+/// Fractions of `alpha` at which the closing is taken, in order, each on the previous result.
+pub(crate) const LEVELS: [f64; 3] = [1.0, 0.75, 0.5];
+
+/// Rounds of peeling per level.
+pub(crate) const PEEL_ROUNDS: usize = 48;
+
+/// What [`fill_closing`] did.
+#[derive(Debug, Default)]
+pub(crate) struct Filled {
+    /// The result: the input's positions, the kept faces in order, then the caps.
+    pub soup: TriangleSoup,
+    /// Which faces of `soup` are caps, of this step or already of the input (`added_in`).
+    pub added: Vec<usize>,
+    /// Caps over the closing's loops.
+    pub caps: usize,
+    /// Faces swallowed by the closing at the full radius, before peeling.
+    pub swallowed: usize,
+    /// Distinct loops tried.
+    pub loops_tried: usize,
+    /// Distinct loops refused by the alpha test for their shape, or as wider than the cube.
+    pub refused_shape: usize,
+    /// See `refused_shape`.
+    pub refused_wide: usize,
+    /// Caps refused by the validation.
+    pub refused_validation: usize,
+}
+
+/// Fills the regions the closing of `soup` swallows at each of [`LEVELS`] (see the module
+/// docs). `added_in` marks the faces of `soup` that are already caps; `baseline` holds the
+/// original input's counts of the validated classes.
+pub(crate) fn fill_closing(
+    soup: &TriangleSoup,
+    added_in: &[bool],
+    alpha: f64,
+    baseline: &HashMap<DegeneracyClass, usize>,
+) -> Filled {
+    let border_edges = EdgeMap::new(soup)
+        .faces
+        .values()
+        .filter(|fs| fs.len() == 1)
+        .count();
+    let mut cur = soup.clone();
+    let mut is_cap = added_in.to_vec();
+    let mut done = Filled::default();
+    let mut tried: HashMap<Vec<(VertexId, VertexId)>, Option<bool>> = HashMap::new();
+    for (level, &frac) in LEVELS.iter().enumerate() {
+        let edges = EdgeMap::new(&cur);
+        let Some(mut swallowed) = crate::closing::swallowed_faces(&cur, alpha * frac) else {
+            break;
+        };
+        fill_islands(&cur, &edges, &mut swallowed, true);
+        if level == 0 {
+            done.swallowed = swallowed.iter().filter(|&&s| s).count();
+        }
+        // Cap or refusal of each loop (vertices, kept faces) met at this level.
+        let mut memo: HashMap<(Vec<VertexId>, Vec<FaceId>), Capped> = HashMap::new();
+        for round in 0..PEEL_ROUNDS {
+            let last = round + 1 == PEEL_ROUNDS;
+            let cut = cut_edges(&edges, &swallowed);
+            let pat = patches(&cur, &edges, &cut);
+            // Per region refused, the vertices of its refused loops.
+            let mut give_back: HashMap<usize, HashSet<VertexId>> = HashMap::new();
+            let mut caps: Vec<(usize, Candidate)> = Vec::new();
+            for (p, lp, rim) in patch_rims(&edges, &swallowed, &pat) {
+                let pieces = rim.map(|(v, f)| split_simple(&v, &f)).unwrap_or_default();
+                // A piece dropped by the split (a slit) would leave its edges open.
+                let mut fine = pieces.iter().map(|(v, _)| v.len()).sum::<usize>() == lp.len();
+                for (mut v, mut f) in pieces {
+                    // Rotated to start at the least vertex, so a loop met again is cached.
+                    let first = (0..v.len()).min_by_key(|&i| v[i]).unwrap_or(0);
+                    v.rotate_left(first);
+                    f.rotate_left(first);
+                    let mut c = Candidate::rim(v, f);
+                    let result = memo
+                        .entry((c.vertices.clone(), c.keep.clone()))
+                        .or_insert_with(|| cap_of(&cur, &c, alpha))
+                        .clone();
+                    match result {
+                        Ok(cap) => {
+                            tried.entry(c.key.clone()).or_insert(None);
+                            c.cap = cap;
+                            caps.push((p, c));
+                        }
+                        Err((_, shape)) => {
+                            tried.insert(c.key.clone(), Some(shape));
+                            fine = false;
+                        }
+                    }
+                }
+                if !fine {
+                    give_back.entry(p).or_default().extend(lp);
+                }
+            }
+            let mut whole: HashSet<usize> = HashSet::new();
+            if give_back.is_empty() {
+                if caps.is_empty() {
+                    break;
+                }
+                let cands: Vec<Candidate> = caps.iter().map(|(_, c)| c.clone()).collect();
+                let (out, cap_of_face) = assemble(&cur, &swallowed, &cands);
+                match blame(&out, &cap_of_face, baseline, border_edges) {
+                    None => {
+                        let kept: Vec<bool> = cur
+                            .face_ids()
+                            .filter(|f| !swallowed[f.index()])
+                            .map(|f| is_cap[f.index()])
+                            .collect();
+                        is_cap = kept;
+                        is_cap.resize(out.num_faces(), true);
+                        done.caps += cands.len();
+                        cur = out;
+                        break;
+                    }
+                    Some((bad, at)) => {
+                        done.refused_validation += bad.len();
+                        // A finding on kept faces only (a vertex pinched between two
+                        // regions): the regions at its vertices give way there.
+                        for (f, &p) in pat.of_face.iter().enumerate() {
+                            if swallowed[f] && cur.faces[f].iter().any(|v| at.contains(v)) {
+                                give_back.entry(p).or_default().extend(at.iter().copied());
+                                if last {
+                                    whole.insert(p);
+                                }
+                            }
+                        }
+                        for &i in &bad {
+                            let (p, c) = &caps[i];
+                            give_back
+                                .entry(*p)
+                                .or_default()
+                                .extend(c.vertices.iter().copied());
+                            if last {
+                                whole.insert(*p);
+                            }
+                        }
+                        if give_back.is_empty() {
+                            break; // nothing to give way: leave this level's regions as they are
+                        }
+                    }
+                }
+            } else if last {
+                whole.extend(give_back.keys().copied());
+            }
+            // The regions' faces at their refused loops go back to the kept side (whole
+            // regions at the last round).
+            for f in cur.face_ids() {
+                let p = pat.of_face[f.index()];
+                let Some(vs) = give_back.get(&p) else {
+                    continue;
+                };
+                if swallowed[f.index()]
+                    && (whole.contains(&p) || cur.faces[f.index()].iter().any(|v| vs.contains(v)))
+                {
+                    swallowed[f.index()] = false;
+                }
+            }
+        }
+    }
+    done.loops_tried = tried.len();
+    for refusal in tried.values().flatten() {
+        if *refusal {
+            done.refused_shape += 1;
+        } else {
+            done.refused_wide += 1;
+        }
+    }
+    done.added = (0..cur.num_faces()).filter(|&f| is_cap[f]).collect();
+    done.soup = cur;
+    done
+}
+
+/// `None` when `out` has no more findings of the validated classes than `baseline`;
+/// otherwise the caps involved in new findings and the vertices of the findings that involve
+/// no cap.
+fn blame(
+    out: &TriangleSoup,
+    cap_of_face: &HashMap<usize, usize>,
+    baseline: &HashMap<DegeneracyClass, usize>,
+    baseline_borders: usize,
+) -> Option<(HashSet<usize>, HashSet<VertexId>)> {
+    let options = CheckOptions {
+        max_examples: usize::MAX,
+        ..CheckOptions::default()
+    };
+    let report = check(out, &options);
+    let (mut caps, mut at) = (HashSet::new(), HashSet::new());
+    let mut any = false;
+    for class in VALIDATED {
+        let finding = report.finding(class);
+        if finding.count <= baseline.get(&class).copied().unwrap_or(0) {
+            continue;
+        }
+        any = true;
+        for e in &finding.examples {
+            let faces: Vec<FaceId> = match e {
+                Element::Face { face, .. } => vec![*face],
+                Element::FacePair { faces } => faces.to_vec(),
+                Element::Edge { faces, .. } => faces.clone(),
+                Element::Vertex { vertex, .. } => {
+                    at.insert(*vertex);
+                    Vec::new()
+                }
+                _ => Vec::new(),
+            };
+            let blamed: Vec<usize> = faces
+                .iter()
+                .filter_map(|f| cap_of_face.get(&f.index()).copied())
+                .collect();
+            if blamed.is_empty() {
+                at.extend(faces.iter().flat_map(|f| out.faces[f.index()]));
+            }
+            caps.extend(blamed);
+        }
+    }
+    // Edges with one face: a loop left open.
+    let borders = |s: &TriangleSoup| {
+        EdgeMap::new(s)
+            .faces
+            .into_iter()
+            .filter(|(_, fs)| fs.len() == 1)
+            .map(|(e, _)| e)
+            .collect::<Vec<_>>()
+    };
+    let open = borders(out);
+    if open.len() > baseline_borders {
+        any = true;
+        at.extend(open.iter().flat_map(|&(a, b)| [a, b]));
+    }
+    any.then_some((caps, at))
+}
+
+/// `soup` without its swallowed faces, with the caps of `cands` after the kept faces, and
+/// the candidate of each cap face.
+fn assemble(
+    soup: &TriangleSoup,
+    swallowed: &[bool],
+    cands: &[Candidate],
+) -> (TriangleSoup, HashMap<usize, usize>) {
+    let mut faces: Vec<[VertexId; 3]> = soup
+        .face_ids()
+        .filter(|f| !swallowed[f.index()])
+        .map(|f| soup.faces[f.index()])
+        .collect();
+    let mut cap_of_face = HashMap::new();
+    for (i, c) in cands.iter().enumerate() {
+        for t in &c.cap {
+            cap_of_face.insert(faces.len(), i);
+            faces.push(*t);
+        }
+    }
+    (
+        TriangleSoup::new(soup.positions.clone(), faces),
+        cap_of_face,
+    )
+}
