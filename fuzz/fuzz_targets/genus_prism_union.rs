@@ -1,5 +1,6 @@
 //! Genus reduction on random small parts (voxel blocks from a random 4x4x3 occupancy, flat
-//! grids with random holes) at random alphas. Checks: inputs the reduction accepts give an
+//! grids with random holes) at random alphas, from the sharp rims or with the closing's
+//! regions (`TessellationSource::Closing`). Checks: inputs the reduction accepts give an
 //! output whose half-edge structure passes `sanity_check()` (when the input's builds), with no new intersecting,
 //! coincident or non-manifold element (exact `envelope-check`), and every added triangle lies
 //! in the union of alpha-prisms: it is covered by its corners' alpha-cubes (exact) and each
@@ -9,8 +10,8 @@
 use envelope_check::{CheckOptions, DegeneracyClass, check};
 use envelope_genus::details::{covered_by_corner_cubes, cube_corners};
 use envelope_genus::testmeshes::disk_with_square_holes;
-use envelope_genus::{AlphaPrism, GenusOptions, reduce_genus};
-use envelope_mesh::{HalfEdgeMesh, generate};
+use envelope_genus::{AlphaPrism, GenusOptions, TessellationSource, reduce_genus_with};
+use envelope_mesh::{HalfEdgeMesh, analyze, generate};
 use glam::DVec3;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
@@ -46,9 +47,20 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
         alpha,
         beta_degrees: beta,
     };
-    let Ok((out, report)) = reduce_genus(&soup, &options) else {
+    let source = if data[3] & 4 == 0 {
+        TessellationSource::SharpEdges
+    } else {
+        TessellationSource::Closing
+    };
+    let Ok((out, report)) = reduce_genus_with(&soup, &options, source) else {
         return;
     };
+    // Nothing is left open that was closed, and the genus never grows.
+    let (topo_in, topo_out) = (analyze(&soup), analyze(&out));
+    assert!(topo_out.num_border_loops() <= topo_in.num_border_loops(), "a loop left open");
+    if let (Some(a), Some(b)) = (topo_in.genus, topo_out.genus) {
+        assert!(b <= a, "genus grew: {a} -> {b}");
+    }
     // Inputs with a non-manifold vertex are accepted (and kept as they are); when the input
     // builds a half-edge mesh, the output must too.
     if out.num_faces() > 0 && HalfEdgeMesh::from_soup(&soup).is_ok() {

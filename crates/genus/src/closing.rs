@@ -25,7 +25,12 @@ use envelope_predicates::{Orientation, orient2d};
 use glam::{DVec2, DVec3};
 
 /// Largest grid, in voxels (one byte each).
-pub(crate) const MAX_VOXELS: usize = 1 << 25;
+pub(crate) const MAX_VOXELS: usize = 1 << 22;
+
+/// Most (face, column) pairs the voxelization looks at, and most crossings it keeps: past
+/// either (faces whose projections pile up, as hostile input can) there is no estimate.
+const MAX_COLUMN_TESTS: usize = 1 << 28;
+const MAX_CROSSINGS: usize = 1 << 23;
 
 /// How far out of the face (in voxels) a point is looked up in the reach.
 const TOUCH_VOXELS: f64 = 1.5;
@@ -67,7 +72,8 @@ impl Grid {
 
 /// For every face of `soup` (closed, consistently oriented), whether the L-infinity closing
 /// by the cube of side `2 alpha` swallows it (see the module docs). `None` when the grid
-/// would be degenerate (no extent, or a cube narrower than one voxel at [`MAX_VOXELS`]).
+/// would be degenerate (no extent, or a cube narrower than one voxel at [`MAX_VOXELS`]) or
+/// the voxelization too costly (see [`MAX_COLUMN_TESTS`]).
 pub(crate) fn swallowed_faces(soup: &TriangleSoup, alpha: f64) -> Option<Vec<bool>> {
     let (lo, hi) = bounds(soup)?;
     // The cube must pass all around the part: a margin of 2 alpha and two voxels.
@@ -88,7 +94,7 @@ pub(crate) fn swallowed_faces(soup: &TriangleSoup, alpha: f64) -> Option<Vec<boo
     }
     let origin = lo - DVec3::splat(2.0 * alpha + 2.0 * h);
     let grid = Grid { origin, h, dims };
-    let solid = voxelize(soup, &grid);
+    let solid = voxelize(soup, &grid)?;
     // Cube centres: voxels whose cube holds no solid voxel; reach: the union of those cubes.
     let mut centres = dilate(&grid, solid, k);
     for c in &mut centres {
@@ -144,9 +150,11 @@ fn owns_edge(a: DVec2, b: DVec2) -> bool {
     d.y < 0.0 || (d.y == 0.0 && d.x > 0.0)
 }
 
-/// Voxel centres inside the closed mesh, by ray parity along `+x`.
-fn voxelize(soup: &TriangleSoup, grid: &Grid) -> Vec<bool> {
+/// Voxel centres inside the closed mesh, by ray parity along `+x`; `None` past
+/// [`MAX_COLUMN_TESTS`] or [`MAX_CROSSINGS`].
+fn voxelize(soup: &TriangleSoup, grid: &Grid) -> Option<Vec<bool>> {
     let [nx, ny, nz] = grid.dims;
+    let mut tests = 0usize;
     // (column, x) of every crossing of a column's ray with a face.
     let mut crossings: Vec<(usize, f64)> = Vec::new();
     for f in soup.face_ids() {
@@ -173,6 +181,10 @@ fn voxelize(soup: &TriangleSoup, grid: &Grid) -> Vec<bool> {
                 let c = grid.centre(0, j, kk);
                 if c.y > hi.x {
                     break;
+                }
+                tests += 1;
+                if tests > MAX_COLUMN_TESTS || crossings.len() >= MAX_CROSSINGS {
+                    return None;
                 }
                 let q = DVec2::new(c.y, c.z);
                 let inside = (0..3).all(|e| {
@@ -210,7 +222,7 @@ fn voxelize(soup: &TriangleSoup, grid: &Grid) -> Vec<bool> {
             }
         }
     }
-    solid
+    Some(solid)
 }
 
 /// `cells` dilated by the cube of `2k + 1` voxels: separable, one running count per line.

@@ -1,5 +1,6 @@
 //! Filling what the L-infinity closing swallows (issue 37): the driver of
-//! [`crate::TessellationSource::Closing`], run after the sharp-edge step.
+//! [`crate::TessellationSource::Closing`], run after the sharp-edge step on inputs without
+//! borders (the closing needs a solid).
 //!
 //! El-Sana and Varshney fill what the cube of side `2 alpha` cannot reach. [`crate::closing`]
 //! estimates, on voxels, which faces that is; here the swallowed faces are cut into regions
