@@ -57,7 +57,10 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
     };
     // Nothing is left open that was closed, and the genus never grows.
     let (topo_in, topo_out) = (analyze(&soup), analyze(&out));
-    assert!(topo_out.num_border_loops() <= topo_in.num_border_loops(), "a loop left open");
+    assert!(
+        topo_out.num_border_loops() <= topo_in.num_border_loops(),
+        "a loop left open"
+    );
     if let (Some(a), Some(b)) = (topo_in.genus, topo_out.genus) {
         assert!(b <= a, "genus grew: {a} -> {b}");
     }

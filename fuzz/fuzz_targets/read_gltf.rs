@@ -13,7 +13,9 @@ fn check(bytes: &[u8]) -> Result<(), String> {
     let Ok(scene) = Scene::from_slice(bytes, None) else {
         return Ok(());
     };
-    let written = scene.to_glb().map_err(|e| format!("accepted, not written: {e}"))?;
+    let written = scene
+        .to_glb()
+        .map_err(|e| format!("accepted, not written: {e}"))?;
     let back = Scene::from_slice(&written, None).map_err(|e| format!("written, refused: {e}"))?;
     if back.primitives().len() != scene.primitives().len() {
         return Err("a different number of primitives".into());
