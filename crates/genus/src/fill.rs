@@ -93,6 +93,18 @@ pub(crate) fn fill_closing(
             let last = round + 1 == PEEL_ROUNDS;
             let cut = cut_edges(&edges, &swallowed);
             let pat = patches(&cur, &edges, &cut);
+            // A region with fewer than two loops (a pocket, or a whole shell) is not filled:
+            // it goes back whole (no other region shares an edge with it, so theirs stay).
+            let mut open = vec![false; pat.count];
+            for (p, loops) in pat.loops.iter().enumerate() {
+                open[p] = loops.len() < 2;
+            }
+            for (f, s) in swallowed.iter_mut().enumerate() {
+                let p = pat.of_face[f];
+                if *s && p != usize::MAX && open[p] {
+                    *s = false;
+                }
+            }
             // Per region refused, the vertices of its refused loops.
             let mut give_back: HashMap<usize, HashSet<VertexId>> = HashMap::new();
             let mut caps: Vec<(usize, Candidate)> = Vec::new();
