@@ -24,6 +24,25 @@ fn pipeline(input: &Path, out_dir: &Path, steps: &str) -> Vec<serde_json::Value>
     s["stages"].as_array().unwrap().clone()
 }
 
+/// Runs `envelope genus INPUT OUTPUT --alpha ALPHA --report REPORT FLAGS`, asserts exit 0,
+/// and returns the report.
+fn genus_report(
+    input: &Path,
+    output: &Path,
+    report: &Path,
+    alpha: &str,
+    flags: &[&str],
+) -> serde_json::Value {
+    let out = envelope()
+        .args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
+        .args(["--alpha", alpha, "--report", report.to_str().unwrap()])
+        .args(flags)
+        .output()
+        .unwrap();
+    assert_ok(&out);
+    read_json(report)
+}
+
 #[test]
 fn genus_fills_narrow_holes_and_reports() {
     let dir = tempfile::tempdir().unwrap();
@@ -163,15 +182,8 @@ fn genus_union_fills_the_smooth_torus_hole() {
     let output = dir.path().join("out.off");
     let report = dir.path().join("r.json");
     let genus = |union: bool| {
-        let mut cmd = envelope();
-        cmd.args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
-            .args(["--alpha", "0.5", "--report", report.to_str().unwrap()]);
-        if union {
-            cmd.arg("--union");
-        }
-        let out = cmd.output().unwrap();
-        assert_ok(&out);
-        let r: serde_json::Value = read_json(&report);
+        let flags: &[&str] = if union { &["--union"] } else { &[] };
+        let r = genus_report(&input, &output, &report, "0.5", flags);
         assert_eq!(r["union"], union);
         (analyze(&read_path(&output).unwrap().0).genus, r)
     };
@@ -202,16 +214,7 @@ fn genus_closing_fills_a_smooth_torus_and_pipeline_takes_c_steps() {
     write_path(&input, &generate::torus(1.0, 0.4, 48, 24), Format::Off).unwrap();
     let output = dir.path().join("out.off");
     let report = dir.path().join("r.json");
-    let run = |extra: &[&str]| {
-        let out = envelope()
-            .args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
-            .args(["--alpha", "0.75", "--report", report.to_str().unwrap()])
-            .args(extra)
-            .output()
-            .unwrap();
-        assert_ok(&out);
-        read_json(&report)
-    };
+    let run = |flags: &[&str]| genus_report(&input, &output, &report, "0.75", flags);
     let sharp = run(&[]);
     assert_eq!(
         (&sharp["genus_out"], &sharp["closing"]),

@@ -26,10 +26,10 @@
 
 use std::collections::{HashMap, HashSet};
 
-use envelope_check::{CheckOptions, DegeneracyClass, Element, check};
+use envelope_check::DegeneracyClass;
 use envelope_mesh::{FaceId, TriangleSoup, VertexId};
 
-use crate::reduce::{Candidate, Capped, VALIDATED, cap_of, split_simple};
+use crate::reduce::{Candidate, Capped, cap_of, new_findings, split_simple};
 use crate::tessellation::{EdgeMap, patches};
 use crate::union::{cut_edges, fill_islands, patch_rims};
 
@@ -225,39 +225,20 @@ fn blame(
     baseline: &HashMap<DegeneracyClass, usize>,
     baseline_borders: usize,
 ) -> Option<(HashSet<usize>, HashSet<VertexId>)> {
-    let options = CheckOptions {
-        max_examples: usize::MAX,
-        ..CheckOptions::default()
-    };
-    let report = check(out, &options);
+    let found = new_findings(out, baseline);
     let (mut caps, mut at) = (HashSet::new(), HashSet::new());
-    let mut any = false;
-    for class in VALIDATED {
-        let finding = report.finding(class);
-        if finding.count <= baseline.get(&class).copied().unwrap_or(0) {
-            continue;
+    let mut any = found.is_some();
+    for e in found.iter().flatten() {
+        at.extend(e.vertex);
+        let blamed: Vec<usize> = e
+            .faces
+            .iter()
+            .filter_map(|f| cap_of_face.get(&f.index()).copied())
+            .collect();
+        if blamed.is_empty() {
+            at.extend(e.faces.iter().flat_map(|f| out.faces[f.index()]));
         }
-        any = true;
-        for e in &finding.examples {
-            let faces: Vec<FaceId> = match e {
-                Element::Face { face, .. } => vec![*face],
-                Element::FacePair { faces } => faces.to_vec(),
-                Element::Edge { faces, .. } => faces.clone(),
-                Element::Vertex { vertex, .. } => {
-                    at.insert(*vertex);
-                    Vec::new()
-                }
-                _ => Vec::new(),
-            };
-            let blamed: Vec<usize> = faces
-                .iter()
-                .filter_map(|f| cap_of_face.get(&f.index()).copied())
-                .collect();
-            if blamed.is_empty() {
-                at.extend(faces.iter().flat_map(|f| out.faces[f.index()]));
-            }
-            caps.extend(blamed);
-        }
+        caps.extend(blamed);
     }
     // Edges with one face: a loop left open.
     let borders = |s: &TriangleSoup| {

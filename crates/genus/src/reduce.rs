@@ -993,7 +993,7 @@ fn assemble(
 }
 
 /// Classes the output must not have more of than the input.
-pub(crate) const VALIDATED: [DegeneracyClass; 7] = [
+const VALIDATED: [DegeneracyClass; 7] = [
     DegeneracyClass::CoincidentTriangles,
     DegeneracyClass::DuplicateTriangles,
     DegeneracyClass::IntersectingTriangles,
@@ -1017,21 +1017,60 @@ fn class_counts(soup: &TriangleSoup) -> HashMap<DegeneracyClass, usize> {
         .collect()
 }
 
+/// One example of a validated class the output has more of than the input: its faces (none
+/// for a vertex), its vertex (for a vertex finding), and whether it is a pair of faces.
+pub(crate) struct NewFinding {
+    pub(crate) faces: Vec<FaceId>,
+    pub(crate) vertex: Option<VertexId>,
+    pub(crate) pair: bool,
+}
+
+/// The examples of every validated class `out` has more findings of than `baseline`;
+/// `None` when it has no more of any.
+pub(crate) fn new_findings(
+    out: &TriangleSoup,
+    baseline: &HashMap<DegeneracyClass, usize>,
+) -> Option<Vec<NewFinding>> {
+    let options = CheckOptions {
+        max_examples: usize::MAX,
+        ..CheckOptions::default()
+    };
+    let report = check(out, &options);
+    let mut any = false;
+    let mut found = Vec::new();
+    for class in VALIDATED {
+        let finding = report.finding(class);
+        if finding.count <= baseline.get(&class).copied().unwrap_or(0) {
+            continue;
+        }
+        any = true;
+        for e in &finding.examples {
+            let (faces, vertex) = match e {
+                Element::Face { face, .. } => (vec![*face], None),
+                Element::FacePair { faces } => (faces.to_vec(), None),
+                Element::Edge { faces, .. } => (faces.clone(), None),
+                Element::Vertex { vertex, .. } => (Vec::new(), Some(*vertex)),
+                _ => (Vec::new(), None),
+            };
+            let pair = matches!(e, Element::FacePair { .. });
+            found.push(NewFinding {
+                faces,
+                vertex,
+                pair,
+            });
+        }
+    }
+    any.then_some(found)
+}
+
 /// `None` when the output is clean; otherwise the candidates implicated (possibly none).
-pub(crate) fn validate(
+fn validate(
     out: &TriangleSoup,
     cap_of_face: &HashMap<usize, usize>,
     baseline: &HashMap<DegeneracyClass, usize>,
 ) -> Option<Vec<usize>> {
-    let report = check(
-        out,
-        &CheckOptions {
-            max_examples: usize::MAX,
-            ..CheckOptions::default()
-        },
-    );
+    let found = new_findings(out, baseline)?;
     let mut bad: BTreeSet<usize> = BTreeSet::new();
-    let mut any = false;
     let mut cap_vertices: HashMap<VertexId, Vec<usize>> = HashMap::new();
     for (&f, &c) in cap_of_face {
         for v in out.faces[f] {
@@ -1041,44 +1080,30 @@ pub(crate) fn validate(
     // Two conflicting caps: refuse one already in conflict with something else if any (a cap
     // duplicating kept faces, e.g. over the outer loop of a face), else the later one.
     let mut pairs: Vec<(usize, usize)> = Vec::new();
-    for class in VALIDATED {
-        let finding = report.finding(class);
-        let before = baseline.get(&class).copied().unwrap_or(0);
-        if finding.count <= before {
-            continue;
+    for e in &found {
+        if let Some(v) = e.vertex {
+            bad.extend(cap_vertices.get(&v).into_iter().flatten());
         }
-        any = true;
-        for e in &finding.examples {
-            let faces: Vec<FaceId> = match e {
-                Element::Face { face, .. } => vec![*face],
-                Element::FacePair { faces } => faces.to_vec(),
-                Element::Edge { faces, .. } => faces.clone(),
-                Element::Vertex { vertex, .. } => {
-                    bad.extend(cap_vertices.get(vertex).into_iter().flatten());
-                    Vec::new()
-                }
-                _ => Vec::new(),
-            };
-            let caps: Vec<usize> = faces
-                .iter()
-                .filter_map(|f| cap_of_face.get(&f.index()).copied())
-                .collect();
-            // Two caps in conflict: refusing the later one is enough.
-            if let (Element::FacePair { .. }, [c1, c2]) = (e, caps.as_slice()) {
-                if c1 != c2 {
-                    pairs.push((*c1, *c2));
-                    continue;
-                }
+        let caps: Vec<usize> = e
+            .faces
+            .iter()
+            .filter_map(|f| cap_of_face.get(&f.index()).copied())
+            .collect();
+        // Two caps in conflict: refusing the later one is enough.
+        if let (true, [c1, c2]) = (e.pair, caps.as_slice()) {
+            if c1 != c2 {
+                pairs.push((*c1, *c2));
+                continue;
             }
-            bad.extend(caps);
         }
+        bad.extend(caps);
     }
     for (c1, c2) in pairs {
         if !bad.contains(&c1) && !bad.contains(&c2) {
             bad.insert(c1.max(c2));
         }
     }
-    any.then(|| bad.into_iter().collect())
+    Some(bad.into_iter().collect())
 }
 
 /// Drops unreferenced vertices; maps the added face indices (face order is kept).
