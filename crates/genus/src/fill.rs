@@ -29,9 +29,10 @@ use std::collections::{HashMap, HashSet};
 use envelope_check::DegeneracyClass;
 use envelope_mesh::{FaceId, TriangleSoup, VertexId};
 
-use crate::reduce::{Candidate, Capped, cap_of, new_findings, split_simple};
+use crate::rim::{Candidate, Capped, cap_of, split_simple};
 use crate::tessellation::{EdgeMap, patches};
 use crate::union::{cut_edges, fill_islands, patch_rims};
+use crate::validation::new_findings;
 
 /// Fractions of `alpha` at which the closing is taken, in order, each on the previous result.
 pub(crate) const LEVELS: [f64; 3] = [1.0, 0.75, 0.5];

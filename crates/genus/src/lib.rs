@@ -38,10 +38,12 @@ mod fill;
 mod neighbourhood;
 pub mod prism;
 mod reduce;
+mod rim;
 mod tessellation;
 pub mod testmeshes;
 mod triangulate;
 pub mod union;
+mod validation;
 
 use envelope_check::DegeneracyClass;
 use envelope_mesh::{FaceId, VertexId};
