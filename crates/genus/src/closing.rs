@@ -24,6 +24,8 @@ use envelope_mesh::TriangleSoup;
 use envelope_predicates::{Orientation, orient2d};
 use glam::{DVec2, DVec3};
 
+use crate::tessellation::signed_volume;
+
 /// Largest grid, in voxels (one byte each).
 pub(crate) const MAX_VOXELS: usize = 1 << 22;
 
@@ -102,14 +104,11 @@ pub(crate) fn swallowed_faces(soup: &TriangleSoup, alpha: f64) -> Option<Vec<boo
     }
     let reach = dilate(&grid, centres, k);
     // Outward from the signed volume (f64).
-    let volume: f64 = soup
-        .face_ids()
-        .map(|f| {
-            let [a, b, c] = soup.triangle(f);
-            a.dot(b.cross(c))
-        })
-        .sum();
-    let outward = if volume >= 0.0 { 1.0 } else { -1.0 };
+    let outward = if signed_volume(soup) >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    };
     let swallowed = soup
         .face_ids()
         .map(|f| {

@@ -30,7 +30,7 @@ use envelope_check::DegeneracyClass;
 use envelope_mesh::{FaceId, TriangleSoup, VertexId};
 
 use crate::rim::{Candidate, Capped, cap_of, split_simple};
-use crate::tessellation::{EdgeMap, patches};
+use crate::tessellation::{EdgeMap, border_edges, patches};
 use crate::union::{cut_edges, fill_islands, patch_rims};
 use crate::validation::new_findings;
 
@@ -70,11 +70,7 @@ pub(crate) fn fill_closing(
     alpha: f64,
     baseline: &HashMap<DegeneracyClass, usize>,
 ) -> Filled {
-    let border_edges = EdgeMap::new(soup)
-        .faces
-        .values()
-        .filter(|fs| fs.len() == 1)
-        .count();
+    let border_edges = border_edges(&EdgeMap::new(soup)).len();
     let mut cur = soup.clone();
     let mut is_cap = added_in.to_vec();
     let mut done = Filled::default();
@@ -241,16 +237,7 @@ fn blame(
         }
         caps.extend(blamed);
     }
-    // Edges with one face: a loop left open.
-    let borders = |s: &TriangleSoup| {
-        EdgeMap::new(s)
-            .faces
-            .into_iter()
-            .filter(|(_, fs)| fs.len() == 1)
-            .map(|(e, _)| e)
-            .collect::<Vec<_>>()
-    };
-    let open = borders(out);
+    let open = border_edges(&EdgeMap::new(out));
     if open.len() > baseline_borders {
         any = true;
         at.extend(open.iter().flat_map(|&(a, b)| [a, b]));

@@ -39,7 +39,8 @@ use envelope_predicates::{Orientation, orient3d};
 use crate::GenusError;
 use crate::rim::{Candidate, Edge, cap_of, folds_onto_kept, split_simple};
 use crate::tessellation::{
-    EdgeMap, Patches, face_normals, link_chains, normal_variation, patches, tessellation_edges,
+    EdgeMap, Patches, face_normals, link_chains, normal_variation, patches, signed_volume,
+    tessellation_edges,
 };
 use crate::union::{TessellationSource, union_rims};
 use crate::validation::{class_counts, new_findings};
@@ -359,16 +360,16 @@ pub fn reduce_genus_with(
     let mut refused: HashSet<usize> = HashSet::new();
     let mut refused_validation: HashSet<usize> = HashSet::new();
     let mut baseline: Option<HashMap<DegeneracyClass, usize>> = None;
-    let (out, added, _, active, filled) = loop {
+    let (out, added, active, filled) = loop {
         let (active, filled) = select(&edges, &candidates, &cells, &refused);
-        let (out, added, removed, cap_of_face) = assemble(soup, &candidates, &active);
+        let (out, added, cap_of_face) = assemble(soup, &candidates, &active);
         if cap_of_face.is_empty() {
-            break (out, added, removed, active, filled);
+            break (out, added, active, filled);
         }
         let base = baseline.get_or_insert_with(|| class_counts(soup));
         let implicated = validate(&out, &cap_of_face, base);
         match implicated {
-            None => break (out, added, removed, active, filled),
+            None => break (out, added, active, filled),
             Some(bad) if bad.is_empty() => {
                 // Nothing to blame precisely: refuse every active cap.
                 refused.extend(active.iter().copied());
@@ -457,16 +458,6 @@ pub fn reduce_genus_with(
         added_faces,
     };
     Ok((out, report))
-}
-
-/// Six times the signed volume (f64 heuristic): negative when the faces are oriented inward.
-fn signed_volume(soup: &TriangleSoup) -> f64 {
-    soup.face_ids()
-        .map(|f| {
-            let [a, b, c] = soup.triangle(f);
-            a.dot(b.cross(c))
-        })
-        .sum()
 }
 
 /// Whether every loop edge with a face on the other side is a convex edge of the surface
@@ -789,7 +780,7 @@ fn assemble(
     soup: &TriangleSoup,
     cands: &[Candidate],
     active: &[usize],
-) -> (TriangleSoup, Vec<usize>, usize, HashMap<usize, usize>) {
+) -> (TriangleSoup, Vec<usize>, HashMap<usize, usize>) {
     let edges = EdgeMap::new(soup);
     let (barrier, kept) = rim_sets(cands, active);
     let mut removed: HashSet<FaceId> = HashSet::new();
@@ -815,7 +806,6 @@ fn assemble(
     (
         TriangleSoup::new(soup.positions.clone(), faces),
         added,
-        removed.len(),
         cap_of_face,
     )
 }

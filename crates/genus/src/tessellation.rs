@@ -73,6 +73,26 @@ pub fn face_normals(soup: &TriangleSoup) -> Vec<Option<DVec3>> {
         .collect()
 }
 
+/// Six times the signed volume (f64 heuristic): negative when the faces are oriented inward.
+pub(crate) fn signed_volume(soup: &TriangleSoup) -> f64 {
+    soup.face_ids()
+        .map(|f| {
+            let [a, b, c] = soup.triangle(f);
+            a.dot(b.cross(c))
+        })
+        .sum()
+}
+
+/// The edges with one face (a loop left open), each as `(min, max)`.
+pub(crate) fn border_edges(edges: &EdgeMap) -> Vec<(VertexId, VertexId)> {
+    edges
+        .faces
+        .iter()
+        .filter(|(_, fs)| fs.len() == 1)
+        .map(|(&e, _)| e)
+        .collect()
+}
+
 /// The tessellation edges (sharp or border), each as `(min, max)`, sorted.
 #[must_use]
 pub fn tessellation_edges(
