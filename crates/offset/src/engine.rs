@@ -187,10 +187,12 @@ pub(crate) fn reach(swept: &[Aabb], m: &Mover) -> Aabb {
         .fold(Aabb::EMPTY, |b, &f| b.union(&swept[f as usize]))
 }
 
-/// Exact check of mover `m` at parameter `t` against the scene: each of the mover's
-/// candidates (see [`candidates`]) whose current box overlaps the box of the whole star
-/// against each star face whose box it overlaps.
-fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
+/// Exact check of mover `m` at parameter `t` against the scene: each face whose current
+/// box overlaps the box of the whole star (found in the trees of swept boxes) against each
+/// star face whose box it overlaps, `blocker` (the face that refused the mover's last step)
+/// first. `Err` names a face the star at `t` meets. Which one depends on the order, the
+/// answer does not.
+fn check(scene: &Scene<'_>, m: &Mover, t: f64, blocker: Option<u32>) -> Result<(), u32> {
     let new = m.positions_at(t);
     let pos = |i: u32| match m.verts.iter().position(|&x| x == i) {
         Some(k) => new[k],
@@ -251,24 +253,41 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64) -> bool {
         }
         true
     };
+    // The face that stopped this mover last time first: a halved step usually meets it
+    // again, and one pair test then answers instead of a walk over the neighbourhood. It
+    // is a face of the trees (a walk found it), so the walk would find it too.
+    if let Some(g) = blocker
+        && !clear_of(g)
+    {
+        return Err(g);
+    }
     match (&scene.only, scene.fixed) {
-        (Some(only), _) => all_clear(&scene.bvh, &all, |i| clear_of(only[i as usize])),
-        (None, Some((tree, n))) => {
-            all_clear(tree, &all, clear_of) && all_clear(&scene.bvh, &all, |i| clear_of(i + n))
-        }
-        (None, None) => all_clear(&scene.bvh, &all, clear_of),
+        (Some(only), _) => all_clear(&scene.bvh, &all, |i| only[i as usize], clear_of),
+        (None, Some((tree, n))) => all_clear(tree, &all, |i| i, clear_of)
+            .and_then(|()| all_clear(&scene.bvh, &all, |i| i + n, clear_of)),
+        (None, None) => all_clear(&scene.bvh, &all, |i| i, clear_of),
     }
 }
 
-/// Whether `clear_of` holds for every item of `tree` whose box overlaps `query`; the walk
-/// stops at the first that fails.
-fn all_clear(tree: &Bvh, query: &Aabb, mut clear_of: impl FnMut(u32) -> bool) -> bool {
-    let mut clear = true;
+/// Whether `clear_of` holds for the face `face(i)` of every item `i` of `tree` whose box
+/// overlaps `query`; the walk stops at the first that fails, and names it.
+fn all_clear(
+    tree: &Bvh,
+    query: &Aabb,
+    face: impl Fn(u32) -> u32,
+    clear_of: impl Fn(u32) -> bool,
+) -> Result<(), u32> {
+    let mut blocked = None;
     tree.for_each_overlapping_while(query, |i| {
-        clear = clear_of(i);
-        clear
+        let g = face(i);
+        if clear_of(g) {
+            true
+        } else {
+            blocked = Some(g);
+            false
+        }
     });
-    clear
+    blocked.map_or(Ok(()), Err)
 }
 
 fn commit(scene: &mut Scene<'_>, m: &mut Mover, t: f64, policy: StepPolicy) {
@@ -378,6 +397,8 @@ pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPoli
         m.star.sort_unstable(); // for `check`'s binary search; the star's order decides nothing
     }
     let batches = batches(movers, &scene.faces, scene.positions.len());
+    // Per mover, the face that refused its last step (see `check`).
+    let mut blockers: Vec<Option<u32>> = vec![None; movers.len()];
     loop {
         let mut any = false;
         for batch in &batches {
@@ -392,16 +413,20 @@ pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPoli
             any = true;
             let frozen: &Scene<'_> = scene;
             let ms: &[Mover] = movers;
-            let results: Vec<(u32, f64, bool)> = active
+            let last: &[Option<u32>] = &blockers;
+            let results: Vec<(u32, f64, Result<(), u32>)> = active
                 .par_iter()
                 .map(|&i| {
                     let m = &ms[i as usize];
                     let t = (m.t + m.step).min(m.target);
-                    (i, t, check(frozen, m, t))
+                    (i, t, check(frozen, m, t, last[i as usize]))
                 })
                 .collect();
-            let accepted: Vec<(u32, f64)> =
-                results.iter().filter(|r| r.2).map(|r| (r.0, r.1)).collect();
+            let accepted: Vec<(u32, f64)> = results
+                .iter()
+                .filter(|r| r.2.is_ok())
+                .map(|r| (r.0, r.1))
+                .collect();
             let mut conflicted = vec![false; accepted.len()];
             if accepted.len() > 1 {
                 let boxes: Vec<Aabb> = accepted
@@ -420,15 +445,20 @@ pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPoli
             }
             for (k, &(i, t)) in accepted.iter().enumerate() {
                 if conflicted[k] {
-                    if check(scene, &movers[i as usize], t) {
-                        commit(scene, &mut movers[i as usize], t, policy);
-                    } else {
-                        reject(&mut movers[i as usize], policy);
+                    match check(scene, &movers[i as usize], t, blockers[i as usize]) {
+                        Ok(()) => commit(scene, &mut movers[i as usize], t, policy),
+                        Err(g) => {
+                            blockers[i as usize] = Some(g);
+                            reject(&mut movers[i as usize], policy);
+                        }
                     }
                 }
             }
-            for r in results.iter().filter(|r| !r.2) {
-                reject(&mut movers[r.0 as usize], policy);
+            for r in &results {
+                if let Err(g) = r.2 {
+                    blockers[r.0 as usize] = Some(g);
+                    reject(&mut movers[r.0 as usize], policy);
+                }
             }
         }
         if !any {

@@ -94,6 +94,25 @@ pub(crate) struct Unchanged<'a> {
     pub(crate) tree: &'a Bvh,
 }
 
+/// Whether the boxes of the faces' prisms (a face's box on the three surfaces together,
+/// `boxes`: input, outer, inner, `nf` each) are on the whole more than four times as wide as
+/// the faces' own boxes. A search over prisms then meets many more pairs than there are
+/// pairs of faces to test (at 1 % of the diagonal on a fine scan the offsets are many edges
+/// long); where a prism is not much wider than its face, one search over prisms is cheaper
+/// than three over faces (the changelog has the measurements behind the factor).
+fn prisms_much_larger(boxes: &[Aabb], nf: usize) -> bool {
+    let width = |b: &Aabb| (b.max - b.min).max_element();
+    let (prisms, faces) = (0..nf)
+        .into_par_iter()
+        .map(|f| {
+            let own = [boxes[f], boxes[f + nf], boxes[f + 2 * nf]];
+            let prism = own[0].union(&own[1]).union(&own[2]);
+            (width(&prism), own.iter().map(width).sum::<f64>() / 3.0)
+        })
+        .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1));
+    prisms > 4.0 * faces
+}
+
 /// Exact contacts among input, outer and inner (same connectivity `faces`), each envelope
 /// given with its offsets.
 ///
@@ -121,6 +140,29 @@ pub(crate) fn prove_envelopes(
     faces: &[[u32; 3]],
     input_tree: &Bvh,
     known: &Known<'_>,
+) -> (Vec<Contact>, Bvh) {
+    prove_envelopes_searching(input, envelopes, faces, input_tree, known, None)
+}
+
+/// How the full proof finds its candidate pairs (the same pairs either way).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum PairSearch {
+    /// One search over the faces' prisms (each face's box on the three surfaces together),
+    /// then the pairs of their triangles whose boxes overlap.
+    Prisms,
+    /// One search per pair of surfaces, over the triangles' own boxes.
+    Faces,
+}
+
+/// [`prove_envelopes`] with the full proof's pair search chosen by the caller (`None`: by
+/// [`prisms_much_larger`]).
+pub(crate) fn prove_envelopes_searching(
+    input: &[DVec3],
+    envelopes: [(&[DVec3], &[f64]); 2],
+    faces: &[[u32; 3]],
+    input_tree: &Bvh,
+    known: &Known<'_>,
+    search: Option<PairSearch>,
 ) -> (Vec<Contact>, Bvh) {
     let n = input.len() as u32;
     let nf = faces.len() as u32;
@@ -171,53 +213,90 @@ pub(crate) fn prove_envelopes(
                 .par_iter()
                 .map(|f| Aabb::from_triangle(f.map(|v| positions[v as usize])))
                 .collect();
-            // The envelopes' tree is only returned: refitted beside the search.
-            let refit = || input_tree.interleaved_refit(2, &boxes[nf as usize..]);
-            rayon::join(refit, || {
-                // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the union of
-                // the face's box on each surface) overlap, then every pair of their triangles on
-                // any two surfaces (within the input only when it is not known free) whose own
-                // boxes overlap: the same pairs as one search per pair of surfaces would give
-                // (two triangles' boxes overlap only where their prisms' do), for one tree
-                // walk instead of five.
-                let prism: Vec<Aabb> = (0..nf as usize)
-                    .into_par_iter()
-                    .map(|f| {
-                        boxes[f]
-                            .union(&boxes[f + nf as usize])
-                            .union(&boxes[f + 2 * nf as usize])
-                    })
-                    .collect();
-                let prism_tree = input_tree.refit(&prism);
-                let test = |x: u32, y: u32, out: &mut Vec<(u32, u32)>| {
-                    if boxes[x as usize].overlaps(&boxes[y as usize]) && meet(x, y) {
-                        out.push((x.min(y), x.max(y)));
-                    }
-                };
-                let first = u32::from(known.input_free);
-                let mut pairs = prism_tree.self_pairs_emit(|f, g, out| {
-                    for s in 0..3 {
-                        for t in 0..3 {
-                            if s.max(t) >= first {
-                                test(s * nf + f, t * nf + g, out);
+            let first = u32::from(known.input_free);
+            let search = search.unwrap_or_else(|| {
+                if prisms_much_larger(&boxes, nf as usize) {
+                    PairSearch::Faces
+                } else {
+                    PairSearch::Prisms
+                }
+            });
+            if search == PairSearch::Faces {
+                // Large offsets against the faces: a prism's box (a face on all three
+                // surfaces) meets far more prisms than its faces meet faces, so each pair
+                // of surfaces is searched with the faces' own boxes: the envelopes' tree
+                // with itself (outer-outer, inner-inner, outer-inner) and with the input's,
+                // and the input's with itself when it is not known free. The same pairs.
+                let envelope_tree = input_tree.interleaved_refit(2, &boxes[nf as usize..]);
+                let (mut pairs, (cross, within)) = rayon::join(
+                    || envelope_tree.self_pairs_where(|a, b| meet(a + nf, b + nf)),
+                    || {
+                        rayon::join(
+                            || envelope_tree.pairs_with_where(input_tree, |a, g| meet(a + nf, g)),
+                            || {
+                                if first == 0 {
+                                    input_tree.self_pairs_where(meet)
+                                } else {
+                                    Vec::new()
+                                }
+                            },
+                        )
+                    },
+                );
+                for p in &mut pairs {
+                    *p = (p.0 + nf, p.1 + nf);
+                }
+                pairs.extend(cross.into_iter().map(|(a, g)| (g, a + nf)));
+                pairs.extend(within);
+                (envelope_tree, pairs)
+            } else {
+                // The envelopes' tree is only returned: refitted beside the search.
+                let refit = || input_tree.interleaved_refit(2, &boxes[nf as usize..]);
+                rayon::join(refit, || {
+                    // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the union of
+                    // the face's box on each surface) overlap, then every pair of their triangles on
+                    // any two surfaces (within the input only when it is not known free) whose own
+                    // boxes overlap: the same pairs as one search per pair of surfaces would give
+                    // (two triangles' boxes overlap only where their prisms' do), for one tree
+                    // walk instead of five.
+                    let prism: Vec<Aabb> = (0..nf as usize)
+                        .into_par_iter()
+                        .map(|f| {
+                            boxes[f]
+                                .union(&boxes[f + nf as usize])
+                                .union(&boxes[f + 2 * nf as usize])
+                        })
+                        .collect();
+                    let prism_tree = input_tree.refit(&prism);
+                    let test = |x: u32, y: u32, out: &mut Vec<(u32, u32)>| {
+                        if boxes[x as usize].overlaps(&boxes[y as usize]) && meet(x, y) {
+                            out.push((x.min(y), x.max(y)));
+                        }
+                    };
+                    let mut pairs = prism_tree.self_pairs_emit(|f, g, out| {
+                        for s in 0..3 {
+                            for t in 0..3 {
+                                if s.max(t) >= first {
+                                    test(s * nf + f, t * nf + g, out);
+                                }
                             }
                         }
-                    }
-                });
-                // The triangles of one face on two surfaces.
-                let own: Vec<(u32, u32)> = (0..nf)
-                    .into_par_iter()
-                    .flat_map_iter(|f| {
-                        let mut out = Vec::new();
-                        for (s, t) in [(0, 1), (0, 2), (1, 2)] {
-                            test(s * nf + f, t * nf + f, &mut out);
-                        }
-                        out
-                    })
-                    .collect();
-                pairs.extend(own);
-                pairs
-            })
+                    });
+                    // The triangles of one face on two surfaces.
+                    let own: Vec<(u32, u32)> = (0..nf)
+                        .into_par_iter()
+                        .flat_map_iter(|f| {
+                            let mut out = Vec::new();
+                            for (s, t) in [(0, 1), (0, 2), (1, 2)] {
+                                test(s * nf + f, t * nf + f, &mut out);
+                            }
+                            out
+                        })
+                        .collect();
+                    pairs.extend(own);
+                    pairs
+                })
+            }
         }
         Some(u) => {
             // Only the changed faces, each against every face (a pair of two changed faces
