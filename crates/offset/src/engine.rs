@@ -13,10 +13,11 @@
 //!
 //! Candidates: every position a scene face can take lies in its swept box, so each check
 //! queries the tree of swept boxes with the box of the star at the proposed positions and
-//! filters what it finds by the current boxes. (A list per mover of every face its star
-//! could ever reach grows with (epsilon / edge length)^2 and made the growth quadratic on
-//! fine meshes at large epsilon.) A mover's sweep starts where the mover starts (its proved
-//! start offset), since it never moves back. Before an exact test, a pair is
+//! filters what it finds by the current boxes, computed from the positions when asked
+//! (kept per face, they were another array of boxes as large as the tree's). (A list per
+//! mover of every face its star could ever reach grows with (epsilon / edge length)^2 and
+//! made the growth quadratic on fine meshes at large epsilon.) A mover's sweep starts
+//! where the mover starts (its proved start offset), since it never moves back. Before an exact test, a pair is
 //! skipped only when f64 arithmetic with a rigorous error bound proves it apart: the
 //! unshared vertices of one triangle strictly on one side of the other's plane, or the
 //! separating-axis test on the nine edge-cross-edge directions (strictly disjoint
@@ -56,9 +57,6 @@ pub(crate) struct Scene<'a> {
     pub(crate) fixed: Option<(&'a Bvh, u32)>,
     /// Pairs `(star face, other face)` never tested.
     pub(crate) exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
-    /// The box of every face at its current positions, kept up to date by [`commit`] (a
-    /// mover's star holds every face with one of its vertices, so only those change).
-    pub(crate) boxes: Vec<Aabb>,
 }
 
 impl<'a> Scene<'a> {
@@ -86,20 +84,17 @@ impl<'a> Scene<'a> {
         fixed: Option<(&'a Bvh, u32)>,
     ) -> Self {
         let n = fixed.map_or(0, |f| f.1 as usize);
-        let mut scene = Scene {
-            bvh: Bvh::new(&swept[n..]),
+        let mut swept = swept;
+        swept.drain(..n);
+        Scene {
+            bvh: Bvh::from_boxes(swept),
             only: None,
             fixed,
             positions,
             alias,
             faces,
             exempt,
-            boxes: Vec::new(),
-        };
-        scene.boxes = (0..scene.faces.len() as u32)
-            .map(|f| scene.face_box(f))
-            .collect();
-        scene
+        }
     }
 
     /// [`Scene::new`] whose tree holds only the faces whose swept box overlaps one of
@@ -119,21 +114,17 @@ impl<'a> Scene<'a> {
             .filter(|&f| near.any_overlapping(&swept[f as usize]))
             .collect();
         let kept: Vec<Aabb> = only.iter().map(|&f| swept[f as usize]).collect();
-        let mut scene = Scene {
-            bvh: Bvh::new(&kept),
+        // Millions of faces at large offsets: one array of boxes at a time.
+        drop(swept);
+        Scene {
+            bvh: Bvh::from_boxes(kept),
             only: Some(only),
             fixed: None,
             positions,
             alias,
             faces,
             exempt,
-            boxes: Vec::new(),
-        };
-        scene.boxes = (0..scene.faces.len() as u32)
-            .into_par_iter()
-            .map(|f| scene.face_box(f))
-            .collect();
-        scene
+        }
     }
 
     fn face_box(&self, f: u32) -> Aabb {
@@ -222,11 +213,11 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64, blocker: Option<u32>) -> Result<(
     let clear_of = |g: u32| {
         let g_in_star = m.star.binary_search(&g).is_ok();
         let gv = scene.faces[g as usize];
-        // A star face is at the proposed positions; any other face's box is the kept one.
+        // A star face is at the proposed positions, any other face where it is now.
         let bg = if g_in_star {
             Aabb::from_triangle(gv.map(pos))
         } else {
-            scene.boxes[g as usize]
+            scene.face_box(g)
         };
         if !bg.overlaps(&all) {
             return true;
@@ -295,9 +286,6 @@ fn commit(scene: &mut Scene<'_>, m: &mut Mover, t: f64, policy: StepPolicy) {
         let v = m.verts[k] as usize;
         scene.positions[v] = p;
         scene.alias[v] = v as u32;
-    }
-    for &f in &m.star {
-        scene.boxes[f as usize] = scene.face_box(f);
     }
     m.t = t;
     m.steps += 1;

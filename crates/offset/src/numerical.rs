@@ -343,6 +343,7 @@ pub(crate) fn numerical_eps_ordered(
         }
     }
     let boxes = engine::swept_face_boxes(&faces, &sweep);
+    drop(sweep);
     let never = |_: u32, _: u32| false;
     // A few movers (the growth from proved offsets where a few fell short): a tree over
     // the faces they can reach only.

@@ -1024,6 +1024,11 @@ fn simplify_between(
     };
     let mut outcome = step.run(&mut mesh, &input, progress)?;
     go_on(progress)?;
+    // What follows proves against the input, not the envelopes: their barriers and fiber
+    // test go first (hundreds of megabytes on a fine scan at large epsilon).
+    let kept_faces = barriers.kept().to_vec();
+    drop(fiber_test);
+    drop((barriers, outer, inner));
     let mut tolerance = None;
     let cut_back = envelope.achieved_p5 < TOLERANCE_WHEN_CUT_BELOW;
     if options.tolerance_phase
@@ -1042,7 +1047,7 @@ fn simplify_between(
             &mut mesh,
             soup,
             epsilon_abs,
-            barriers.kept(),
+            &kept_faces,
             target.as_ref().map(|t| t as &dyn StopRule),
             &mut visitor,
         )?;
