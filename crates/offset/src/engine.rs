@@ -17,7 +17,8 @@
 //! (kept per face, they were another array of boxes as large as the tree's). (A list per
 //! mover of every face its star could ever reach grows with (epsilon / edge length)^2 and
 //! made the growth quadratic on fine meshes at large epsilon.) A mover's sweep starts
-//! where the mover starts (its proved start offset), since it never moves back. Before an exact test, a pair is
+//! where the mover starts (its proved start offset), since it never moves back. A check
+//! first tries the face that refused the mover's last step. Before an exact test, a pair is
 //! skipped only when f64 arithmetic with a rigorous error bound proves it apart: the
 //! unshared vertices of one triangle strictly on one side of the other's plane, or the
 //! separating-axis test on the nine edge-cross-edge directions (strictly disjoint

@@ -253,12 +253,12 @@ pub(crate) fn prove_envelopes_searching(
                 // The envelopes' tree is only returned: refitted beside the search.
                 let refit = || input_tree.interleaved_refit(2, &boxes[nf as usize..]);
                 rayon::join(refit, || {
-                    // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the union of
-                    // the face's box on each surface) overlap, then every pair of their triangles on
-                    // any two surfaces (within the input only when it is not known free) whose own
-                    // boxes overlap: the same pairs as one search per pair of surfaces would give
-                    // (two triangles' boxes overlap only where their prisms' do), for one tree
-                    // walk instead of five.
+                    // One pass over pairs of input faces `f`, `g` whose prisms' boxes (the
+                    // union of the face's box on each surface) overlap, then every pair of
+                    // their triangles on any two surfaces (within the input only when it is
+                    // not known free) whose own boxes overlap: the same pairs as one search
+                    // per pair of surfaces would give (two triangles' boxes overlap only
+                    // where their prisms' do), for one tree walk instead of five.
                     let prism: Vec<Aabb> = (0..nf as usize)
                         .into_par_iter()
                         .map(|f| {
