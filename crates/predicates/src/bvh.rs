@@ -240,32 +240,7 @@ impl Bvh {
     /// ```
     #[must_use]
     pub fn new(boxes: &[Aabb]) -> Bvh {
-        assert!(
-            boxes.len() < u32::MAX as usize,
-            "too many items for u32 ids"
-        );
-        let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
-        if boxes.is_empty() {
-            return Bvh {
-                nodes: Vec::new(),
-                items,
-                boxes: Vec::new(),
-            };
-        }
-        // Each item with its centre, so the partitions read contiguous memory (the same
-        // comparisons in the same places as on bare ids: the same tree).
-        let mut entries: Vec<Entry> = boxes
-            .iter()
-            .zip(0u32..)
-            .map(|(b, i)| Entry {
-                c: b.center().to_array(),
-                i,
-            })
-            .collect();
-        let nodes = build(boxes, &mut entries, 0);
-        for (slot, e) in items.iter_mut().zip(&entries) {
-            *slot = e.i;
-        }
+        let (nodes, items) = shape(boxes);
         let ordered = items.iter().map(|&i| boxes[i as usize]).collect();
         Bvh {
             nodes,
@@ -292,25 +267,7 @@ impl Bvh {
     /// ```
     #[must_use]
     pub fn from_boxes(mut boxes: Vec<Aabb>) -> Bvh {
-        let shape = Bvh::new(&[]);
-        if boxes.is_empty() {
-            return shape;
-        }
-        assert!(
-            boxes.len() < u32::MAX as usize,
-            "too many items for u32 ids"
-        );
-        let mut entries: Vec<Entry> = boxes
-            .iter()
-            .zip(0u32..)
-            .map(|(b, i)| Entry {
-                c: b.center().to_array(),
-                i,
-            })
-            .collect();
-        let nodes = build(&boxes, &mut entries, 0);
-        let items: Vec<u32> = entries.iter().map(|e| e.i).collect();
-        drop(entries);
+        let (nodes, items) = shape(&boxes);
         // Leaf position `k` takes the box of item `items[k]`: follow each cycle of that
         // permutation once.
         let mut placed = vec![false; boxes.len()];
@@ -1095,6 +1052,29 @@ fn cross_rec<F: Fn(u32, u32, &mut Vec<(u32, u32)>) + Sync>(
         cross_rec(ta, x.0, tb, x.1, f, out);
         cross_rec(ta, y.0, tb, y.1, f, out);
     }
+}
+
+/// The nodes of the tree over `boxes` and its items in leaf order (no boxes yet).
+fn shape(boxes: &[Aabb]) -> (Vec<Node>, Vec<u32>) {
+    assert!(
+        boxes.len() < u32::MAX as usize,
+        "too many items for u32 ids"
+    );
+    if boxes.is_empty() {
+        return (Vec::new(), Vec::new());
+    }
+    // Each item with its centre, so the partitions read contiguous memory (the same
+    // comparisons in the same places as on bare ids: the same tree).
+    let mut entries: Vec<Entry> = boxes
+        .iter()
+        .zip(0u32..)
+        .map(|(b, i)| Entry {
+            c: b.center().to_array(),
+            i,
+        })
+        .collect();
+    let nodes = build(boxes, &mut entries, 0);
+    (nodes, entries.iter().map(|e| e.i).collect())
 }
 
 /// Builds the subtree over `items` (positions `offset..` in the global item order); node 0 of
