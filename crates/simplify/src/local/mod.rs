@@ -36,13 +36,16 @@
 //!
 //! The output is deterministic and the same for any number of threads. With the
 //! first-in-first-out order the queue is taken in batches (`independent_batch`: the front
-//! vertex and the next ones whose one-ring boxes are apart from everything before them);
+//! vertex and the next ones whose one-ring boxes are apart from those taken before them);
 //! the removals of a batch are *planned* in parallel (checks, hole, filling: read-only) and
 //! *carried out* one by one in queue order. A plan only reads the mesh inside its box, so
-//! this is the paper's FIFO except that re-queued neighbours of a batch are appended after
-//! the whole batch, and that vertices whose fiber verdict is known ([`Doomed`]) are
-//! attempted as they come, also beside a removal in the same batch that changes their fan
-//! (they are then queued again). Other orders take one vertex at a time.
+//! this is the paper's FIFO except that where the queue is a chain of neighbours (a grid
+//! numbered row after row) a vertex next to one taken waits at the front of the queue for
+//! the next batch while those after it in the window go on, that re-queued
+//! neighbours of a batch are appended after the whole batch, and that vertices whose fiber
+//! verdict is known ([`Doomed`]) are attempted as they come, also beside a removal in the
+//! same batch that changes their fan (they are then queued again). Other orders take one
+//! vertex at a time.
 
 mod collapse;
 mod moving;

@@ -114,7 +114,7 @@ pub(super) fn run(
             if batched {
                 awake.hold(scope, &take_ahead);
             }
-            // Commit in queue order: the same calls, in the same order, as one at a time.
+            // Commit in queue order: the plans are apart; the order fixes the re-queued order.
             for (&(v, ahead), (plan, tests)) in batch.iter().zip(plans) {
                 if policies.stop.should_stop(local.mesh().num_faces()) {
                     break 'run;

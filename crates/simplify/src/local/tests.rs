@@ -1,7 +1,9 @@
 use super::VertexFibers;
 use super::collapse::{COLLAPSE_REACH, COLLAPSE_TRIES, collapse_candidates};
 use super::plan::LocalSimplifier;
-use super::queue::{Entry, RemovalQueue, queue_vertices};
+use super::queue::{
+    CHAIN_BATCH, Entry, RemovalQueue, RingBoxes, independent_batch, queue_vertices,
+};
 use super::scheduler::plan_each;
 use super::verdicts::{Doomed, FillNothing, Verdict};
 use crate::barriers::Barriers;
@@ -221,6 +223,85 @@ fn queue_pops_in_heap_order_with_both_stores() {
         from_deque > 100 && from_heap > 100 && put_back > 200,
         "{from_deque} {from_heap} {put_back}"
     );
+}
+
+/// A batch's planned vertices have pairwise apart one-ring boxes. Where the queue is a chain
+/// (a torus numbered ring after ring: each vertex a neighbour of the one before), a vertex
+/// next to one taken does not hold back those after it, so the first window still plans
+/// dozens. The vertices passed over keep their order at the front of the queue.
+#[test]
+fn a_chain_of_neighbours_does_not_shrink_the_batch() {
+    let m = HalfEdgeMesh::from_soup(&generate::torus(1.0, 0.3, 64, 64)).unwrap();
+    let mut q = queue_vertices(&m, &Fifo);
+    let mut rings = RingBoxes::default();
+    let batch = independent_batch(&mut q, &m, |m, v| rings.get(m, v), |_| false);
+    let taken: Vec<VertexId> = batch.iter().map(|&(v, _)| v).collect();
+    // Every third ring's every third vertex, about; the rule before this one planned 1.
+    assert!(taken.len() >= 32, "{taken:?}");
+    assert_eq!(taken[0], VertexId(0));
+    for (i, &a) in taken.iter().enumerate() {
+        for &b in &taken[..i] {
+            assert!(!rings.get(&m, a).overlaps(&rings.get(&m, b)), "{a} and {b}");
+        }
+    }
+    // The rest, in id order: those passed over first, then those not looked at.
+    let mut rest = Vec::new();
+    while let Some(v) = q.pop() {
+        rest.push(v);
+    }
+    let expected: Vec<VertexId> = m.vertices().filter(|v| !taken.contains(v)).collect();
+    assert_eq!(rest, expected);
+}
+
+/// Where the queue is not a chain (the torus's vertices numbered at random), a batch keeps
+/// the one-at-a-time order: each planned vertex's box is apart from those of all vertices
+/// queued before it, planned or passed over.
+#[test]
+fn a_batch_off_a_chain_keeps_the_queue_order() {
+    let mut s = generate::torus(1.0, 0.3, 64, 64);
+    // A fixed shuffle of the ids (xorshift, Fisher-Yates).
+    let n = s.positions.len();
+    let mut new_id: Vec<u32> = (0..n as u32).collect();
+    let mut x = 0x9E37_79B9_7F4A_7C15_u64;
+    for i in (1..n).rev() {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        new_id.swap(i, (x % (i as u64 + 1)) as usize);
+    }
+    let mut positions = vec![DVec3::ZERO; n];
+    for (old, &new) in new_id.iter().enumerate() {
+        positions[new as usize] = s.positions[old];
+    }
+    s.positions = positions;
+    for f in &mut s.faces {
+        *f = f.map(|v| VertexId(new_id[v.index()]));
+    }
+    let m = HalfEdgeMesh::from_soup(&s).unwrap();
+    let mut q = queue_vertices(&m, &Fifo);
+    let mut rings = RingBoxes::default();
+    let batch = independent_batch(&mut q, &m, |m, v| rings.get(m, v), |_| false);
+    assert!(batch.len() >= CHAIN_BATCH, "{batch:?}");
+    let last = batch.last().unwrap().0;
+    for &(t, _) in &batch {
+        // Queued before `t`: the smaller ids (the queue starts in id order).
+        for u in (0..t.0).map(VertexId) {
+            if batch.iter().all(|&(b, _)| b != u) {
+                assert!(
+                    !rings.get(&m, t).overlaps(&rings.get(&m, u)),
+                    "{u} before {t}"
+                );
+            }
+        }
+    }
+    // Those passed over are back in front, in id order, then the rest.
+    let rest: Vec<VertexId> = std::iter::from_fn(|| q.pop()).collect();
+    let expected: Vec<VertexId> = m
+        .vertices()
+        .filter(|v| batch.iter().all(|&(b, _)| b != *v))
+        .collect();
+    assert_eq!(rest, expected);
+    assert!(rest.iter().filter(|v| v.0 < last.0).count() > 0);
 }
 
 /// Collapse positions beyond [`COLLAPSE_REACH`] times the local offset are dropped; the
