@@ -80,12 +80,11 @@ impl<'a> Scene<'a> {
         positions: Vec<DVec3>,
         alias: Vec<u32>,
         faces: Vec<[u32; 3]>,
-        swept: Vec<Aabb>,
+        mut swept: Vec<Aabb>,
         exempt: &'a (dyn Fn(u32, u32) -> bool + Sync),
         fixed: Option<(&'a Bvh, u32)>,
     ) -> Self {
         let n = fixed.map_or(0, |f| f.1 as usize);
-        let mut swept = swept;
         swept.drain(..n);
         Scene {
             bvh: Bvh::from_boxes(swept),
@@ -126,10 +125,6 @@ impl<'a> Scene<'a> {
             faces,
             exempt,
         }
-    }
-
-    fn face_box(&self, f: u32) -> Aabb {
-        Aabb::from_triangle(self.faces[f as usize].map(|i| self.positions[i as usize]))
     }
 }
 
@@ -215,15 +210,11 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64, blocker: Option<u32>) -> Result<(
         let g_in_star = m.star.binary_search(&g).is_ok();
         let gv = scene.faces[g as usize];
         // A star face is at the proposed positions, any other face where it is now.
-        let bg = if g_in_star {
-            Aabb::from_triangle(gv.map(pos))
-        } else {
-            scene.face_box(g)
-        };
+        let tg = gv.map(pos);
+        let bg = Aabb::from_triangle(tg);
         if !bg.overlaps(&all) {
             return true;
         }
-        let tg = gv.map(pos);
         let ag = gv.map(alias);
         let pg = Planar::new(tg);
         for (f, pf, af, bf) in &star {

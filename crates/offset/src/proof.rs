@@ -234,7 +234,7 @@ pub(crate) fn prove_envelopes_searching(
                         rayon::join(
                             || envelope_tree.pairs_with_where(input_tree, |a, g| meet(a + nf, g)),
                             || {
-                                if first == 0 {
+                                if !known.input_free {
                                     input_tree.self_pairs_where(meet)
                                 } else {
                                     Vec::new()
