@@ -255,13 +255,61 @@ impl Target {
         let e2 = eps * eps;
         points
             .iter()
-            .any(|&p| match self.nearest_approx_from(p, hint, &mut stack) {
-                Some((t, d2)) => {
+            .any(|&p| match self.some_within(p, hint, e2, &mut stack) {
+                Some(t) => {
                     hint = Some(t);
-                    d2 > e2
+                    false
                 }
                 None => true,
             })
+    }
+
+    /// Some triangle whose estimated squared distance to `p` is at most `e2`, trying `hint`
+    /// first; `None` when there is none. The question of [`Target::nearest_approx_from`]
+    /// with `d2 <= e2`, answered at the first triangle within reach instead of the nearest.
+    fn some_within(
+        &self,
+        p: DVec3,
+        hint: Option<u32>,
+        e2: f64,
+        stack: &mut Vec<NodeId>,
+    ) -> Option<u32> {
+        if let Some(t) = hint
+            && approx_sq_dist(p, &self.tris[t as usize]) <= e2
+        {
+            return Some(t);
+        }
+        stack.clear();
+        stack.push(self.bvh.root()?);
+        while let Some(n) = stack.pop() {
+            if self.bvh.bounds(n).sq_distance_lower_bound(p) > e2 {
+                continue;
+            }
+            match self.bvh.kind(n) {
+                NodeKind::Leaf(items) => {
+                    if let Some(&i) = items
+                        .iter()
+                        .find(|&&i| approx_sq_dist(p, &self.tris[i as usize]) <= e2)
+                    {
+                        return Some(i);
+                    }
+                }
+                NodeKind::Interior(a, b) => {
+                    let (da, db) = (
+                        self.bvh.bounds(a).sq_distance_lower_bound(p),
+                        self.bvh.bounds(b).sq_distance_lower_bound(p),
+                    );
+                    if da < db {
+                        stack.push(b);
+                        stack.push(a);
+                    } else {
+                        stack.push(a);
+                        stack.push(b);
+                    }
+                }
+            }
+        }
+        None
     }
 
     /// Approximate nearest triangle to `p` (f64 branch and bound); `None` when empty.
@@ -1267,6 +1315,29 @@ mod tests {
             if off == 0.0 && e2 >= 1e-6 && a != b {
                 prop_assert!(near_edge(p, &t, e2), "{p:?} {t:?} {e2}");
             }
+        }
+
+        /// `some_point_beyond` (the first triangle within reach, from a hint) answers as the
+        /// nearest-triangle search would: some point's nearest triangle beyond `eps`.
+        #[test]
+        fn some_point_beyond_agrees_with_the_nearest_triangle(
+            tris in prop::collection::vec([point(), point(), point()], 1..40),
+            points in prop::collection::vec(point(), 1..12),
+            scale in 0.9f64..1.1,
+        ) {
+            let target = Target::from_triangles(tris);
+            // Epsilon about the farthest point's distance, so that both answers come up.
+            let far = points
+                .iter()
+                .filter_map(|&p| target.nearest_approx(p))
+                .map(|(_, d2)| d2)
+                .fold(0.0, f64::max);
+            let eps = far.sqrt() * scale;
+            let e2 = eps * eps;
+            let nearest_beyond = points
+                .iter()
+                .any(|&p| target.nearest_approx(p).is_none_or(|(_, d2)| d2 > e2));
+            prop_assert_eq!(target.some_point_beyond(&points, eps), nearest_beyond);
         }
     }
 }
