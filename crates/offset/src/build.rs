@@ -1,5 +1,7 @@
 //! The pipeline of [`build_envelopes`] (steps 1-7 of the crate docs): accept the input,
 //! evaluate epsilon, normals, offsets by the chosen method, proof and repair, tubes.
+use std::sync::atomic::Ordering;
+
 use envelope_mesh::{Topology, TriangleSoup, VertexFaces, VertexId, analyze};
 use envelope_predicates::bvh::Bvh;
 use glam::DVec3;
@@ -166,6 +168,15 @@ pub fn build_envelopes_with(
         )
     };
     let input_free = options.input_free_of_intersections;
+    let abandon = options.abandon.as_deref();
+    let abandoned = || {
+        if abandon.is_some_and(|a| a.load(Ordering::Relaxed)) {
+            Err(EnvelopeError::Abandoned)
+        } else {
+            Ok(())
+        }
+    };
+    abandoned()?;
     let prove = |(p, m): (Vec<f64>, Vec<f64>), proved: Option<&Proved>| {
         let base = proved.filter(|b| b.proof.contacts.is_empty());
         prove_and_repair(
@@ -175,7 +186,7 @@ pub fn build_envelopes_with(
             (p, m),
             (input_free, base),
             input_tree,
-            options.max_repair_rounds,
+            (options.max_repair_rounds, abandon),
         )
     };
     let (
@@ -194,6 +205,7 @@ pub fn build_envelopes_with(
         EnvelopeMethod::Auto => {
             let short = |e: &[f64]| e.iter().zip(&targets).any(|(x, r)| x < r);
             let a = prove(analytical(), None);
+            abandoned()?;
             if !a.proof.holds() {
                 // Repair gave up: numerical from scratch, and the better of the two.
                 let n = prove(numerical(None), None);
@@ -217,6 +229,7 @@ pub fn build_envelopes_with(
             }
         }
     };
+    abandoned()?;
     let tubes = match options.tube_segments {
         Some(k) if !topo.is_empty() => {
             // The input's tree and the envelopes' (item = face of the outer, then of the

@@ -66,6 +66,10 @@ pub enum EnvelopeError {
         hi = TUBE_SEGMENTS.end()
     )]
     TubeSegments(u32),
+    /// The caller set [`EnvelopeOptions::abandon`](crate::EnvelopeOptions::abandon): the
+    /// envelopes were no longer wanted.
+    #[error("the envelope build was abandoned by its caller")]
+    Abandoned,
 }
 
 /// The smallest epsilon, as a fraction of the largest coordinate magnitude, that

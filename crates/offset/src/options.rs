@@ -1,5 +1,8 @@
 //! What [`crate::build_envelopes`] is asked for: the method, its parameters and the limits
 //! on the input.
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
 use crate::field::EpsilonField;
 
 /// How the per-vertex epsilon is found.
@@ -71,6 +74,13 @@ pub struct EnvelopeOptions {
     /// the proof then skips input-input pairs. With `false` (the default) it tests them, and
     /// an intersecting input shows as input-input contacts.
     pub input_free_of_intersections: bool,
+    /// Set by another thread when the envelopes are no longer wanted (the simplify driver's
+    /// input check, running beside the build, found the input unusable as it is): the build
+    /// then stops at its next stage or repair round with [`EnvelopeError::Abandoned`]. What
+    /// a build returns never depends on when it was set, only whether.
+    ///
+    /// [`EnvelopeError::Abandoned`]: crate::EnvelopeError::Abandoned
+    pub abandon: Option<Arc<AtomicBool>>,
 }
 
 impl EnvelopeOptions {
@@ -84,6 +94,7 @@ impl EnvelopeOptions {
             tube_segments: Some(8),
             max_repair_rounds: 30,
             input_free_of_intersections: false,
+            abandon: None,
         }
     }
 }

@@ -1,5 +1,7 @@
 //! Step 6 of [`crate::build_envelopes`]: place the envelope vertices, prove them exactly,
 //! and halve the offsets of every vertex of an offending face until the proof holds.
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use envelope_mesh::TriangleSoup;
 use envelope_predicates::bvh::Bvh;
 use glam::DVec3;
@@ -25,7 +27,8 @@ impl Proved {
 }
 
 /// Step 6: places the envelope vertices, proves them exactly, and halves the offsets of
-/// every vertex of an offending face until the proof holds (at most `max_rounds` rounds).
+/// every vertex of an offending face until the proof holds (at most `max_rounds` rounds,
+/// and none more once `abandon` is set: the caller no longer wants the result).
 ///
 /// `known`: whether the input is known free of self-intersections, and a configuration over
 /// the same input that was proved without any contact; the first proof then tests only the
@@ -38,7 +41,7 @@ pub(crate) fn prove_and_repair(
     (mut eps_plus, mut eps_minus): (Vec<f64>, Vec<f64>),
     (input_free, base): (bool, Option<&Proved>),
     input_tree: &Bvh,
-    max_rounds: u32,
+    (max_rounds, abandon): (u32, Option<&AtomicBool>),
 ) -> Proved {
     let place = |eps: &[f64], s: f64| -> Vec<DVec3> {
         soup.positions
@@ -90,7 +93,10 @@ pub(crate) fn prove_and_repair(
         ..Proof::default()
     };
     let mut repaired = vec![false; soup.num_vertices()];
-    while !proof.contacts.is_empty() && proof.repair_rounds < max_rounds {
+    while !proof.contacts.is_empty()
+        && proof.repair_rounds < max_rounds
+        && !abandon.is_some_and(|a| a.load(Ordering::Relaxed))
+    {
         let mut halve_plus = vec![false; soup.num_vertices()];
         let mut halve_minus = vec![false; soup.num_vertices()];
         for c in &proof.contacts {

@@ -44,7 +44,7 @@ fn proof_against_a_proved_configuration_finds_what_changed() {
         (eps.clone(), eps.clone()),
         (false, None),
         &tree,
-        0,
+        (0, None),
     );
     assert!(base.proof.contacts.is_empty());
     let same = prove_and_repair(
@@ -54,7 +54,7 @@ fn proof_against_a_proved_configuration_finds_what_changed() {
         (eps.clone(), eps.clone()),
         (true, Some(&base)),
         &tree,
-        0,
+        (0, None),
     );
     assert!(same.proof.contacts.is_empty());
     // Vertex 7's outer offset negative: its outer vertex goes through the input.
@@ -68,7 +68,7 @@ fn proof_against_a_proved_configuration_finds_what_changed() {
             (pushed.clone(), eps.clone()),
             known,
             &tree,
-            0,
+            (0, None),
         );
         assert!(
             p.proof
@@ -107,7 +107,7 @@ fn input_pairs_are_tested_unless_known_free() {
             (eps.clone(), eps.clone()),
             (input_free, None),
             &tree,
-            0,
+            (0, None),
         )
         .proof
         .contacts
@@ -137,7 +137,7 @@ fn repair_rounds_find_what_a_full_proof_finds() {
             (eps.clone(), eps.clone()),
             (false, None),
             &tree,
-            rounds,
+            (rounds, None),
         );
         let full = prove_and_repair(
             &soup,
@@ -146,7 +146,7 @@ fn repair_rounds_find_what_a_full_proof_finds() {
             (repaired.eps_plus.clone(), repaired.eps_minus.clone()),
             (false, None),
             &tree,
-            0,
+            (0, None),
         );
         assert_eq!(
             repaired.proof.contacts, full.proof.contacts,

@@ -177,6 +177,33 @@ fn unacceptable_input_is_a_typed_error() {
 }
 
 #[test]
+fn an_abandoned_build_stops_and_says_so() {
+    use std::sync::Arc;
+    use std::sync::atomic::AtomicBool;
+    let s = generate::torus(1.0, 0.3, 32, 12);
+    for method in [
+        EnvelopeMethod::Analytical,
+        EnvelopeMethod::Numerical,
+        EnvelopeMethod::Auto,
+    ] {
+        let options = |flag: bool| EnvelopeOptions {
+            method,
+            abandon: Some(Arc::new(AtomicBool::new(flag))),
+            ..EnvelopeOptions::new(EpsilonField::Constant(0.2))
+        };
+        assert_eq!(
+            build_envelopes(&s, &options(true)).unwrap_err(),
+            EnvelopeError::Abandoned
+        );
+        // A flag that stays down changes nothing.
+        let kept = build_envelopes(&s, &options(false)).unwrap();
+        let plain = build(&s, 0.2, method);
+        assert_eq!(kept.eps_plus, plain.eps_plus);
+        assert_eq!(kept.eps_minus, plain.eps_minus);
+    }
+}
+
+#[test]
 fn output_is_deterministic() {
     let s = generate::torus(1.0, 0.3, 32, 12);
     let a = build(&s, 0.2, EnvelopeMethod::Numerical);

@@ -27,6 +27,8 @@
 //! Sharp features need no special case (6.1): where the envelopes leave no room across a
 //! crease, no candidate triangle spanning it is valid.
 
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use envelope_check::{
@@ -647,15 +649,24 @@ pub fn simplify_with(
         .then(|| rayon::join(|| analyze(soup), || face_tree(soup)));
     let mut capped = tolerance_cap(soup, options);
     // The input check and the envelopes run side by side (much of the check is sequential);
-    // the check's verdict comes first, whatever the envelopes made of a refused input.
+    // the check's verdict comes first, whatever the envelopes made of a refused input. An
+    // input with problems never uses these envelopes (refused, or simplified around its
+    // crossings with envelopes of its own), so the check abandons them when it finds any.
+    let abandon = Arc::new(AtomicBool::new(false));
     let ((problems, own_topology), (env, env_seconds)) = rayon::join(
         // The check gives the topology the driver needs too (border walls, the report).
-        || match &shared {
-            Some((topology, tree)) => (input_problems_with(soup, topology, Some(tree)), None),
-            None => {
-                let (problems, topology) = input_problems_and_topology(soup);
-                (problems, Some(topology))
+        || {
+            let checked = match &shared {
+                Some((topology, tree)) => (input_problems_with(soup, topology, Some(tree)), None),
+                None => {
+                    let (problems, topology) = input_problems_and_topology(soup);
+                    (problems, Some(topology))
+                }
+            };
+            if !checked.0.is_empty() {
+                abandon.store(true, Ordering::Relaxed);
             }
+            checked
         },
         || {
             let env = envelopes_up_to(
@@ -663,6 +674,7 @@ pub fn simplify_with(
                 options,
                 shared.as_ref().map(|(t, b)| (t, b)),
                 capped.map(|(_, cap)| cap),
+                Some(Arc::clone(&abandon)),
             );
             (env, t_env.elapsed().as_secs_f64())
         },
@@ -776,7 +788,7 @@ pub(crate) fn envelopes_for(
     options: &SimplifyOptions,
     shared: Option<(&Topology, &Bvh)>,
 ) -> Result<Envelopes, DriverError> {
-    envelopes_up_to(soup, options, shared, None)
+    envelopes_up_to(soup, options, shared, None, None)
 }
 
 /// [`envelopes_for`], every offset requested at most `cap` (see [`tolerance_cap`]).
@@ -785,6 +797,7 @@ fn envelopes_up_to(
     options: &SimplifyOptions,
     shared: Option<(&Topology, &Bvh)>,
     cap: Option<f64>,
+    abandon: Option<Arc<AtomicBool>>,
 ) -> Result<Envelopes, DriverError> {
     let mut field = options.epsilon.evaluate(&soup.positions)?;
     if let Some(cap) = cap {
@@ -799,6 +812,7 @@ fn envelopes_up_to(
         // builds these for faces that meet nowhere ([`simplify_around_crossings`]), before
         // they are used.
         input_free_of_intersections: true,
+        abandon,
         ..EnvelopeOptions::new(EpsilonField::PerVertex(field))
     };
     Ok(match shared {
