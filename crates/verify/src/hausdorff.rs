@@ -294,22 +294,24 @@ impl Target {
                         return Some(i);
                     }
                 }
-                NodeKind::Interior(a, b) => {
-                    let (da, db) = (
-                        self.bvh.bounds(a).sq_distance_lower_bound(p),
-                        self.bvh.bounds(b).sq_distance_lower_bound(p),
-                    );
-                    if da < db {
-                        stack.push(b);
-                        stack.push(a);
-                    } else {
-                        stack.push(a);
-                        stack.push(b);
-                    }
-                }
+                NodeKind::Interior(a, b) => self.push_nearer_last(stack, p, a, b),
             }
         }
         None
+    }
+
+    /// Pushes the children `a` and `b` of a tree node, the one nearer to `p` last (so that
+    /// it is searched first).
+    fn push_nearer_last(&self, stack: &mut Vec<NodeId>, p: DVec3, a: NodeId, b: NodeId) {
+        let (da, db) = (
+            self.bvh.bounds(a).sq_distance_lower_bound(p),
+            self.bvh.bounds(b).sq_distance_lower_bound(p),
+        );
+        if da < db {
+            stack.extend([b, a]);
+        } else {
+            stack.extend([a, b]);
+        }
     }
 
     /// Approximate nearest triangle to `p` (f64 branch and bound); `None` when empty.
@@ -346,19 +348,7 @@ impl Target {
                         }
                     }
                 }
-                NodeKind::Interior(a, b) => {
-                    let (da, db) = (
-                        self.bvh.bounds(a).sq_distance_lower_bound(p),
-                        self.bvh.bounds(b).sq_distance_lower_bound(p),
-                    );
-                    if da < db {
-                        stack.push(b);
-                        stack.push(a);
-                    } else {
-                        stack.push(a);
-                        stack.push(b);
-                    }
-                }
+                NodeKind::Interior(a, b) => self.push_nearer_last(stack, p, a, b),
             }
         }
         best
