@@ -20,11 +20,12 @@ impl Search<'_> {
     /// [`PIECE_CUTS`] deep) and also between triangles that share only a corner (a plane
     /// through it, [`vertex_bisector_points`]): where a sub-triangle lies over a vertex of
     /// `to` its corners are nearest to triangles of that vertex's fan that share no edge,
-    /// and one cut between two of them does not settle it. Each piece is an f64 polygon
-    /// whose points are taken as they are (its sides by exact signs); the exact piece it
-    /// stands for is within the crossing points' error bounds of it, so that a piece
-    /// proved within `u` of a triangle by its vertices (the proof's convexity) proves the
-    /// exact one within `u` plus those bounds, added up over the rounds, plus `delta`.
+    /// and one cut between two of them does not settle it. Each cut is a chord of the
+    /// exact polygon ([`is_chord`]): its ends stand for the points at the same parameters
+    /// on the exact edges, within their crossing bounds plus the polygon's, so the exact
+    /// pieces partition the exact sub-triangle and stay planar and convex; a piece whose
+    /// f64 vertices are proved within `u` of a triangle (the proof's convexity) proves its
+    /// exact piece within `u` plus those bounds, added up over the rounds, plus `delta`.
     /// The pieces choose among the candidates that share a corner with a triangle nearest
     /// to a corner of `s` (the fan around a vertex, the two sides of an edge): a choice
     /// that only bounds the work. Also returns the pieces' farthest vertex, a lower-bound
@@ -133,7 +134,9 @@ impl Search<'_> {
                     continue;
                 };
                 let side: Vec<Orientation> = poly.iter().map(|&x| orient3d(p, q, r, x)).collect();
-                if !side.contains(&Orientation::Positive) || !side.contains(&Orientation::Negative)
+                if !side.contains(&Orientation::Positive)
+                    || !side.contains(&Orientation::Negative)
+                    || !is_chord(&side)
                 {
                     continue;
                 }
@@ -258,6 +261,24 @@ impl Search<'_> {
         }
         false
     }
+}
+
+/// Whether the exact sides of a polygon's vertices (in cycle order) change sign at most
+/// twice around it, the zeros aside: then the parts [`clip_f64`] makes hold the two sides
+/// of a chord of the exact polygon the f64 one stands for (a crossing point stands for the
+/// point at the same parameter on the exact edge, within its bound plus the polygon's), so
+/// they cover it. The f64 points of a cut piece are off its plane by roundings, and a plane
+/// may meet such a polygon four times; no cut is made there.
+fn is_chord(side: &[Orientation]) -> bool {
+    let signs: Vec<Orientation> = side
+        .iter()
+        .copied()
+        .filter(|&s| s != Orientation::Degenerate)
+        .collect();
+    let changes = (0..signs.len())
+        .filter(|&k| signs[k] != signs[(k + 1) % signs.len()])
+        .count();
+    changes <= 2
 }
 
 /// A part of a cut polygon: f64 points, each with a proved bound on its distance to the
@@ -397,4 +418,26 @@ fn clip_by_sign(poly: &[RPoint], side: &[Rational]) -> (Vec<RPoint>, Vec<RPoint>
         }
     }
     (lo, hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use Orientation::{Degenerate as Z, Negative as N, Positive as P};
+
+    #[test]
+    fn a_chord_changes_sign_at_most_twice() {
+        for side in [
+            &[N, P, P][..],
+            &[N, N, P, P],
+            &[N, Z, P, Z],
+            &[N, Z, N, P],
+            &[Z, N, P, Z, P],
+        ] {
+            assert!(is_chord(side), "{side:?}");
+        }
+        for side in [&[N, P, N, P][..], &[N, P, Z, N, P], &[P, N, P, N, Z, Z]] {
+            assert!(!is_chord(side), "{side:?}");
+        }
+    }
 }
