@@ -270,15 +270,17 @@ impl Search<'_> {
 /// they cover it. The f64 points of a cut piece are off its plane by roundings, and a plane
 /// may meet such a polygon four times; no cut is made there.
 fn is_chord(side: &[Orientation]) -> bool {
-    let signs: Vec<Orientation> = side
-        .iter()
-        .copied()
-        .filter(|&s| s != Orientation::Degenerate)
-        .collect();
-    let changes = (0..signs.len())
-        .filter(|&k| signs[k] != signs[(k + 1) % signs.len()])
-        .count();
-    changes <= 2
+    // On the cut search's path: counted without collecting the signs.
+    let mut signs = side.iter().filter(|&&s| s != Orientation::Degenerate);
+    let Some(first) = signs.next() else {
+        return true;
+    };
+    let (mut changes, mut last) = (0, first);
+    for s in signs {
+        changes += usize::from(s != last);
+        last = s;
+    }
+    changes + usize::from(last != first) <= 2
 }
 
 /// A part of a cut polygon: f64 points, each with a proved bound on its distance to the
