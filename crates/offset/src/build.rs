@@ -155,18 +155,6 @@ pub fn build_envelopes_with(
     let diagonal = soup.diagonal();
     // `input_tree`: one tree over the input faces, for the analytical method and every proof.
     let analytical = || analytical::analytical_eps(soup, &vf, &normals, &targets, input_tree);
-    // From zero, or from proved offsets (`start`).
-    let numerical = |start: Option<(&[f64], &[f64])>| {
-        numerical_eps(
-            soup,
-            &vf,
-            &normals,
-            &targets,
-            &options.numerical,
-            diagonal,
-            start,
-        )
-    };
     let input_free = options.input_free_of_intersections;
     let abandon = options.abandon.as_deref();
     let abandoned = || {
@@ -175,6 +163,20 @@ pub fn build_envelopes_with(
         } else {
             Ok(())
         }
+    };
+    // From zero, or from proved offsets (`start`); an abandoned growth stops at its next
+    // pass and is not proved.
+    let numerical = |start: Option<(&[f64], &[f64])>| {
+        let grown = numerical_eps(
+            soup,
+            &vf,
+            &normals,
+            &targets,
+            &options.numerical,
+            diagonal,
+            (start, abandon),
+        );
+        abandoned().map(|()| grown)
     };
     abandoned()?;
     let prove = |(p, m): (Vec<f64>, Vec<f64>), proved: Option<&Proved>| {
@@ -201,14 +203,14 @@ pub fn build_envelopes_with(
         },
     ) = match options.method {
         EnvelopeMethod::Analytical => (EnvelopeMethod::Analytical, prove(analytical(), None)),
-        EnvelopeMethod::Numerical => (EnvelopeMethod::Numerical, prove(numerical(None), None)),
+        EnvelopeMethod::Numerical => (EnvelopeMethod::Numerical, prove(numerical(None)?, None)),
         EnvelopeMethod::Auto => {
             let short = |e: &[f64]| e.iter().zip(&targets).any(|(x, r)| x < r);
             let a = prove(analytical(), None);
             abandoned()?;
             if !a.proof.holds() {
                 // Repair gave up: numerical from scratch, and the better of the two.
-                let n = prove(numerical(None), None);
+                let n = prove(numerical(None)?, None);
                 if n.proof.holds() || n.total() > a.total() {
                     (EnvelopeMethod::Numerical, n)
                 } else {
@@ -218,7 +220,7 @@ pub fn build_envelopes_with(
                 // Clipping or repair cut some offsets: grow those numerically from the
                 // proved analytical envelopes (the others stay), and prove the result (the
                 // pairs of faces that did not move were proved with the analytical ones).
-                let n = prove(numerical(Some((&a.eps_plus, &a.eps_minus))), Some(&a));
+                let n = prove(numerical(Some((&a.eps_plus, &a.eps_minus)))?, Some(&a));
                 if n.proof.holds() && n.total() >= a.total() {
                     (EnvelopeMethod::Numerical, n)
                 } else {

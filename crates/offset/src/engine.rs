@@ -36,6 +36,8 @@
 //! the frozen scene. Accepted moves whose new star boxes overlap another accepted move's are
 //! re-checked one by one in mover order after the others are committed. The outcome depends
 //! only on the mover order, not on thread timing.
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use envelope_predicates::apart::{Planar, surely_apart};
 use envelope_predicates::bvh::{Aabb, Bvh};
 use glam::DVec3;
@@ -365,8 +367,15 @@ fn star_box(scene: &Scene<'_>, m: &Mover, t: f64) -> Aabb {
     b
 }
 
-/// Grows every mover as far as the exact checks allow (see the module docs).
-pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPolicy) {
+/// Grows every mover as far as the exact checks allow (see the module docs), or, once
+/// `stop` is set (the caller no longer wants the result), until the pass under way ends:
+/// every mover is then left where it is, each of its steps checked.
+pub(crate) fn grow(
+    scene: &mut Scene<'_>,
+    movers: &mut [Mover],
+    policy: StepPolicy,
+    stop: Option<&AtomicBool>,
+) {
     for m in movers.iter_mut() {
         let positive = |x: f64| x.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater);
         if !positive(m.target - m.t) || !positive(m.step) {
@@ -380,6 +389,9 @@ pub(crate) fn grow(scene: &mut Scene<'_>, movers: &mut [Mover], policy: StepPoli
     // Per mover, the face that refused its last step (see `check`).
     let mut blockers: Vec<Option<u32>> = vec![None; movers.len()];
     loop {
+        if stop.is_some_and(|s| s.load(Ordering::Relaxed)) {
+            break;
+        }
         let mut any = false;
         for batch in &batches {
             let active: Vec<u32> = batch

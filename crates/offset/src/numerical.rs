@@ -1,6 +1,8 @@
 //! The numerical epsilon of section 4.2: the growth of every offset by exact-checked steps
 //! (the [`engine`](crate::engine)), on the mesh renumbered in Z-order, or on the part of it a
 //! few movers reach ([`Near`]).
+use std::sync::atomic::AtomicBool;
+
 use envelope_mesh::{TriangleSoup, VertexFaces, VertexId};
 use envelope_predicates::bvh::{Aabb, Bvh};
 use glam::DVec3;
@@ -8,6 +10,9 @@ use glam::DVec3;
 use crate::engine::{self, Mover, Scene, StepPolicy};
 use crate::morton::morton;
 use crate::options::NumericalParams;
+
+/// Proved per-vertex offsets `(plus, minus)` a growth starts from.
+pub(crate) type Offsets<'a> = (&'a [f64], &'a [f64]);
 
 /// Per-vertex `(eps_plus, eps_minus)` by the numerical method (section 4.2).
 ///
@@ -19,7 +24,8 @@ use crate::options::NumericalParams;
 ///
 /// With `start`, the growth begins at those proved offsets (`(plus, minus)`, an envelope
 /// pair whose proof holds): only the vertices short of `requested` move, the others stay
-/// where they are as part of the scene. Every offset ends at least at its start.
+/// where they are as part of the scene. Every offset ends at least at its start. Once
+/// `stop` is set the growth ends at its next pass, short (see [`engine::grow`]).
 pub(crate) fn numerical_eps(
     soup: &TriangleSoup,
     vf: &VertexFaces,
@@ -27,7 +33,7 @@ pub(crate) fn numerical_eps(
     requested: &[f64],
     params: &NumericalParams,
     diagonal: f64,
-    start: Option<(&[f64], &[f64])>,
+    (start, stop): (Option<Offsets<'_>>, Option<&AtomicBool>),
 ) -> (Vec<f64>, Vec<f64>) {
     let bounds = Aabb::from_points(&soup.positions);
     if let Some(start) = start {
@@ -38,12 +44,21 @@ pub(crate) fn numerical_eps(
             requested,
             start,
             bounds: &bounds,
+            stop,
         };
         if let Some(grown) = near.grow(params, diagonal) {
             return grown;
         }
     }
-    numerical_eps_sorted(soup, normals, requested, params, diagonal, start, &bounds)
+    numerical_eps_sorted(
+        soup,
+        normals,
+        requested,
+        params,
+        diagonal,
+        (start, stop),
+        &bounds,
+    )
 }
 
 /// [`numerical_eps`] on the whole mesh, renumbered in Z-order in `bounds` (the box of its
@@ -54,7 +69,7 @@ pub(crate) fn numerical_eps_sorted(
     requested: &[f64],
     params: &NumericalParams,
     diagonal: f64,
-    start: Option<(&[f64], &[f64])>,
+    (start, stop): (Option<Offsets<'_>>, Option<&AtomicBool>),
     bounds: &Aabb,
 ) -> (Vec<f64>, Vec<f64>) {
     use rayon::slice::ParallelSliceMut;
@@ -95,7 +110,7 @@ pub(crate) fn numerical_eps_sorted(
         params,
         diagonal,
         [&start_plus, &start_minus],
-        FEW_MOVERS,
+        (FEW_MOVERS, stop),
     );
     let back = |a: &[f64]| -> Vec<f64> { rank.iter().map(|&r| a[r as usize]).collect() };
     (back(&p), back(&m))
@@ -127,6 +142,8 @@ pub(crate) struct Near<'a> {
     pub(crate) start: (&'a [f64], &'a [f64]),
     /// The box of the whole mesh's vertices (the Z-order's).
     pub(crate) bounds: &'a Aabb,
+    /// See [`numerical_eps`].
+    pub(crate) stop: Option<&'a AtomicBool>,
 }
 
 impl Near<'_> {
@@ -235,7 +252,7 @@ impl Near<'_> {
             params,
             diagonal,
             [&pick(plus), &pick(minus)],
-            FEW_MOVERS,
+            (FEW_MOVERS, self.stop),
         );
         let (mut out_plus, mut out_minus) = (plus.to_vec(), minus.to_vec());
         for (l, &v) in verts.iter().enumerate() {
@@ -267,7 +284,7 @@ pub(crate) fn numerical_eps_ordered(
     params: &NumericalParams,
     diagonal: f64,
     start: [&[f64]; 2],
-    few_movers: usize,
+    (few_movers, stop): (usize, Option<&AtomicBool>),
 ) -> (Vec<f64>, Vec<f64>) {
     let n = soup.num_vertices();
     let mut positions = Vec::with_capacity(3 * n);
@@ -358,7 +375,7 @@ pub(crate) fn numerical_eps_ordered(
         max_halvings: params.max_halvings,
         growth: params.step_growth,
     };
-    engine::grow(&mut scene, &mut movers, policy);
+    engine::grow(&mut scene, &mut movers, policy, stop);
     for m in &movers {
         let v = (m.verts[0] / 3) as usize;
         if m.group == 1 {

@@ -1,5 +1,7 @@
 //! Unit tests of the proof and repair rounds and of the numerical growth on part of the mesh,
 //! and the crate's test helpers.
+use std::sync::atomic::AtomicBool;
+
 use envelope_mesh::{TriangleSoup, VertexFaces, VertexId, generate};
 use envelope_predicates::bvh::{Aabb, Bvh};
 use glam::DVec3;
@@ -215,6 +217,7 @@ fn near_growth_is_the_whole_mesh_growth() {
             requested: &target,
             start: (&plus, &minus),
             bounds: &bounds,
+            stop: None,
         };
         let part = near.grow(&params, soup.diagonal()).expect("few movers");
         let whole = numerical_eps_sorted(
@@ -223,7 +226,7 @@ fn near_growth_is_the_whole_mesh_growth() {
             &target,
             &params,
             soup.diagonal(),
-            Some((&plus, &minus)),
+            (Some((&plus, &minus)), None),
             &bounds,
         );
         assert_eq!(part, whole, "both fronts: {both}");
@@ -261,7 +264,7 @@ fn few_movers_grow_as_with_the_whole_scene() {
     let plus: Vec<f64> = (0..n).map(|v| if facing(v) { 0.0 } else { 0.15 }).collect();
     let movers = (0..n).filter(|&v| facing(v)).count();
     assert!(movers > 4, "{movers}");
-    let grow = |few: usize| {
+    let grow = |few: usize, stop: Option<&AtomicBool>| {
         numerical_eps_ordered(
             &soup,
             &vf,
@@ -270,12 +273,20 @@ fn few_movers_grow_as_with_the_whole_scene() {
             &NumericalParams::default(),
             soup.diagonal(),
             [&plus, &target],
-            few,
+            (few, stop),
         )
     };
     // One mover per `few` scene faces or more: the whole scene's tree; 0: never.
-    let (whole, around) = (grow(usize::MAX), grow(0));
+    let (whole, around) = (grow(usize::MAX, None), grow(0, None));
     assert_eq!(whole, around);
+    // A stop raised before the growth: no pass, every offset at its start; a lowered one
+    // changes nothing.
+    let (raised, lowered) = (AtomicBool::new(true), AtomicBool::new(false));
+    assert_eq!(
+        grow(usize::MAX, Some(&raised)),
+        (plus.clone(), target.clone())
+    );
+    assert_eq!(grow(usize::MAX, Some(&lowered)), whole);
     let front = (0..n).filter(|&v| facing(v) && soup.positions[v].x > 0.98);
     assert!(front.clone().count() > 0);
     assert!(front.clone().all(|v| whole.0[v] < 0.1), "{:?}", whole.0);

@@ -460,7 +460,7 @@ pub(crate) fn build_tubes(
             &ex,
             Some((fixed, nf3)),
         );
-        engine::grow(&mut scene, &mut movers, policy);
+        engine::grow(&mut scene, &mut movers, policy, None);
         layout.positions = scene.positions;
     }
     debug_assert!(
