@@ -77,8 +77,8 @@ pub struct EnvelopeOptions {
     /// Set by another thread when the envelopes are no longer wanted (the simplify driver's
     /// input check, running beside the build, found the input unusable as it is): the build
     /// then stops at its next stage, repair round or pass of the numerical growth with
-    /// [`EnvelopeError::Abandoned`]. What
-    /// a build returns never depends on when it was set, only whether.
+    /// [`EnvelopeError::Abandoned`]. What a build returns never depends on when it was set,
+    /// only whether.
     ///
     /// [`EnvelopeError::Abandoned`]: crate::EnvelopeError::Abandoned
     pub abandon: Option<Arc<AtomicBool>>,
