@@ -1,7 +1,5 @@
 //! The pipeline of [`build_envelopes`] (steps 1-7 of the crate docs): accept the input,
 //! evaluate epsilon, normals, offsets by the chosen method, proof and repair, tubes.
-use std::sync::atomic::Ordering;
-
 use envelope_mesh::{Topology, TriangleSoup, VertexFaces, VertexId, analyze};
 use envelope_predicates::bvh::Bvh;
 use glam::DVec3;
@@ -10,7 +8,7 @@ use crate::engine::StepPolicy;
 use crate::error::EnvelopeError;
 use crate::error::TUBE_SEGMENTS;
 use crate::numerical::numerical_eps;
-use crate::options::{EnvelopeMethod, EnvelopeOptions};
+use crate::options::{EnvelopeMethod, EnvelopeOptions, raised};
 use crate::proof::Proof;
 use crate::repair::{Proved, prove_and_repair};
 use crate::tubes::Tube;
@@ -158,7 +156,7 @@ pub fn build_envelopes_with(
     let input_free = options.input_free_of_intersections;
     let abandon = options.abandon.as_deref();
     let abandoned = || {
-        if abandon.is_some_and(|a| a.load(Ordering::Relaxed)) {
+        if raised(abandon) {
             Err(EnvelopeError::Abandoned)
         } else {
             Ok(())

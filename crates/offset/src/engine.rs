@@ -36,7 +36,7 @@
 //! the frozen scene. Accepted moves whose new star boxes overlap another accepted move's are
 //! re-checked one by one in mover order after the others are committed. The outcome depends
 //! only on the mover order, not on thread timing.
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 
 use envelope_predicates::apart::{Planar, surely_apart};
 use envelope_predicates::bvh::{Aabb, Bvh};
@@ -389,7 +389,7 @@ pub(crate) fn grow(
     // Per mover, the face that refused its last step (see `check`).
     let mut blockers: Vec<Option<u32>> = vec![None; movers.len()];
     loop {
-        if stop.is_some_and(|s| s.load(Ordering::Relaxed)) {
+        if crate::options::raised(stop) {
             break;
         }
         let mut any = false;

@@ -139,7 +139,7 @@ pub(crate) struct Near<'a> {
     pub(crate) vf: &'a VertexFaces,
     pub(crate) normals: &'a [DVec3],
     pub(crate) requested: &'a [f64],
-    pub(crate) start: (&'a [f64], &'a [f64]),
+    pub(crate) start: Offsets<'a>,
     /// The box of the whole mesh's vertices (the Z-order's).
     pub(crate) bounds: &'a Aabb,
     /// See [`numerical_eps`].

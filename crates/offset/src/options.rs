@@ -1,7 +1,7 @@
 //! What [`crate::build_envelopes`] is asked for: the method, its parameters and the limits
 //! on the input.
 use std::sync::Arc;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::field::EpsilonField;
 
@@ -82,6 +82,12 @@ pub struct EnvelopeOptions {
     ///
     /// [`EnvelopeError::Abandoned`]: crate::EnvelopeError::Abandoned
     pub abandon: Option<Arc<AtomicBool>>,
+}
+
+/// Whether `flag` (an [`EnvelopeOptions::abandon`]) is raised: the one reading of it that
+/// the build's stages, its repair rounds and the growth's passes share.
+pub(crate) fn raised(flag: Option<&AtomicBool>) -> bool {
+    flag.is_some_and(|f| f.load(Ordering::Relaxed))
 }
 
 impl EnvelopeOptions {

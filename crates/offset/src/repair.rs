@@ -1,11 +1,12 @@
 //! Step 6 of [`crate::build_envelopes`]: place the envelope vertices, prove them exactly,
 //! and halve the offsets of every vertex of an offending face until the proof holds.
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 
 use envelope_mesh::TriangleSoup;
 use envelope_predicates::bvh::Bvh;
 use glam::DVec3;
 
+use crate::options::raised;
 use crate::proof::{self, Proof, Surface};
 
 /// Offsets after the exact proof and repair, with the envelope vertices.
@@ -93,10 +94,7 @@ pub(crate) fn prove_and_repair(
         ..Proof::default()
     };
     let mut repaired = vec![false; soup.num_vertices()];
-    while !proof.contacts.is_empty()
-        && proof.repair_rounds < max_rounds
-        && !abandon.is_some_and(|a| a.load(Ordering::Relaxed))
-    {
+    while !proof.contacts.is_empty() && proof.repair_rounds < max_rounds && !raised(abandon) {
         let mut halve_plus = vec![false; soup.num_vertices()];
         let mut halve_minus = vec![false; soup.num_vertices()];
         for c in &proof.contacts {
