@@ -1,14 +1,17 @@
 //! The pipeline of [`build_envelopes`] (steps 1-7 of the crate docs): accept the input,
 //! evaluate epsilon, normals, offsets by the chosen method, proof and repair, tubes.
+use std::sync::Arc;
+
 use envelope_mesh::{Topology, TriangleSoup, VertexFaces, VertexId, analyze};
 use envelope_predicates::bvh::Bvh;
 use glam::DVec3;
 
+use crate::analytical::AnalyticalFaces;
 use crate::engine::StepPolicy;
 use crate::error::EnvelopeError;
 use crate::error::TUBE_SEGMENTS;
 use crate::numerical::numerical_eps;
-use crate::options::{EnvelopeMethod, EnvelopeOptions, raised};
+use crate::options::{AnalyticalMemo, EnvelopeMethod, EnvelopeOptions, raised};
 use crate::proof::Proof;
 use crate::repair::{Proved, prove_and_repair};
 use crate::tubes::Tube;
@@ -48,6 +51,9 @@ pub struct Envelopes {
     /// proof searched, with both offsets of a face in one leaf: `envelope-simplify`'s
     /// `Barriers::with_tree` takes it instead of building its own.
     pub tree: Bvh,
+    /// The analytical method's per-face minima, when [`EnvelopeOptions::analytical_memo`]
+    /// asked to keep them and the method ran: for a later build over a subset of these faces.
+    pub analytical: Option<Arc<AnalyticalFaces>>,
 }
 
 impl Envelopes {
@@ -151,8 +157,6 @@ pub fn build_envelopes_with(
     }
     let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
     let diagonal = soup.diagonal();
-    // `input_tree`: one tree over the input faces, for the analytical method and every proof.
-    let analytical = || analytical::analytical_eps(soup, &vf, &normals, &targets, input_tree);
     let input_free = options.input_free_of_intersections;
     let abandon = options.abandon.as_deref();
     let abandoned = || {
@@ -161,6 +165,20 @@ pub fn build_envelopes_with(
         } else {
             Ok(())
         }
+    };
+    let memo = match &options.analytical_memo {
+        None => (None, false),
+        Some(AnalyticalMemo::Keep) => (None, true),
+        Some(AnalyticalMemo::Reuse(before)) => (Some(&**before), true),
+    };
+    let mut kept_minima = None;
+    // `input_tree`: one tree over the input faces, for the analytical method and every proof.
+    // An abandoned clipping stops early and is not proved.
+    let mut analytical = || {
+        let (plus, minus, minima) =
+            analytical::analytical_eps(soup, &vf, &normals, &targets, input_tree, memo, abandon);
+        kept_minima = minima.map(Arc::new);
+        abandoned().map(|()| (plus, minus))
     };
     // From zero, or from proved offsets (`start`); an abandoned growth stops at its next
     // pass and is not proved.
@@ -200,11 +218,11 @@ pub fn build_envelopes_with(
             tree,
         },
     ) = match options.method {
-        EnvelopeMethod::Analytical => (EnvelopeMethod::Analytical, prove(analytical(), None)),
+        EnvelopeMethod::Analytical => (EnvelopeMethod::Analytical, prove(analytical()?, None)),
         EnvelopeMethod::Numerical => (EnvelopeMethod::Numerical, prove(numerical(None)?, None)),
         EnvelopeMethod::Auto => {
             let short = |e: &[f64]| e.iter().zip(&targets).any(|(x, r)| x < r);
-            let a = prove(analytical(), None);
+            let a = prove(analytical()?, None);
             abandoned()?;
             if !a.proof.holds() {
                 // Repair gave up: numerical from scratch, and the better of the two.
@@ -268,6 +286,7 @@ pub fn build_envelopes_with(
         method,
         proof,
         tree,
+        analytical: kept_minima,
     })
 }
 

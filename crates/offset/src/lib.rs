@@ -52,6 +52,7 @@ mod tubes;
 #[cfg(test)]
 mod tests;
 
+pub use analytical::AnalyticalFaces;
 pub use build::{Envelopes, build_envelopes, build_envelopes_with, face_tree};
 pub use error::{EnvelopeError, TUBE_SEGMENTS};
 pub use field::{
@@ -59,6 +60,6 @@ pub use field::{
     read_epsilon_file,
 };
 pub use normals::{VertexNormals, vertex_normals};
-pub use options::{EnvelopeMethod, EnvelopeOptions, NumericalParams};
+pub use options::{AnalyticalMemo, EnvelopeMethod, EnvelopeOptions, NumericalParams};
 pub use proof::{Contact, Proof, Surface};
 pub use tubes::Tube;

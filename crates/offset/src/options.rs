@@ -3,6 +3,7 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use crate::analytical::AnalyticalFaces;
 use crate::field::EpsilonField;
 
 /// How the per-vertex epsilon is found.
@@ -82,6 +83,20 @@ pub struct EnvelopeOptions {
     ///
     /// [`EnvelopeError::Abandoned`]: crate::EnvelopeError::Abandoned
     pub abandon: Option<Arc<AtomicBool>>,
+    /// What the analytical method keeps for, or takes from, another build (`None`: neither).
+    pub analytical_memo: Option<AnalyticalMemo>,
+}
+
+/// A build's analytical per-face minima kept for a later build over a subset of its faces,
+/// or taken from an earlier one ([`EnvelopeOptions::analytical_memo`]). The offsets are the
+/// same as without it; only the clipping of the faces whose minimum still holds is saved.
+#[derive(Clone, Debug)]
+pub enum AnalyticalMemo {
+    /// Keep this build's minima ([`Envelopes::analytical`](crate::Envelopes::analytical)).
+    Keep,
+    /// Take the minima that still hold from an earlier build's (used only when this build's
+    /// faces are a subset of its faces, on the same positions), and keep this build's.
+    Reuse(Arc<AnalyticalFaces>),
 }
 
 /// Whether `flag` (an [`EnvelopeOptions::abandon`]) is raised: the one reading of it that
@@ -102,6 +117,7 @@ impl EnvelopeOptions {
             max_repair_rounds: 30,
             input_free_of_intersections: false,
             abandon: None,
+            analytical_memo: None,
         }
     }
 }

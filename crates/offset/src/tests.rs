@@ -344,3 +344,93 @@ fn both_pair_searches_find_the_same_contacts() {
         }
     }
 }
+
+/// The analytical clipping of a subset of the faces, taking the minima that still hold from
+/// the whole soup's clipping, gives the offsets of a clipping from scratch: on two spheres
+/// 0.2 apart with the second's cap facing the first removed, the first's outer offsets
+/// there grow (their closest triangles are gone and are clipped again), the second's border
+/// vertices have new normals, and the faces far from the change keep their minima.
+#[test]
+fn clipping_a_subset_from_the_minima_before_is_clipping_it_afresh() {
+    use crate::analytical::analytical_eps;
+    let (soup, vf, normals) = spheres_apart();
+    let targets = vec![0.3; soup.num_vertices()];
+    let whole_tree = Bvh::from_triangles(
+        &soup.positions,
+        &soup
+            .faces
+            .iter()
+            .map(|f| f.map(|v| v.0))
+            .collect::<Vec<_>>(),
+    );
+    let (plus, _, minima) = analytical_eps(
+        &soup,
+        &vf,
+        &normals,
+        &targets,
+        &whole_tree,
+        (None, true),
+        None,
+    );
+    let minima = minima.expect("kept");
+    let n = soup.num_vertices() / 2;
+    let subset = TriangleSoup::new(
+        soup.positions.clone(),
+        soup.faces
+            .iter()
+            .filter(|f| {
+                f.iter()
+                    .all(|v| v.index() < n || soup.positions[v.index()].x > 1.6)
+            })
+            .copied()
+            .collect(),
+    );
+    assert!(subset.num_faces() < soup.num_faces());
+    let (sub_normals, sub_faces, sub_tree) = prepared(&subset);
+    let sub_vf = VertexFaces::new(subset.num_vertices(), &subset.faces);
+    let afresh = analytical_eps(
+        &subset,
+        &sub_vf,
+        &sub_normals,
+        &targets,
+        &sub_tree,
+        (None, false),
+        None,
+    );
+    let reused = analytical_eps(
+        &subset,
+        &sub_vf,
+        &sub_normals,
+        &targets,
+        &sub_tree,
+        (Some(&minima), false),
+        None,
+    );
+    let bits = |e: &[f64]| e.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&reused.0), bits(&afresh.0));
+    assert_eq!(bits(&reused.1), bits(&afresh.1));
+    // The first sphere's offsets facing the removed cap were cut by it and are not now.
+    assert!((0..n).any(|v| afresh.0[v] > plus[v]));
+    // Minima were taken, and some were not (changed normals, closest triangles removed).
+    let known = minima
+        .reusable(&sub_faces, &subset.positions, &sub_normals, &targets)
+        .expect("a subset on the same positions");
+    assert!(known.iter().any(|k| k[0].is_some() && k[1].is_some()));
+    assert!(known.iter().any(|k| k[0].is_none()));
+    assert!(known.iter().any(|k| k[1].is_some() && k[0].is_none()));
+    // Not a subset, or moved positions: nothing is taken.
+    let mut moved = subset.positions.clone();
+    moved[0].x += 1e-9;
+    assert!(
+        minima
+            .reusable(&sub_faces, &moved, &sub_normals, &targets)
+            .is_none()
+    );
+    let mut other = sub_faces.clone();
+    other[0].swap(0, 1);
+    assert!(
+        minima
+            .reusable(&other, &subset.positions, &sub_normals, &targets)
+            .is_none()
+    );
+}

@@ -36,8 +36,8 @@ use envelope_check::{
 };
 use envelope_mesh::{BuildError, FaceId, HalfEdgeMesh, Topology, TriangleSoup, VertexId, analyze};
 use envelope_offset::{
-    EnvelopeError, EnvelopeMethod, EnvelopeOptions, Envelopes, EpsilonField, Surface,
-    build_envelopes, build_envelopes_with, face_tree,
+    AnalyticalMemo, EnvelopeError, EnvelopeMethod, EnvelopeOptions, Envelopes, EpsilonField,
+    Surface, build_envelopes, build_envelopes_with, face_tree,
 };
 use envelope_predicates::bvh::Bvh;
 use envelope_verify::{Certificate, Verdict};
@@ -675,6 +675,7 @@ pub fn simplify_with(
                 shared.as_ref().map(|(t, b)| (t, b)),
                 capped.map(|(_, cap)| cap),
                 Some(Arc::clone(&abandon)),
+                None,
             );
             (env, t_env.elapsed().as_secs_f64())
         },
@@ -788,7 +789,7 @@ pub(crate) fn envelopes_for(
     options: &SimplifyOptions,
     shared: Option<(&Topology, &Bvh)>,
 ) -> Result<Envelopes, DriverError> {
-    envelopes_up_to(soup, options, shared, None, None)
+    envelopes_up_to(soup, options, shared, None, None, None)
 }
 
 /// [`envelopes_for`], every offset requested at most `cap` (see [`tolerance_cap`]).
@@ -798,6 +799,7 @@ fn envelopes_up_to(
     shared: Option<(&Topology, &Bvh)>,
     cap: Option<f64>,
     abandon: Option<Arc<AtomicBool>>,
+    analytical_memo: Option<AnalyticalMemo>,
 ) -> Result<Envelopes, DriverError> {
     let mut field = options.epsilon.evaluate(&soup.positions)?;
     if let Some(cap) = cap {
@@ -813,6 +815,7 @@ fn envelopes_up_to(
         // they are used.
         input_free_of_intersections: true,
         abandon,
+        analytical_memo,
         ..EnvelopeOptions::new(EpsilonField::PerVertex(field))
     };
     Ok(match shared {
@@ -1131,6 +1134,7 @@ fn simplify_keeping(
     };
     let mut region = KeptRegion::around(soup, &pairs);
     let mut rounds = 0;
+    let mut minima = None;
     let mut last = (0, 0);
     let (region, env, env_seconds) = loop {
         go_on(progress)?;
@@ -1144,11 +1148,18 @@ fn simplify_keeping(
                 },
             });
         }
-        // The first round of an unproved input is its own envelopes (nothing kept yet).
-        let env = match first.take() {
-            Some(env) => *env,
-            None => envelopes_for(&region.rest, options, None)?,
+        // The first round of an unproved input is its own envelopes (nothing kept yet). Each
+        // round's rest is a subset of the one before: its clipping takes the minima that
+        // still hold from the round before (the same offsets, computed near the changes only).
+        let memo = match minima.take() {
+            Some(before) => AnalyticalMemo::Reuse(before),
+            None => AnalyticalMemo::Keep,
         };
+        let mut env = match first.take() {
+            Some(env) => *env,
+            None => envelopes_up_to(&region.rest, options, None, None, None, Some(memo))?,
+        };
+        minima = env.analytical.take();
         last = (
             env.proof.contacts.len() + env.proof.tube_contacts.len(),
             env.proof.repair_rounds,
