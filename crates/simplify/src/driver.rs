@@ -18,7 +18,7 @@
 //! steps on the rest, around
 //!   KeptRegion          module kept: the faces of intersecting pairs (or none), kept as
 //!                       they are
-//!   build_envelopes     for the rest; named contact faces kept too until proved (<= 4 rounds)
+//!   build_envelopes     for the rest; named contact faces kept too until proved (<= 8 rounds)
 //!   Barriers            + the kept faces as walls (touched only at shared vertices), the
 //!                       shared vertices kept
 //!   join, certify       rest + kept faces; only the input's own intersections allowed
