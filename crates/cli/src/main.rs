@@ -71,8 +71,8 @@ enum Command {
     /// Simplify IN within epsilon of it (Cohen et al. 5-6) and write OUT atomically.
     ///
     /// Exit 0 written and certified, 1 the output fails its certificate (OUT untouched, the
-    /// output goes to OUT.failed.EXT), 2 bad input or arguments (OUT and the report
-    /// untouched), 3 certificate undecided.
+    /// output goes to OUT.failed.EXT) or the envelopes could not be proved (nothing written),
+    /// 2 bad input or arguments (OUT and the report untouched), 3 certificate undecided.
     Simplify(simplify::Args),
     /// Levels of detail with nested vertex sets and switching distances (Cohen et al. 7.2).
     ///
