@@ -1184,7 +1184,32 @@ fn simplify_keeping(
             .filter(|(surface, _)| !matches!(surface, Surface::Tube(_)))
             .map(|(_, f)| region.rest_faces[f.index()])
             .collect();
-        region = region.grown(soup, &named);
+        // Two tubes that meet (or one meeting itself, where the border turns back on itself:
+        // its rings lie almost along the border and no radius clears them) name no face.
+        // Along the cut the ring below moves the border; on the input's own border nothing
+        // would, so the faces around those border vertices of their segments are kept. So
+        // every round keeps more than the one before.
+        let tube_face = |(surface, f): (Surface, FaceId)| match surface {
+            Surface::Tube(t) => Some((&env.tubes[t as usize], f)),
+            _ => None,
+        };
+        let at: Vec<VertexId> = env
+            .proof
+            .tube_contacts
+            .iter()
+            .filter(|c| tube_face(c.a).is_some() && tube_face(c.b).is_some())
+            .flat_map(|c| [c.a, c.b])
+            .filter_map(tube_face)
+            .flat_map(|(tube, f)| {
+                // Segment `i` (between rings `i` and `i + 1`) has two faces per ring vertex.
+                let n = tube.border.len().max(1);
+                let i = f.index() / (2 * tube.mesh.num_vertices() / n).max(1);
+                [i, i + 1].map(|j| tube.border.get(j % n).copied())
+            })
+            .flatten()
+            .filter(|v| !region.shared[v.index()])
+            .collect();
+        region = region.grown(soup, &named, &at);
         rounds += 1;
     };
     let topo_rest = analyze(&region.rest);

@@ -18,12 +18,13 @@
 //! Choices the papers leave open (they refuse such input):
 //! * no margin at first: the kept faces are barriers, so the rest needs none for the proof;
 //! * when the rest's envelopes cannot be proved, the rest faces the proof names in its
-//!   contacts are kept too, then one ring of faces around every kept one, and the envelopes
-//!   are built again, at most [`MAX_ROUNDS`] times: the rest near a crossing is close to the
-//!   other sheet there (and so are the border tubes along its cut), and a thin part
-//!   elsewhere needs the same. Eight, not fewer: many contacts left there are a border
-//!   tube meeting itself, which names no rest face, so only the rings move the cut (the man
-//!   scan refined twice, 560k faces, at 1 % needs 8 rounds; refined once, 4);
+//!   contacts are kept too (for two border tubes that meet, or one that meets itself where
+//!   the border turns back on itself, the faces around their segments' vertices on the
+//!   input's own border), then one ring of faces around every kept one, and the envelopes are built
+//!   again, at most [`MAX_ROUNDS`] times: the rest near a crossing is close to the other
+//!   sheet there (and so are the border tubes along its cut), and a thin part elsewhere
+//!   needs the same. Every round keeps more than the one before. Eight rounds, not fewer:
+//!   the man scan refined twice (560k faces) at 1 % needs 8, refined once 4;
 //! * faces are added to the kept set until every shared vertex has one fan of rest faces, so
 //!   the rest is a manifold with border (a vertex the kept faces cut into two fans would be
 //!   non-manifold there).
@@ -62,16 +63,21 @@ impl KeptRegion {
         Self::new(soup, &faces_of, kept_face)
     }
 
-    /// This region with the input faces `more` kept too (faces of the rest the envelope
-    /// proof named) and then one ring of faces around all kept ones: the faces next to a
+    /// This region with the input faces `more` and those around the vertices `at` kept too
+    /// (what the envelope proof named) and then one ring of faces around all kept ones: the faces next to a
     /// named one are as close to what the proof found, and a cut border near another sheet
     /// (whose border tube the proof may find there) moves away from it.
-    pub(crate) fn grown(&self, soup: &TriangleSoup, more: &[FaceId]) -> Self {
+    pub(crate) fn grown(&self, soup: &TriangleSoup, more: &[FaceId], at: &[VertexId]) -> Self {
         let mut kept_face = self.kept_face.clone();
         for f in more {
             kept_face[f.index()] = true;
         }
         let faces_of = VertexFaces::new(soup.num_vertices(), &soup.faces);
+        for v in at {
+            for &f in faces_of.of(v.index()) {
+                kept_face[f as usize] = true;
+            }
+        }
         let touched = touched_vertices(soup, &kept_face);
         keep_faces_at(&mut kept_face, &faces_of, &touched);
         Self::new(soup, &faces_of, kept_face)
@@ -204,17 +210,24 @@ mod tests {
             assert!(analyze(&r.rest).manifold, "round {round}");
             assert!(r.shared.iter().any(|&s| s));
             // Nothing named: one more ring.
-            let next = r.grown(&soup, &[]);
+            let next = r.grown(&soup, &[], &[]);
             assert!(next.num_kept() > r.num_kept());
             r = next;
         }
         // Named faces are kept with their neighbours, and a ring around the rest.
         let r = KeptRegion::around(&soup, &pairs);
         let named = r.rest_faces[r.rest_faces.len() / 2];
-        let g = r.grown(&soup, &[named]);
+        let g = r.grown(&soup, &[named], &[]);
         assert!(g.kept_face[named.index()]);
-        let ring = r.grown(&soup, &[]);
+        let ring = r.grown(&soup, &[], &[]);
         assert!(g.num_kept() > ring.num_kept() + 1 && g.num_kept() < ring.num_kept() + 20);
+        // Named vertices: all their faces are kept.
+        let v = soup.faces[r.rest_faces[0].index()][0];
+        let at = r.grown(&soup, &[], &[v]);
+        for (f, face) in soup.faces.iter().enumerate() {
+            assert!(!face.contains(&v) || at.kept_face[f]);
+        }
+        assert!(at.num_kept() > ring.num_kept());
     }
 
     #[test]

@@ -150,3 +150,62 @@ fn unprovable_part_is_kept_and_the_rest_simplified() {
         Err(DriverError::UnprovedEnvelopes { .. })
     ));
 }
+
+/// A flat plate whose top border zigzags (every border edge turns back by almost half a
+/// turn, jittered out of the plane): the border tube meets itself there at any radius, which
+/// names no input face. The faces around those border vertices are kept, and the rest of
+/// the plate is simplified; before, every round kept the same (nothing) and no output was
+/// made.
+#[test]
+fn a_border_turning_back_on_itself_is_kept_and_the_rest_simplified() {
+    let (columns, rows, dx) = (12, 10, 0.02);
+    let mut state = 7919u64;
+    let mut jitter = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        0.01 * ((state % 10_000) as f64 / 10_000.0 - 0.5)
+    };
+    let mut positions = Vec::new();
+    for r in 0..rows {
+        for c in 0..columns {
+            positions.push(DVec3::new(c as f64 * dx, -(r as f64) * 0.1, 0.0));
+        }
+    }
+    for c in 0..columns {
+        let up = 1.0 + (c % 2) as f64;
+        positions.push(DVec3::new(c as f64 * dx + jitter(), up, jitter()));
+    }
+    let at = |r: usize, c: usize| {
+        VertexId(if r == 0 {
+            rows * columns + c
+        } else {
+            (r - 1) * columns + c
+        } as u32)
+    };
+    let mut faces = Vec::new();
+    for r in 0..rows {
+        for c in 0..columns - 1 {
+            // Row r (0: the zigzag) above row r + 1.
+            let (a, b, d, e) = (at(r + 1, c), at(r + 1, c + 1), at(r, c + 1), at(r, c));
+            faces.push([a, b, d]);
+            faces.push([a, d, e]);
+        }
+    }
+    let soup = TriangleSoup::new(positions, faces);
+    assert!(analyze(&soup).manifold);
+    let (out, report) = simplify(&soup, &options(0.05, Placement::Subset), &mut ()).unwrap();
+    let kept = report.kept.expect("kept where the tube meets itself");
+    assert_eq!(kept.intersecting_pairs, 0);
+    // The zigzag row and the ring around it at most.
+    assert!(
+        kept.kept_faces > 0 && kept.kept_faces <= 4 * (columns - 1),
+        "{kept:?}"
+    );
+    assert!(
+        out.num_faces() < soup.num_faces() / 2,
+        "{}",
+        out.num_faces()
+    );
+    assert_eq!(report.verify.unwrap().verdict, Verdict::Holds);
+}
