@@ -14,6 +14,8 @@ use std::cell::{Cell, RefCell};
 use std::sync::atomic::{AtomicU64, Ordering};
 use thiserror::Error;
 
+use crate::border_cover::BorderCover;
+
 /// How many recent blockers each thread tries before anything else (see [`Barriers::blocks`]).
 const RECENT: usize = 8;
 
@@ -155,6 +157,8 @@ pub struct Barriers {
     has_tubes: bool,
     /// Input vertices no step may remove or move ([`Barriers::with_kept`]), by vertex id.
     kept: Vec<bool>,
+    /// The tubes' rings ([`Barriers::with_border_cover`]).
+    cover: Option<BorderCover>,
     /// Per connected component of every surface: its box and one of its vertices
     /// ([`Barriers::sweeps_across`]).
     components: Vec<(Aabb, DVec3)>,
@@ -357,6 +361,7 @@ impl Barriers {
             envelope_faces,
             has_tubes,
             kept: Vec::new(),
+            cover: None,
             components,
             component_tree,
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
@@ -487,6 +492,27 @@ impl Barriers {
     pub fn with_kept(mut self, kept: Vec<bool>) -> Self {
         self.kept = kept;
         self
+    }
+
+    /// The rings of the border tubes (with their border vertex ids), which a new border
+    /// edge must pass through ([`BorderCover`]): [`EnvelopeFilter`](crate::policy::EnvelopeFilter)
+    /// then refuses a border vertex's removal whose new edge misses one
+    /// ([`Self::refuses_border_edge`]). Without it, only the tubes' triangles bound a new
+    /// border edge.
+    #[must_use]
+    pub fn with_border_cover(mut self, cover: BorderCover) -> Self {
+        self.cover = Some(cover);
+        self
+    }
+
+    /// Whether the new border edge between `ends`, which replaces the border vertex
+    /// `removed`, misses the ring of an input border vertex it stands for
+    /// ([`BorderCover::covers`]); false without a [`Self::with_border_cover`].
+    #[must_use]
+    pub fn refuses_border_edge(&self, removed: VertexId, ends: [(VertexId, DVec3); 2]) -> bool {
+        self.cover
+            .as_ref()
+            .is_some_and(|c| !c.covers(removed, ends))
     }
 
     /// Whether `v` is kept ([`Self::with_kept`]).

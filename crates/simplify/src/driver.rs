@@ -46,6 +46,7 @@ use serde_json::{Value, json};
 use thiserror::Error;
 
 use crate::barriers::{BarrierError, Barriers};
+use crate::border_cover::BorderCover;
 use crate::fiber::{FiberTest, VertexFibers};
 use crate::kept::{KeptRegion, MAX_ROUNDS};
 use crate::local::{
@@ -970,6 +971,14 @@ fn simplify_between(
         });
     let env_epsilon_abs = requested.0;
     let (epsilon_abs, epsilon_min_abs) = held_to.map_or(requested, |e| (e, e));
+    // The tubes' rings, by border vertex: a new border edge must pass through those it
+    // stands for (module `border_cover`).
+    let cover = BorderCover::new(
+        &env.tubes
+            .iter()
+            .map(|t| (t.border.clone(), t.closed, t.mesh.clone()))
+            .collect::<Vec<_>>(),
+    );
     let tubes: Vec<TriangleSoup> = env.tubes.into_iter().map(|t| t.mesh).collect();
     // Without the walls, the space between the envelopes is open along the border and an
     // interior candidate triangle can leave it there (see `walls`).
@@ -1012,7 +1021,7 @@ fn simplify_between(
         },
     );
     let mut keep = options.keep.clone();
-    let mut barriers = barriers?.with_pins(&pins);
+    let mut barriers = barriers?.with_pins(&pins).with_border_cover(cover);
     if let Some(k) = kept {
         keep.resize(keep.len().max(k.shared.len()), false);
         for (slot, &s) in keep.iter_mut().zip(&k.shared) {

@@ -302,6 +302,15 @@ pub trait Filter: Sync {
         let _ = (old, new, rest, open);
         false
     }
+
+    /// Whether removing the border vertex `removed` is refused whatever the filling, for its
+    /// new border edge between `ends` (ids and positions): the envelope filter refuses one
+    /// that misses the ring of an input border vertex it stands for
+    /// ([`Barriers::refuses_border_edge`]). By default nothing is refused.
+    fn refuses_border_edge(&self, removed: VertexId, ends: [(VertexId, DVec3); 2]) -> bool {
+        let _ = (removed, ends);
+        false
+    }
 }
 
 /// Accepts everything; the default base of [`EnvelopeFilter`].
@@ -387,6 +396,11 @@ impl<F: Filter> Filter for EnvelopeFilter<'_, F> {
         // An open chain's filling has no closed boundary to carry a component across.
         self.base.refuses_replacement(old, new, rest, open)
             || (!open && self.barriers.sweeps_across(old, new))
+    }
+
+    fn refuses_border_edge(&self, removed: VertexId, ends: [(VertexId, DVec3); 2]) -> bool {
+        self.base.refuses_border_edge(removed, ends)
+            || self.barriers.refuses_border_edge(removed, ends)
     }
 }
 

@@ -13,7 +13,7 @@
 //! queue orders, stop rules, visitors, the fiber test, border walls, and the local
 //! algorithm's lower-level entry points ([`policy::simplify_local`] and its variants).
 //!
-//! Inside, the modules form a chain: `grid`, `barriers`, `fiber`, `filter`, `rules`,
+//! Inside, the modules form a chain: `grid`, `border_cover`, `barriers`, `fiber`, `filter`, `rules`,
 //! `walls`, `fill`, then `local` (the algorithm, one idea per file), `kept` (the faces kept
 //! around a self-intersecting input's crossings), `driver`, `lod`, `correspond`.
 //! Decisions are exact predicates (`envelope-predicates`); aspect ratios and queue
@@ -21,6 +21,7 @@
 #![forbid(unsafe_code)]
 
 mod barriers;
+mod border_cover;
 mod correspond;
 mod driver;
 mod fiber;

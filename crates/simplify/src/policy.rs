@@ -2,7 +2,8 @@
 //! does): the pieces the driver assembles, after CGAL's Surface_mesh_simplification concepts.
 //!
 //! * [`Barriers`]: the envelopes, border tubes and walls as plain triangles;
-//!   [`border_walls`] builds the walls.
+//!   [`border_walls`] builds the walls; [`BorderCover`] the tubes' rings, which a new
+//!   border edge must pass through.
 //! * [`Filter`]: the validity test of 5.1 on a [`CandidateProfile`]; [`EnvelopeFilter`] is
 //!   the paper's, shared by the local and the global simplifier; [`FaceGrid`] indexes the
 //!   current approximation for it.
@@ -17,6 +18,7 @@
 //!   (any [`Policies`]), and [`LocalSimplifier`] for one removal at a time.
 
 pub use crate::barriers::{BarrierError, BarrierKind, Barriers};
+pub use crate::border_cover::BorderCover;
 pub use crate::fiber::{FiberTest, VertexFibers};
 pub use crate::fill::{Exhaustive, FillContext, Greedy, Hole, HoleFiller};
 pub use crate::filter::{

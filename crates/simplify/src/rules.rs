@@ -101,6 +101,9 @@ pub enum Rejection {
     RepeatedNeighbour,
     /// The valence is above the local algorithm's `MAX_HOLE`.
     HoleTooLarge,
+    /// A border vertex whose new border edge misses the tube ring of an input border vertex
+    /// it stands for ([`BorderCover`](crate::policy::BorderCover)).
+    BorderNotCovered,
     /// No valid triangulation of the hole was found.
     NoValidFill,
     /// No valid triangulation of the hole exists: every triangle on its vertices that meets

@@ -222,6 +222,14 @@ impl<'m> LocalSimplifier<'m> {
         if (1..ring.len()).any(|i| ring[..i].contains(&ring[i])) {
             return Err(Rejection::RepeatedNeighbour);
         }
+        // The new border edge joins the chain's ends, whatever the filling (border vertices
+        // never move).
+        if border {
+            let ends = [ring[0], ring[ring.len() - 1]].map(|u| (u, m.position(u)));
+            if filter.refuses_border_edge(v, ends) {
+                return Err(Rejection::BorderNotCovered);
+            }
+        }
         // Faces around a moved vertex: stale in the grid; those outside the fan stay, at
         // their planned positions (none move in the subset run: the fan alone is excluded).
         let mut moved_around = Vec::new();
