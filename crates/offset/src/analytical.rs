@@ -22,15 +22,12 @@
 //! had, and whose closest triangle is still there, has the same minimum over fewer triangles,
 //! so only the others are clipped again. The offsets are the same as without it.
 use std::collections::HashMap;
-use std::sync::atomic::AtomicBool;
 
 use envelope_mesh::{TriangleSoup, VertexFaces};
 use envelope_predicates::bvh::{Aabb, Bvh};
 use envelope_prism::clip;
 use glam::DVec3;
 use rayon::prelude::*;
-
-use crate::options::raised;
 
 /// No triangle met the prism: `delta` is infinite.
 const NONE: u32 = u32::MAX;
@@ -126,7 +123,7 @@ impl AnalyticalFaces {
 /// Per-vertex `(eps_plus, eps_minus)` by the analytical method; `bvh` is a tree over the
 /// boxes of the input faces (item = face). With `before` (an earlier build's faces, a
 /// superset of these), the minima that still hold are taken from it; with `keep`, this
-/// build's are returned for a later one. Once `abandon` is raised the remaining faces are
+/// build's are returned for a later one. Once `stopped` says so the remaining faces are
 /// skipped (the caller discards the result).
 pub(crate) fn analytical_eps(
     soup: &TriangleSoup,
@@ -135,7 +132,7 @@ pub(crate) fn analytical_eps(
     requested: &[f64],
     bvh: &Bvh,
     (before, keep): (Option<&AnalyticalFaces>, bool),
-    abandon: Option<&AtomicBool>,
+    stopped: &(dyn Fn() -> bool + Sync),
 ) -> (Vec<f64>, Vec<f64>, Option<AnalyticalFaces>) {
     let faces: Vec<[u32; 3]> = soup.faces.iter().map(|f| f.map(|v| v.0)).collect();
     let known = before.and_then(|b| b.reusable(&faces, &soup.positions, normals, requested));
@@ -157,7 +154,7 @@ pub(crate) fn analytical_eps(
             if let [Some(outer), Some(inner)] = known {
                 return [outer, inner];
             }
-            if raised(abandon) {
+            if stopped() {
                 return [(f64::INFINITY, NONE); 2];
             }
             let f = &faces[fi as usize];

@@ -176,7 +176,9 @@ pub fn build_envelopes_with(
     // An abandoned clipping stops early and is not proved.
     let mut analytical = || {
         let (plus, minus, minima) =
-            analytical::analytical_eps(soup, &vf, &normals, &targets, input_tree, memo, abandon);
+            analytical::analytical_eps(soup, &vf, &normals, &targets, input_tree, memo, &|| {
+                raised(abandon)
+            });
         kept_minima = minima.map(Arc::new);
         abandoned().map(|()| (plus, minus))
     };

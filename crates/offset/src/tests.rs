@@ -370,7 +370,7 @@ fn clipping_a_subset_from_the_minima_before_is_clipping_it_afresh() {
         &targets,
         &whole_tree,
         (None, true),
-        None,
+        &|| false,
     );
     let minima = minima.expect("kept");
     let n = soup.num_vertices() / 2;
@@ -395,7 +395,7 @@ fn clipping_a_subset_from_the_minima_before_is_clipping_it_afresh() {
         &targets,
         &sub_tree,
         (None, false),
-        None,
+        &|| false,
     );
     let reused = analytical_eps(
         &subset,
@@ -404,7 +404,7 @@ fn clipping_a_subset_from_the_minima_before_is_clipping_it_afresh() {
         &targets,
         &sub_tree,
         (Some(&minima), false),
-        None,
+        &|| false,
     );
     let bits = |e: &[f64]| e.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&reused.0), bits(&afresh.0));
