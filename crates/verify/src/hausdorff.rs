@@ -66,8 +66,8 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::numeric::{
-    RPoint, add_up, approx_sq_dist, barycentric_point, rational, rpoint, sq_dist_exact, sqrt_down,
-    sqrt_up, square_down, square_up,
+    RPoint, TriNormal, add_up, approx_sq_dist, approx_sq_dist_with, barycentric_point, rational,
+    rpoint, sq_dist_exact, sqrt_down, sqrt_up, square_down, square_up,
 };
 use crate::{FaceBound, OneSided, Verdict, Witness};
 
@@ -180,6 +180,8 @@ impl KeyTable {
 pub(crate) struct Target {
     /// The distinct triangles (a repeated one changes no distance).
     tris: Vec<[DVec3; 3]>,
+    /// Per triangle of `tris`, what the distance estimate needs of it alone.
+    normals: Vec<TriNormal>,
     boxes: Vec<Aabb>,
     bvh: Bvh,
     keys: KeyTable,
@@ -202,9 +204,11 @@ impl Target {
         let faces = tris.len();
         let (keys, tris) = KeyTable::dedup(tris);
         let boxes: Vec<Aabb> = tris.iter().map(|&t| Aabb::from_triangle(t)).collect();
+        let normals = tris.iter().map(TriNormal::new).collect();
         let bvh = Bvh::new(&boxes);
         Target {
             all_faces: tris.len() == faces,
+            normals,
             tris,
             boxes,
             bvh,
@@ -235,6 +239,11 @@ impl Target {
             .iter()
             .map(|b| (b.max - b.min).max_element())
             .fold(0.0, f64::max)
+    }
+
+    /// [`approx_sq_dist`] from `p` to the triangle numbered `t`.
+    pub(super) fn sq_dist(&self, p: DVec3, t: u32) -> f64 {
+        approx_sq_dist_with(p, &self.tris[t as usize], &self.normals[t as usize])
     }
 
     /// The triangle numbered `t`.
@@ -275,7 +284,7 @@ impl Target {
         stack: &mut Vec<NodeId>,
     ) -> Option<u32> {
         if let Some(t) = hint
-            && approx_sq_dist(p, &self.tris[t as usize]) <= e2
+            && self.sq_dist(p, t) <= e2
         {
             return Some(t);
         }
@@ -287,10 +296,7 @@ impl Target {
             }
             match self.bvh.kind(n) {
                 NodeKind::Leaf(items) => {
-                    if let Some(&i) = items
-                        .iter()
-                        .find(|&&i| approx_sq_dist(p, &self.tris[i as usize]) <= e2)
-                    {
+                    if let Some(&i) = items.iter().find(|&&i| self.sq_dist(p, i) <= e2) {
                         return Some(i);
                     }
                 }
@@ -327,8 +333,7 @@ impl Target {
         hint: Option<u32>,
         stack: &mut Vec<NodeId>,
     ) -> Option<(u32, f64)> {
-        let mut best: Option<(u32, f64)> =
-            hint.map(|t| (t, approx_sq_dist(p, &self.tris[t as usize])));
+        let mut best: Option<(u32, f64)> = hint.map(|t| (t, self.sq_dist(p, t)));
         if best.is_some_and(|(_, d)| d.is_nan()) {
             best = None;
         }
@@ -342,7 +347,7 @@ impl Target {
             match self.bvh.kind(n) {
                 NodeKind::Leaf(items) => {
                     for &i in items {
-                        let d = approx_sq_dist(p, &self.tris[i as usize]);
+                        let d = self.sq_dist(p, i);
                         if best.is_none_or(|(_, b)| d < b) {
                             best = Some((i, d));
                         }
@@ -452,10 +457,13 @@ impl Tolerance {
     }
 }
 
-/// `dist(p, t)^2 <= e2`, exactly: the f64 shortcuts [`near_vertex`] and [`near_edge`] (each
-/// only ever says yes when it is so), then the exact predicate.
+/// `dist(p, t)^2 <= e2`, exactly: the f64 shortcuts [`near_vertex`], [`near_face`] and
+/// [`near_edge`] (each only ever says yes when it is so), then the exact predicate.
 fn within(p: DVec3, t: &[DVec3; 3], e2: f64) -> bool {
-    near_vertex(p, t, e2) || near_edge(p, t, e2) || cmp_point_triangle(p, *t, e2) != Sign::Positive
+    near_vertex(p, t, e2)
+        || near_face(p, t, e2)
+        || near_edge(p, t, e2)
+        || cmp_point_triangle(p, *t, e2) != Sign::Positive
 }
 
 /// A sufficient test for `dist(p, t)^2 <= e2` in f64 with a rigorous error bound: the
@@ -468,6 +476,39 @@ fn near_vertex(p: DVec3, t: &[DVec3; 3], e2: f64) -> bool {
         let s = (p - v).length_squared();
         s * (1.0 + 16.0 * f64::EPSILON) + 4.0 * f64::MIN_POSITIVE <= e2
     })
+}
+
+/// A sufficient test for `dist(p, t)^2 <= e2` in f64 with a rigorous error bound, like
+/// [`near_edge`] for the inside of `t`: the distance from `p` to an f64 point `q` within a
+/// proved bound of the exact point `a + v (b - a) + w (c - a)`, for the f64 barycentrics
+/// `v, w >= 0`, `v + w < 1` of `p`'s projection. Most points a proof asks about lie over
+/// the inside of a triangle; the exact predicate decides their region with several filtered
+/// determinants first.
+fn near_face(p: DVec3, t: &[DVec3; 3], e2: f64) -> bool {
+    let [a, b, c] = *t;
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d00, d01, d11) = (ab.dot(ab), ab.dot(ac), ac.dot(ac));
+    let (d20, d21) = (ap.dot(ab), ap.dot(ac));
+    let den = d00 * d11 - d01 * d01;
+    let v = (d11 * d20 - d01 * d21) / den;
+    let w = (d00 * d21 - d01 * d20) / den;
+    // fl(v + w) <= 1 - 4u gives v + w < 1 exactly; NaN fails every comparison.
+    if !(v >= 0.0 && w >= 0.0 && v + w <= 1.0 - 4.0 * f64::EPSILON) {
+        return false;
+    }
+    let q = a + ab * v + ac * w;
+    let s = (p - q).length_squared();
+    if s.is_nan() || s > e2 {
+        return false;
+    }
+    // q against the exact point: per coordinate at most 14u max(|a|, |b|, |c|) (two
+    // differences, two products and two sums, v and w in [0, 1]), times sqrt 3 over the
+    // coordinates; 4e-15 (|a| + |b| + |c|) covers it, MIN_POSITIVE the underflows.
+    let size = a.abs().max_element() + b.abs().max_element() + c.abs().max_element();
+    let off = add_up(4e-15 * size, f64::MIN_POSITIVE);
+    let s = s * (1.0 + 16.0 * f64::EPSILON) + 4.0 * f64::MIN_POSITIVE;
+    let r = add_up(sqrt_up(s), off);
+    square_up(r) <= e2
 }
 
 /// A sufficient test for `dist(p, t)^2 <= e2` in f64 with a rigorous error bound, like
@@ -512,9 +553,17 @@ struct Sub {
     c: [Corner; 3],
     level: u32,
     cands: Vec<u32>,
-    /// `d[j][i]`: approximate squared distance of corner `j` to `cands[i]` (infinite for
-    /// NaN). Computed once per point: a midpoint is a corner of three children.
-    d: [Vec<f64>; 3],
+    /// `d[3 i + j]`: approximate squared distance of corner `j` to `cands[i]` (infinite for
+    /// NaN). Computed once per point: a midpoint is a corner of three children. One
+    /// allocation per sub-triangle (millions of them).
+    d: Vec<f64>,
+}
+
+impl Sub {
+    /// The estimated squared distance of corner `j` to `cands[i]`.
+    fn dist(&self, j: usize, i: usize) -> f64 {
+        self.d[3 * i + j]
+    }
 }
 
 /// The rounded midpoint of two corners, with its error bound.
@@ -608,15 +657,10 @@ impl Estimate {
 }
 
 impl Search<'_> {
-    /// Approximate squared distances of `p` to each of `cands` (NaN as infinity).
-    fn distances(&self, p: DVec3, cands: &[u32]) -> Vec<f64> {
-        cands
-            .iter()
-            .map(|&t| {
-                let d = approx_sq_dist(p, &self.target.tris[t as usize]);
-                if d.is_nan() { f64::INFINITY } else { d }
-            })
-            .collect()
+    /// Approximate squared distance of `p` to the target's triangle `t` (NaN as infinity).
+    fn sq_dist_or_inf(&self, p: DVec3, t: u32) -> f64 {
+        let d = self.target.sq_dist(p, t);
+        if d.is_nan() { f64::INFINITY } else { d }
     }
 
     fn estimate(&self, s: &Sub) -> Estimate {
@@ -626,7 +670,7 @@ impl Search<'_> {
         for (i, &t) in s.cands.iter().enumerate() {
             let mut worst = 0.0f64;
             for j in 0..3 {
-                let d = s.d[j][i];
+                let d = s.dist(j, i);
                 if d < corner_min[j] {
                     corner_min[j] = d;
                     corner_best[j] = t;
@@ -726,7 +770,7 @@ impl Search<'_> {
         // then pairs of the triangles nearest to each corner.
         let mut close: Vec<(f64, u32)> = Vec::new();
         for (i, &t) in s.cands.iter().enumerate() {
-            let w = s.d[0][i].max(s.d[1][i]).max(s.d[2][i]);
+            let w = s.dist(0, i).max(s.dist(1, i)).max(s.dist(2, i));
             if w <= near {
                 close.push((w, t));
             }
@@ -832,9 +876,9 @@ impl Search<'_> {
                 c: [corner(0), corner(1), corner(2)],
                 level: 0,
                 cands: Vec::new(),
-                d: [Vec::new(), Vec::new(), Vec::new()],
+                d: Vec::new(),
             };
-            let d = tri.map(|p| approx_sq_dist(p, &self.target.tris[t0 as usize]));
+            let d = tri.map(|p| self.target.sq_dist(p, t0));
             let m = d[0].max(d[1]).max(d[2]);
             let est = Estimate {
                 best: Some((t0, m)),
@@ -858,7 +902,10 @@ impl Search<'_> {
         self.target
             .bvh
             .for_each_overlapping(&query, |t| cands.push(t));
-        let d = tri.map(|p| self.distances(p, &cands));
+        let d = cands
+            .iter()
+            .flat_map(|&t| tri.map(|p| self.sq_dist_or_inf(p, t)))
+            .collect();
         let mut stack = vec![Sub {
             c: [corner(0), corner(1), corner(2)],
             level: 0,
@@ -926,24 +973,31 @@ impl Search<'_> {
         let [a, b, c] = s.c;
         // Midpoints sum the numerators over 2^(L+1); the old corners double theirs.
         let (ab, bc, ca) = (midpoint(&a, &b), midpoint(&b, &c), midpoint(&c, &a));
-        let [da, db, dc] = s.d;
-        let (dab, dbc, dca) = (
-            self.distances(ab.p, &s.cands),
-            self.distances(bc.p, &s.cands),
-            self.distances(ca.p, &s.cands),
-        );
+        // `mid[3 i + k]`: midpoint k (ab, bc, ca) to `cands[i]`.
+        let mid: Vec<f64> = s
+            .cands
+            .iter()
+            .flat_map(|&t| [ab.p, bc.p, ca.p].map(|p| self.sq_dist_or_inf(p, t)))
+            .collect();
         let double = |x: Corner| Corner {
             bary: x.bary.map(|v| v * 2),
             ..x
         };
         let (a2, b2, c2) = (double(a), double(b), double(c));
+        // Each child's corners, and where their distances are: (parent corner, midpoint).
+        #[derive(Clone, Copy)]
+        enum Src {
+            Corner(usize),
+            Mid(usize),
+        }
+        use Src::{Corner as P, Mid as M};
         let children = [
-            ([a2, ab, ca], [&da, &dab, &dca]),
-            ([ab, b2, bc], [&dab, &db, &dbc]),
-            ([ca, bc, c2], [&dca, &dbc, &dc]),
-            ([bc, ca, ab], [&dbc, &dca, &dab]),
+            ([a2, ab, ca], [P(0), M(0), M(2)]),
+            ([ab, b2, bc], [M(0), P(1), M(1)]),
+            ([ca, bc, c2], [M(2), M(1), P(2)]),
+            ([bc, ca, ab], [M(1), M(2), M(0)]),
         ];
-        for (corners, dists) in children {
+        for (corners, from) in children {
             let points = corners.map(|c| c.p);
             let query = Aabb::from_triangle(points).inflated(self.tol.eps);
             // A triangle farther than eps + diam from a corner is farther than eps from
@@ -957,17 +1011,25 @@ impl Search<'_> {
             let slack = corners.iter().map(|c| c.delta).fold(0.0, f64::max);
             let reach = (self.tol.eps + diam + 2.0 * slack) * (1.0 + 1e-6);
             let reach2 = reach * reach;
-            let keep: Vec<usize> = (0..s.cands.len())
-                .filter(|&i| {
-                    self.target.boxes[s.cands[i] as usize].overlaps(&query)
-                        && dists.iter().all(|d| d[i] <= reach2)
-                })
-                .collect();
+            let dist = |i: usize, f: Src| match f {
+                P(j) => s.dist(j, i),
+                M(k) => mid[3 * i + k],
+            };
+            let mut cands = Vec::new();
+            let mut d = Vec::new();
+            for (i, &t) in s.cands.iter().enumerate() {
+                let di = from.map(|f| dist(i, f));
+                if self.target.boxes[t as usize].overlaps(&query) && di.iter().all(|&x| x <= reach2)
+                {
+                    cands.push(t);
+                    d.extend_from_slice(&di);
+                }
+            }
             stack.push(Sub {
                 c: corners,
                 level: s.level + 1,
-                cands: keep.iter().map(|&i| s.cands[i]).collect(),
-                d: dists.map(|v| keep.iter().map(|&i| v[i]).collect()),
+                cands,
+                d,
             });
         }
     }
@@ -1304,6 +1366,33 @@ mod tests {
             // And it is not vacuous: a point rounded onto an edge is within any usable e2.
             if off == 0.0 && e2 >= 1e-6 && a != b {
                 prop_assert!(near_edge(p, &t, e2), "{p:?} {t:?} {e2}");
+            }
+        }
+
+        /// `near_face` only says "within" when the exact distance is: points over the
+        /// inside of a triangle (rounded), a few ulps or a small distance off its plane.
+        #[test]
+        fn near_face_is_sound(
+            t in [point(), point(), point()],
+            v in 0.0f64..1.0,
+            w in 0.0f64..1.0,
+            off in prop_oneof![Just(0.0), -1e-14f64..1e-14, -1e-3f64..1e-3],
+            dir in point(),
+            e2 in prop_oneof![Just(0.0), 0.0f64..1e-30, 0.0f64..1e-6, 0.0f64..1e-2],
+        ) {
+            let (v, w) = if v + w > 1.0 { (1.0 - v, 1.0 - w) } else { (v, w) };
+            let [a, b, c] = t;
+            let p = a + (b - a) * v + (c - a) * w + dir * off;
+            let exact = sq_dist_exact(&rpoint(p), &t);
+            if near_face(p, &t, e2) {
+                prop_assert!(exact <= rational(e2), "{p:?} {t:?} {e2}");
+            }
+            // And it is not vacuous: a point rounded into a fat triangle, well inside, is
+            // within any usable e2.
+            let n = (b - a).cross(c - a).length();
+            let fat = n > 0.1 * (b - a).length_squared().max((c - a).length_squared());
+            if off == 0.0 && e2 >= 1e-6 && fat && v > 0.01 && w > 0.01 && v + w < 0.99 {
+                prop_assert!(near_face(p, &t, e2), "{p:?} {t:?} {e2}");
             }
         }
 

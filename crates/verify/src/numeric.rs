@@ -65,12 +65,44 @@ pub(crate) fn add_up(a: f64, b: f64) -> f64 {
 /// used to pick which triangle and which bound to certify with the exact predicates.
 #[must_use]
 pub(crate) fn approx_sq_dist(p: DVec3, t: &[DVec3; 3]) -> f64 {
+    approx_sq_dist_with(p, t, &TriNormal::new(t))
+}
+
+/// What [`approx_sq_dist`] computes of the triangle alone, once per triangle of a target:
+/// the cross product of its edges from the first corner, and that vector's squared length,
+/// negative for a flat (or NaN) triangle.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TriNormal {
+    n: DVec3,
+    n2: f64,
+}
+
+impl TriNormal {
+    pub(crate) fn new(t: &[DVec3; 3]) -> TriNormal {
+        let [a, b, c] = *t;
+        let ab = b - a;
+        let ac = c - a;
+        let n = ab.cross(ac);
+        let n2 = n.length_squared();
+        let flat = n2.partial_cmp(&(1e-30 * ab.length_squared() * ac.length_squared()));
+        TriNormal {
+            n,
+            n2: if flat == Some(std::cmp::Ordering::Greater) {
+                n2
+            } else {
+                -1.0
+            },
+        }
+    }
+}
+
+/// [`approx_sq_dist`] with the triangle's [`TriNormal`] given (the same value, bit for bit).
+#[must_use]
+pub(crate) fn approx_sq_dist_with(p: DVec3, t: &[DVec3; 3], tn: &TriNormal) -> f64 {
     let [a, b, c] = *t;
     let ab = b - a;
     let ac = c - a;
-    let n2 = ab.cross(ac).length_squared();
-    let flat = n2.partial_cmp(&(1e-30 * ab.length_squared() * ac.length_squared()));
-    if flat != Some(std::cmp::Ordering::Greater) {
+    if tn.n2 < 0.0 {
         return approx_sq_dist_segment(p, a, b)
             .min(approx_sq_dist_segment(p, b, c))
             .min(approx_sq_dist_segment(p, c, a));
@@ -106,9 +138,8 @@ pub(crate) fn approx_sq_dist(p: DVec3, t: &[DVec3; 3]) -> f64 {
         return approx_sq_dist_segment(p, b, c);
     }
     // Interior: distance to the plane.
-    let n = ab.cross(ac);
-    let h = n.dot(ap);
-    h * h / n2
+    let h = tn.n.dot(ap);
+    h * h / tn.n2
 }
 
 fn approx_sq_dist_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {

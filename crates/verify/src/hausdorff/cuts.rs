@@ -8,8 +8,8 @@ use glam::DVec3;
 
 use super::{Estimate, Low, Search, Sub, farther, within};
 use crate::numeric::{
-    RPoint, add_up, approx_sq_dist, barycentric_point, cross, crossing_with_bound, dot,
-    orient3d_with_bound, rpoint, sq_dist_exact, sqrt_up, sub,
+    RPoint, add_up, barycentric_point, cross, crossing_with_bound, dot, orient3d_with_bound,
+    rpoint, sq_dist_exact, sqrt_up, sub,
 };
 
 /// Rounds of cuts [`Search::pieces_within`] makes at most (up to `2^PIECE_CUTS` pieces).
@@ -60,10 +60,9 @@ impl Search<'_> {
             })
             .collect();
         let cands: Vec<u32> = keep.iter().map(|&i| s.cands[i]).collect();
-        let d: Vec<Vec<f64>> =
-            s.d.iter()
-                .map(|v| keep.iter().map(|&i| v[i]).collect())
-                .collect();
+        let d: Vec<f64> = (0..3)
+            .flat_map(|j| keep.iter().map(move |&i| s.dist(j, i)))
+            .collect();
         let poly: Vec<DVec3> = s.c.iter().map(|c| c.p).collect();
         let (u, far) = self.piece_within(&cands, &poly, &d, delta, PIECE_CUTS)?;
         (u <= self.tol.eps).then_some((u, far))
@@ -72,19 +71,24 @@ impl Search<'_> {
     /// A proved bound of the distance of the polygon `poly` (f64 points, taken exactly,
     /// convex) to `to`, plus `err`, when at most `eps` (see [`Self::pieces_within`]), and
     /// the farthest vertex of its pieces (each within its piece's `err` of a point of the
-    /// exact polygon). `d[k][i]`: the estimated squared distance of `poly[k]` to `cands[i]`.
+    /// exact polygon). `d[k n + i]`: the estimated squared distance of `poly[k]` to
+    /// `cands[i]`, `n` candidates (one allocation per piece: this runs millions of times).
     fn piece_within(
         &self,
         cands: &[u32],
         poly: &[DVec3],
-        d: &[Vec<f64>],
+        d: &[f64],
         err: f64,
         cuts: u32,
     ) -> Option<(f64, Low)> {
+        let n = cands.len();
+        if n == 0 {
+            return None;
+        }
         // Each vertex's nearest candidate, by the estimate; all must be within eps.
         let mut nearest: Vec<u32> = Vec::with_capacity(poly.len());
         let mut far: Option<Low> = None;
-        for (k, dk) in d.iter().enumerate() {
+        for (k, dk) in d.chunks_exact(n).enumerate() {
             let (i, &m) = dk.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1))?;
             if m >= self.tol.e2lo {
                 return None;
@@ -101,7 +105,7 @@ impl Search<'_> {
             let Some(i) = cands.iter().position(|&c| c == t) else {
                 continue;
             };
-            let value = |k: usize| self.tol.piece_value(d[k][i]);
+            let value = |k: usize| self.tol.piece_value(d[k * n + i]);
             let promised = (0..poly.len()).map(value).fold(0.0, f64::max);
             if promised > self.tol.e2hi || add_up(sqrt_up(promised), err) > self.tol.eps {
                 continue;
@@ -145,13 +149,13 @@ impl Search<'_> {
                     let points: Vec<DVec3> = part.iter().map(|x| x.0).collect();
                     let e = part.iter().map(|x| x.1).fold(err, add_up);
                     // Distances of the old vertices are known; the cut points' are new.
-                    let dist: Vec<Vec<f64>> = points
-                        .iter()
-                        .map(|&x| match poly.iter().position(|&y| y == x) {
-                            Some(k) => d[k].clone(),
-                            None => self.distances(x, cands),
-                        })
-                        .collect();
+                    let mut dist: Vec<f64> = Vec::with_capacity(points.len() * n);
+                    for &x in &points {
+                        match poly.iter().position(|&y| y == x) {
+                            Some(k) => dist.extend_from_slice(&d[k * n..(k + 1) * n]),
+                            None => dist.extend(cands.iter().map(|&t| self.sq_dist_or_inf(x, t))),
+                        }
+                    }
                     self.piece_within(cands, &points, &dist, e, cuts - 1)
                 };
                 let (u, mut far) = piece(&lo)?;
@@ -187,10 +191,11 @@ impl Search<'_> {
                 let side = corners.map(|x| orient3d(p, q, r, x));
                 // Side <= 0 goes with one triangle, >= 0 with the other.
                 let (lo, hi) = clip_f64(&corners, &side, [p, q, r]);
-                let bound = |piece: &Piece, t: &[DVec3; 3]| -> Option<f64> {
+                let bound = |piece: &Piece, id: u32| -> Option<f64> {
+                    let t = &self.target.tris[id as usize];
                     let values: Vec<f64> = piece
                         .iter()
-                        .map(|&(v, _)| self.tol.piece_value(approx_sq_dist(v, t)))
+                        .map(|&(v, _)| self.tol.piece_value(self.target.sq_dist(v, id)))
                         .collect();
                     // The bound the exact tests would prove, from the estimates: no exact
                     // test where it already exceeds eps (the same answer, sooner).
@@ -209,7 +214,7 @@ impl Search<'_> {
                             within(v, t, c).then(|| u.max(add_up(sqrt_up(c), e)))
                         })
                 };
-                for (x, y) in [(a, b), (b, a)] {
+                for (x, y) in [(t1, t2), (t2, t1)] {
                     if let (Some(u), Some(w)) = (bound(&lo, x), bound(&hi, y)) {
                         let total = add_up(u.max(w), delta);
                         if total <= self.tol.eps {
