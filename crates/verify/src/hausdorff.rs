@@ -644,15 +644,33 @@ struct Estimate {
 }
 
 impl Estimate {
-    /// The triangles nearest to the corners, each once, in corner order.
-    fn nearest(&self) -> Vec<u32> {
-        let mut ts: Vec<u32> = Vec::with_capacity(3);
+    /// The triangles nearest to the corners, each once, in corner order (`ids[..len]`; no
+    /// allocation: it is asked for on every sub-triangle a cut is tried on).
+    fn nearest(&self) -> Nearest {
+        let mut out = Nearest {
+            ids: [u32::MAX; 3],
+            len: 0,
+        };
         for t in self.corner_best {
-            if t != u32::MAX && !ts.contains(&t) {
-                ts.push(t);
+            if t != u32::MAX && !out.ids[..out.len].contains(&t) {
+                out.ids[out.len] = t;
+                out.len += 1;
             }
         }
-        ts
+        out
+    }
+}
+
+/// At most three distinct triangle numbers ([`Estimate::nearest`]).
+struct Nearest {
+    ids: [u32; 3],
+    len: usize,
+}
+
+impl std::ops::Deref for Nearest {
+    type Target = [u32];
+    fn deref(&self) -> &[u32] {
+        &self.ids[..self.len]
     }
 }
 

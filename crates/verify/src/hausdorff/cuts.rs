@@ -5,6 +5,7 @@
 use envelope_predicates::exact_num::Rational;
 use envelope_predicates::{Orientation, collinear, orient3d};
 use glam::DVec3;
+use smallvec::SmallVec;
 
 use super::{Estimate, Low, Search, Sub, farther, within};
 use crate::numeric::{
@@ -31,7 +32,7 @@ impl Search<'_> {
     /// that only bounds the work. Also returns the pieces' farthest vertex, a lower-bound
     /// candidate.
     pub(super) fn pieces_within(&self, s: &Sub, est: &Estimate, delta: f64) -> Option<(f64, Low)> {
-        let nearest: Vec<[DVec3; 3]> = est
+        let nearest: SmallVec<[[DVec3; 3]; 3]> = est
             .nearest()
             .iter()
             .map(|&t| self.target.tris[t as usize])
@@ -44,12 +45,12 @@ impl Search<'_> {
             return None;
         }
         // Around a corner all of them share, its fan; else whatever touches one of them.
-        let common: Vec<DVec3> = nearest[0]
+        let common: SmallVec<[DVec3; 3]> = nearest[0]
             .iter()
             .copied()
             .filter(|p| nearest.iter().all(|n| n.contains(p)))
             .collect();
-        let keep: Vec<usize> = (0..s.cands.len())
+        let keep: SmallVec<[usize; 16]> = (0..s.cands.len())
             .filter(|&i| {
                 let t = &self.target.tris[s.cands[i] as usize];
                 if common.is_empty() {
@@ -59,12 +60,12 @@ impl Search<'_> {
                 }
             })
             .collect();
-        let cands: Vec<u32> = keep.iter().map(|&i| s.cands[i]).collect();
-        let d: Vec<f64> = (0..3)
+        let cands: SmallVec<[u32; 16]> = keep.iter().map(|&i| s.cands[i]).collect();
+        let d: SmallVec<[f64; 64]> = (0..3)
             .flat_map(|j| keep.iter().map(move |&i| s.dist(j, i)))
             .collect();
-        let poly: Vec<DVec3> = s.c.iter().map(|c| c.p).collect();
-        let (u, far) = self.piece_within(&cands, &poly, &d, delta, PIECE_CUTS)?;
+        let poly = s.c.map(|c| c.p);
+        let (u, far) = self.piece_within(&cands, &poly, &d[..], delta, PIECE_CUTS)?;
         (u <= self.tol.eps).then_some((u, far))
     }
 
@@ -86,7 +87,7 @@ impl Search<'_> {
             return None;
         }
         // Each vertex's nearest candidate, by the estimate; all must be within eps.
-        let mut nearest: Vec<u32> = Vec::with_capacity(poly.len());
+        let mut nearest: SmallVec<[u32; 8]> = SmallVec::new();
         let mut far: Option<Low> = None;
         for (k, dk) in d.chunks_exact(n).enumerate() {
             let (i, &m) = dk.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1))?;
@@ -137,7 +138,8 @@ impl Search<'_> {
                 else {
                     continue;
                 };
-                let side: Vec<Orientation> = poly.iter().map(|&x| orient3d(p, q, r, x)).collect();
+                let side: SmallVec<[Orientation; 8]> =
+                    poly.iter().map(|&x| orient3d(p, q, r, x)).collect();
                 if !side.contains(&Orientation::Positive)
                     || !side.contains(&Orientation::Negative)
                     || !is_chord(&side)
@@ -146,10 +148,10 @@ impl Search<'_> {
                 }
                 let (lo, hi) = clip_f64(poly, &side, [p, q, r]);
                 let piece = |part: &Piece| -> Option<(f64, Low)> {
-                    let points: Vec<DVec3> = part.iter().map(|x| x.0).collect();
+                    let points: SmallVec<[DVec3; 8]> = part.iter().map(|x| x.0).collect();
                     let e = part.iter().map(|x| x.1).fold(err, add_up);
                     // Distances of the old vertices are known; the cut points' are new.
-                    let mut dist: Vec<f64> = Vec::with_capacity(points.len() * n);
+                    let mut dist: SmallVec<[f64; 64]> = SmallVec::new();
                     for &x in &points {
                         match poly.iter().position(|&y| y == x) {
                             Some(k) => dist.extend_from_slice(&d[k * n..(k + 1) * n]),
@@ -193,7 +195,7 @@ impl Search<'_> {
                 let (lo, hi) = clip_f64(&corners, &side, [p, q, r]);
                 let bound = |piece: &Piece, id: u32| -> Option<f64> {
                     let t = &self.target.tris[id as usize];
-                    let values: Vec<f64> = piece
+                    let values: SmallVec<[f64; 8]> = piece
                         .iter()
                         .map(|&(v, _)| self.tol.piece_value(self.target.sq_dist(v, id)))
                         .collect();
@@ -290,7 +292,7 @@ fn is_chord(side: &[Orientation]) -> bool {
 
 /// A part of a cut polygon: f64 points, each with a proved bound on its distance to the
 /// exact point it stands for.
-type Piece = Vec<(DVec3, f64)>;
+type Piece = SmallVec<[(DVec3, f64); 8]>;
 
 /// Cuts the convex polygon `poly` (f64 points, taken exactly) by the plane through
 /// `[p, q, r]`, whose exact sides of `poly`'s points are `side`: the (point, error bound)
@@ -298,8 +300,8 @@ type Piece = Vec<(DVec3, f64)>;
 /// edges whose ends lie strictly apart computed in f64 with proved bounds on their distance
 /// to the exact ones ([`crossing_with_bound`]); the polygon's own points have bound 0.
 fn clip_f64(poly: &[DVec3], side: &[Orientation], [p, q, r]: [DVec3; 3]) -> (Piece, Piece) {
-    let mut lo: Piece = Vec::with_capacity(poly.len() + 1);
-    let mut hi: Piece = Vec::with_capacity(poly.len() + 1);
+    let mut lo: Piece = SmallVec::new();
+    let mut hi: Piece = SmallVec::new();
     for k in 0..poly.len() {
         let j = (k + 1) % poly.len();
         if side[k] != Orientation::Positive {
@@ -339,13 +341,26 @@ impl Plane {
     }
 }
 
+/// The corners of `a` that are corners of `b`, in `a`'s order (`[..n]`).
+fn shared_corners(a: &[DVec3; 3], b: &[DVec3; 3]) -> ([DVec3; 3], usize) {
+    let mut out = [DVec3::ZERO; 3];
+    let mut n = 0;
+    for &p in a {
+        if b.contains(&p) {
+            out[n] = p;
+            n += 1;
+        }
+    }
+    (out, n)
+}
+
 /// Three f64 points spanning the plane through the shared edge of two triangles that also
 /// holds the sum of their unit normals (any rounding is harmless: any plane through the edge
 /// is sound, see `split_within_exactly`); `None` when they share no edge or the plane
 /// degenerates.
 fn bisector_points(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<[DVec3; 3]> {
-    let shared: Vec<DVec3> = a.iter().copied().filter(|p| b.contains(p)).collect();
-    let [p, q] = shared[..] else {
+    let (shared, n) = shared_corners(a, b);
+    let [p, q] = shared[..n] else {
         return None;
     };
     let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
@@ -365,8 +380,8 @@ fn bisector_points(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<[DVec3; 3]> {
 /// makes the pieces likely to be near their triangles). `None` when they share no single
 /// corner or the plane degenerates.
 fn vertex_bisector_points(a: &[DVec3; 3], b: &[DVec3; 3]) -> Option<[DVec3; 3]> {
-    let shared: Vec<DVec3> = a.iter().copied().filter(|p| b.contains(p)).collect();
-    let [v] = shared[..] else {
+    let (shared, n) = shared_corners(a, b);
+    let [v] = shared[..n] else {
         return None;
     };
     let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
