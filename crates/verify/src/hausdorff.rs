@@ -920,10 +920,10 @@ impl Search<'_> {
         self.target
             .bvh
             .for_each_overlapping(&query, |t| cands.push(t));
-        let d = cands
-            .iter()
-            .flat_map(|&t| tri.map(|p| self.sq_dist_or_inf(p, t)))
-            .collect();
+        let mut d = Vec::with_capacity(3 * cands.len());
+        for &t in &cands {
+            d.extend(tri.map(|p| self.sq_dist_or_inf(p, t)));
+        }
         let mut stack = vec![Sub {
             c: [corner(0), corner(1), corner(2)],
             level: 0,
@@ -992,11 +992,10 @@ impl Search<'_> {
         // Midpoints sum the numerators over 2^(L+1); the old corners double theirs.
         let (ab, bc, ca) = (midpoint(&a, &b), midpoint(&b, &c), midpoint(&c, &a));
         // `mid[3 i + k]`: midpoint k (ab, bc, ca) to `cands[i]`.
-        let mid: Vec<f64> = s
-            .cands
-            .iter()
-            .flat_map(|&t| [ab.p, bc.p, ca.p].map(|p| self.sq_dist_or_inf(p, t)))
-            .collect();
+        let mut mid: Vec<f64> = Vec::with_capacity(3 * s.cands.len());
+        for &t in &s.cands {
+            mid.extend([ab.p, bc.p, ca.p].map(|p| self.sq_dist_or_inf(p, t)));
+        }
         let double = |x: Corner| Corner {
             bary: x.bary.map(|v| v * 2),
             ..x
@@ -1033,8 +1032,8 @@ impl Search<'_> {
                 P(j) => s.dist(j, i),
                 M(k) => mid[3 * i + k],
             };
-            let mut cands = Vec::new();
-            let mut d = Vec::new();
+            let mut cands = Vec::with_capacity(s.cands.len());
+            let mut d = Vec::with_capacity(3 * s.cands.len());
             for (i, &t) in s.cands.iter().enumerate() {
                 let di = from.map(|f| dist(i, f));
                 if self.target.boxes[t as usize].overlaps(&query) && di.iter().all(|&x| x <= reach2)
