@@ -460,8 +460,8 @@ impl Tolerance {
 /// `dist(p, t)^2 <= e2`, exactly: the f64 shortcuts [`near_vertex`], [`near_face`] and
 /// [`near_edge`] (each only ever says yes when it is so), then the exact predicate.
 fn within(p: DVec3, t: &[DVec3; 3], e2: f64) -> bool {
-    near_vertex(p, t, e2)
-        || near_face(p, t, e2)
+    near_face(p, t, e2)
+        || near_vertex(p, t, e2)
         || near_edge(p, t, e2)
         || cmp_point_triangle(p, *t, e2) != Sign::Positive
 }
