@@ -139,8 +139,8 @@ pub enum DriverError {
     /// repair rounds: simplifying between them could give a wrong answer, so nothing is.
     #[error(
         "the envelopes could not be proved free of intersections ({contacts} contacts \
-         remain after repair; parts of the input may be closer together than offsets can \
-         resolve): no output is made from unproved envelopes"
+         remain after repair; parts of the input, or stretches of one border, may be closer \
+         together than offsets can resolve): no output is made from unproved envelopes"
     )]
     UnprovedEnvelopes {
         /// Contacts (envelope and tube) the last proof found.
