@@ -501,9 +501,10 @@ fn near_face(p: DVec3, t: &[DVec3; 3], e2: f64) -> bool {
     if s.is_nan() || s > e2 {
         return false;
     }
-    // q against the exact point: per coordinate at most 14u max(|a|, |b|, |c|) (two
+    // q against the exact point: per coordinate at most about 16u max(|a|, |b|, |c|) (two
     // differences, two products and two sums, v and w in [0, 1]), times sqrt 3 over the
-    // coordinates; 4e-15 (|a| + |b| + |c|) covers it, MIN_POSITIVE the underflows.
+    // coordinates, 3.1e-15 max; 4e-15 (|a| + |b| + |c|) covers it, MIN_POSITIVE the
+    // underflows.
     let size = a.abs().max_element() + b.abs().max_element() + c.abs().max_element();
     let off = add_up(4e-15 * size, f64::MIN_POSITIVE);
     let s = s * (1.0 + 16.0 * f64::EPSILON) + 4.0 * f64::MIN_POSITIVE;
