@@ -1397,8 +1397,11 @@ mod tests {
             off in prop_oneof![Just(0.0), -1e-14f64..1e-14, -1e-3f64..1e-3],
             dir in point(),
             e2 in prop_oneof![Just(0.0), 0.0f64..1e-30, 0.0f64..1e-6, 0.0f64..1e-2],
+            shift in prop_oneof![Just(0.0), -1e6f64..1e6],
         ) {
             let (v, w) = if v + w > 1.0 { (1.0 - v, 1.0 - w) } else { (v, w) };
+            // Far from the origin the roundings grow with the coordinates, not the triangle.
+            let t = t.map(|x| x + DVec3::splat(shift));
             let [a, b, c] = t;
             let p = a + (b - a) * v + (c - a) * w + dir * off;
             let exact = sq_dist_exact(&rpoint(p), &t);
