@@ -449,13 +449,18 @@ impl Global<'_> {
         }
         // Removed interior vertices (the projection condition applies to them; removed
         // border vertices are taken on the local algorithm's terms: the tube test of the
-        // new border edge).
-        let interior: Vec<VertexId> = r
+        // new border edge, and its passing through the rings of the input border vertices
+        // it stands for, `Filter::refuses_border_edge`).
+        let (interior, border): (Vec<VertexId>, Vec<VertexId>) = r
             .inside
             .iter()
-            .copied()
-            .filter(|&v| !self.mesh.is_border_vertex(v))
-            .collect();
+            .partition(|&&v| !self.mesh.is_border_vertex(v));
+        if let (true, Some(&first), Some(&last)) = (r.open, r.cycle.first(), r.cycle.last()) {
+            let ends = [last, first].map(|u| (u, self.mesh.position(u)));
+            if border.iter().any(|&v| filter.refuses_border_edge(v, ends)) {
+                return (0, false);
+            }
+        }
         // The region's triangles, for the test against the filling below.
         let old: Vec<[DVec3; 3]> = r
             .faces

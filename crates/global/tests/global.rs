@@ -401,3 +401,59 @@ fn kept_vertices_stay_where_they_are() {
         assert_certified(&sphere, &out, 0.05);
     }
 }
+
+/// The global stage asks `Filter::refuses_border_edge` (the envelope filter: the new border
+/// edge must pass through the tube rings of the input border vertices it stands for, module
+/// `border_cover` of `envelope-simplify`) before an open region removes border vertices.
+/// With a filter that accepts every triangle, some border vertices of an open cylinder go;
+/// with one that also refuses every new border edge, none does, and interior ones still go.
+#[test]
+fn global_asks_the_filter_before_removing_border_vertices() {
+    use envelope_global::{Fibers, GlobalOptions, simplify_global_with};
+    use envelope_mesh::HalfEdgeMesh;
+    use envelope_simplify::policy::{CandidateProfile, Filter};
+
+    struct Accept {
+        refuse_border_edges: bool,
+    }
+    impl Filter for Accept {
+        fn accepts(&self, _: &CandidateProfile<'_>) -> bool {
+            true
+        }
+        fn refuses_border_edge(&self, _: VertexId, _: [(VertexId, DVec3); 2]) -> bool {
+            self.refuse_border_edges
+        }
+    }
+    let soup = generate::open_cylinder(1.0, 1.0, 24, 6);
+    // Fibers across the wall, 0.1 each way.
+    let radial = |p: &DVec3, s: f64| DVec3::new(p.x * s, p.y * s, p.z);
+    let inner: Vec<DVec3> = soup.positions.iter().map(|p| radial(p, 0.9)).collect();
+    let outer: Vec<DVec3> = soup.positions.iter().map(|p| radial(p, 1.1)).collect();
+    let fibers = Fibers {
+        inner: &inner,
+        outer: &outer,
+    };
+    let run = |refuse_border_edges| {
+        let mut m = HalfEdgeMesh::from_soup(&soup).expect("manifold");
+        let filter = Accept {
+            refuse_border_edges,
+        };
+        let options = GlobalOptions::default();
+        simplify_global_with(&mut m, &filter, &fibers, &options, &mut ()).expect("runs");
+        let border = m.vertices().filter(|&v| m.is_border_vertex(v)).count();
+        (border, m.num_vertices())
+    };
+    let border_in = analyze(&soup)
+        .border_loops
+        .iter()
+        .map(Vec::len)
+        .sum::<usize>();
+    let (border, _) = run(false);
+    assert!(border < border_in, "the setup removes border vertices");
+    let (border, vertices) = run(true);
+    assert_eq!(
+        border, border_in,
+        "a refused border edge removes no border vertex"
+    );
+    assert!(vertices < soup.num_vertices(), "interior vertices still go");
+}
