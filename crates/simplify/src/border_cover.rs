@@ -59,7 +59,8 @@ impl BorderCover {
     /// let ring = |c: DVec3| [DVec3::Z, DVec3::Y, -DVec3::Z, -DVec3::Y].map(|d| c + d * 0.25);
     /// let rings: Vec<DVec3> = at.iter().flat_map(|&c| ring(c)).collect();
     /// let border: Vec<VertexId> = (0..5).map(VertexId).collect();
-    /// let cover = BorderCover::new(&[(border, true, TriangleSoup::new(rings, vec![]))]);
+    /// let tube = TriangleSoup::new(rings, vec![]);
+    /// let cover = BorderCover::new(&[(&border[..], true, &tube)]);
     /// let end = |v: u32| (VertexId(v), at[v as usize]);
     /// // Removing 1: the edge 0-2 passes 0.05 from it, through its ring.
     /// assert!(cover.covers(VertexId(1), [end(0), end(2)]));
@@ -67,7 +68,7 @@ impl BorderCover {
     /// assert!(!cover.covers(VertexId(3), [end(2), end(4)]));
     /// ```
     #[must_use]
-    pub fn new(tubes: &[(Vec<VertexId>, bool, TriangleSoup)]) -> Self {
+    pub fn new(tubes: &[(&[VertexId], bool, &TriangleSoup)]) -> Self {
         let mut cover = Self::default();
         for (border, closed, mesh) in tubes {
             let n = border.len();
@@ -79,7 +80,7 @@ impl BorderCover {
                 cover.at.insert(v.0, (id, i as u32));
             }
             cover.loops.push(Loop {
-                border: border.clone(),
+                border: border.to_vec(),
                 closed: *closed,
                 rings: mesh.positions.clone(),
                 k: mesh.num_vertices() / n,

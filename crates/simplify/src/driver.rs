@@ -976,7 +976,7 @@ fn simplify_between(
     let cover = BorderCover::new(
         &env.tubes
             .iter()
-            .map(|t| (t.border.clone(), t.closed, t.mesh.clone()))
+            .map(|t| (&t.border[..], t.closed, &t.mesh))
             .collect::<Vec<_>>(),
     );
     let tubes: Vec<TriangleSoup> = env.tubes.into_iter().map(|t| t.mesh).collect();

@@ -20,11 +20,11 @@
 //! * when the rest's envelopes cannot be proved, the rest faces the proof names in its
 //!   contacts are kept too (for two border tubes that meet, or one that meets itself where
 //!   the border turns back on itself, the faces around their segments' vertices on the
-//!   input's own border), then one ring of faces around every kept one, and the envelopes are built
-//!   again, at most [`MAX_ROUNDS`] times: the rest near a crossing is close to the other
-//!   sheet there (and so are the border tubes along its cut), and a thin part elsewhere
-//!   needs the same. Every round keeps more than the one before. Eight rounds, not fewer:
-//!   the man scan refined twice (560k faces) at 1 % needs 8, refined once 4;
+//!   input's own border), then one ring of faces around every kept one, and the envelopes
+//!   are built again, at most [`MAX_ROUNDS`] times: the rest near a crossing is close to
+//!   the other sheet there (and so are the border tubes along its cut), and a thin part
+//!   elsewhere needs the same. Every round keeps more than the one before. Eight rounds,
+//!   not fewer: finer scans need more (the measurements are in the CHANGELOG);
 //! * faces are added to the kept set until every shared vertex has one fan of rest faces, so
 //!   the rest is a manifold with border (a vertex the kept faces cut into two fans would be
 //!   non-manifold there).
@@ -64,9 +64,9 @@ impl KeptRegion {
     }
 
     /// This region with the input faces `more` and those around the vertices `at` kept too
-    /// (what the envelope proof named) and then one ring of faces around all kept ones: the faces next to a
-    /// named one are as close to what the proof found, and a cut border near another sheet
-    /// (whose border tube the proof may find there) moves away from it.
+    /// (what the envelope proof named) and then one ring of faces around all kept ones: the
+    /// faces next to a named one are as close to what the proof found, and a cut border near
+    /// another sheet (whose border tube the proof may find there) moves away from it.
     pub(crate) fn grown(&self, soup: &TriangleSoup, more: &[FaceId], at: &[VertexId]) -> Self {
         let mut kept_face = self.kept_face.clone();
         for f in more {

@@ -13,8 +13,8 @@
 //! queue orders, stop rules, visitors, the fiber test, border walls, and the local
 //! algorithm's lower-level entry points ([`policy::simplify_local`] and its variants).
 //!
-//! Inside, the modules form a chain: `grid`, `border_cover`, `barriers`, `fiber`, `filter`, `rules`,
-//! `walls`, `fill`, then `local` (the algorithm, one idea per file), `kept` (the faces kept
+//! Inside, the modules form a chain: `grid`, `border_cover`, `barriers`, `fiber`, `filter`,
+//! `rules`, `walls`, `fill`, then `local` (the algorithm, one idea per file), `kept` (the faces kept
 //! around a self-intersecting input's crossings), `driver`, `lod`, `correspond`.
 //! Decisions are exact predicates (`envelope-predicates`); aspect ratios and queue
 //! priorities are f64 numbers that only order the work.
