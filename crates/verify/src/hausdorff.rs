@@ -64,6 +64,7 @@ use envelope_predicates::exact_num::Rational;
 use envelope_predicates::{Sign, cmp_point_triangle, next_up};
 use glam::DVec3;
 use rayon::prelude::*;
+use smallvec::SmallVec;
 
 use crate::numeric::{
     RPoint, TriNormal, add_up, approx_sq_dist, approx_sq_dist_with, barycentric_point, rational,
@@ -492,7 +493,7 @@ fn near_face(p: DVec3, t: &[DVec3; 3], e2: f64) -> bool {
     let den = d00 * d11 - d01 * d01;
     let v = (d11 * d20 - d01 * d21) / den;
     let w = (d00 * d21 - d01 * d20) / den;
-    // fl(v + w) <= 1 - 4u gives v + w < 1 exactly; NaN fails every comparison.
+    // fl(v + w) <= 1 - 4 EPSILON gives v + w < 1 exactly; NaN fails every comparison.
     if !(v >= 0.0 && w >= 0.0 && v + w <= 1.0 - 4.0 * f64::EPSILON) {
         return false;
     }
@@ -645,33 +646,16 @@ struct Estimate {
 }
 
 impl Estimate {
-    /// The triangles nearest to the corners, each once, in corner order (`ids[..len]`; no
-    /// allocation: it is asked for on every sub-triangle a cut is tried on).
-    fn nearest(&self) -> Nearest {
-        let mut out = Nearest {
-            ids: [u32::MAX; 3],
-            len: 0,
-        };
+    /// The triangles nearest to the corners, each once, in corner order (no allocation: it
+    /// is asked for on every sub-triangle a cut is tried on).
+    fn nearest(&self) -> SmallVec<[u32; 3]> {
+        let mut ts = SmallVec::new();
         for t in self.corner_best {
-            if t != u32::MAX && !out.ids[..out.len].contains(&t) {
-                out.ids[out.len] = t;
-                out.len += 1;
+            if t != u32::MAX && !ts.contains(&t) {
+                ts.push(t);
             }
         }
-        out
-    }
-}
-
-/// At most three distinct triangle numbers ([`Estimate::nearest`]).
-struct Nearest {
-    ids: [u32; 3],
-    len: usize,
-}
-
-impl std::ops::Deref for Nearest {
-    type Target = [u32];
-    fn deref(&self) -> &[u32] {
-        &self.ids[..self.len]
+        ts
     }
 }
 
