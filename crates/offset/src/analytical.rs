@@ -14,13 +14,18 @@
 //! by the BVH of `envelope-predicates`; a triangle the BVH returns is skipped without
 //! clipping when it lies apart from the convex hull of the prism's six corners, or farther
 //! from `t`'s box than the closest candidate so far (both with a margin, see
-//! [`clip::PRUNE_TOLERANCE`]; the offsets are the same either way).
+//! [`clip::PRUNE_TOLERANCE`]; the offsets are the same either way). The walk skips a whole
+//! node on the same two grounds, with its box in place of the triangle
+//! ([`clip::HullAxes::misses_box`]): at a large epsilon over small faces the prism's box
+//! holds a patch of surface growing with the face count, of which the thin prism meets few
+//! triangles.
 //!
 //! A build over a subset of the faces of an earlier one (the simplify driver's rounds around
 //! kept faces each drop a few faces) may take the earlier one's per-face minima
 //! ([`AnalyticalFaces`]): a face whose corners have the positions, normals and targets they
 //! had, and whose closest triangle is still there, has the same minimum over fewer triangles,
 //! so only the others are clipped again. The offsets are the same as without it.
+use std::cell::Cell;
 use std::collections::HashMap;
 
 use envelope_mesh::{TriangleSoup, VertexFaces};
@@ -167,21 +172,40 @@ pub(crate) fn analytical_eps(
                 let d = f.map(|i| normals[i as usize] * (2.0 * s * requested[i as usize]));
                 let top = clip::prism_top(v, d);
                 let (b, scale) = clip::prism_box(&t_box, top);
-                (d, top, b, scale)
+                (d, top, b, scale, clip::HullAxes::new(v, top))
             };
             let sides = [side(1.0), side(-1.0)];
-            let mut delta = known.map(|k| k.map_or(f64::INFINITY, |(d, _)| d));
+            let delta = Cell::new(known.map(|k| k.map_or(f64::INFINITY, |(d, _)| d)));
             let mut nearest = known.map(|k| k.map_or(NONE, |(_, g)| g));
             let todo = known.map(|k| k.is_none());
-            bvh.for_each_overlapping(&sides[0].2.union(&sides[1].2), |g| {
+            let query = sides[0].2.union(&sides[1].2);
+            // A node is entered only when a triangle in it could pass the two shortcuts
+            // below on some side (the box forms of both skip nothing the triangle forms
+            // would not): the same triangles are clipped, in the same order, and at a large
+            // epsilon over small faces most of the query box is skipped whole.
+            let enter = |b: &Aabb| {
+                b.overlaps(&query)
+                    && sides
+                        .iter()
+                        .enumerate()
+                        .any(|(k, (_, _, sb, scale, axes))| {
+                            let tol = clip::PRUNE_TOLERANCE
+                                * scale.max(b.min.abs().max(b.max.abs()).max_element());
+                            todo[k]
+                                && b.overlaps(sb)
+                                && clip::box_gap(&t_box, b) <= delta.get()[k] + tol
+                                && !axes.misses_box(b, tol)
+                        })
+            };
+            bvh.for_each_entering(enter, |g| {
                 let gf = faces[g as usize];
                 if gf.iter().any(|x| f.contains(x)) {
-                    return;
+                    return true;
                 }
                 let tg = gf.map(|i| soup.positions[i as usize]);
                 let g_box = Aabb::from_triangle(tg);
                 let g_scale = g_box.min.abs().max(g_box.max.abs()).max_element();
-                for (k, (d, top, b, scale)) in sides.iter().enumerate() {
+                for (k, (d, top, b, scale, _)) in sides.iter().enumerate() {
                     if !todo[k] || !g_box.overlaps(b) {
                         continue;
                     }
@@ -190,17 +214,21 @@ pub(crate) fn analytical_eps(
                     // farther from `t` than the gap between their boxes, and the prism lies
                     // in the convex hull of its six corners.
                     let tol = clip::PRUNE_TOLERANCE * scale.max(g_scale);
-                    if clip::box_gap(&t_box, &g_box) > delta[k] + tol
+                    let mut dk = delta.get();
+                    if clip::box_gap(&t_box, &g_box) > dk[k] + tol
                         || clip::hull_misses(v, *top, tg, tol)
                     {
                         continue;
                     }
                     let c = clip::closest_in_prism(v, *d, tg);
-                    if c < delta[k] {
-                        (delta[k], nearest[k]) = (c, g);
+                    if c < dk[k] {
+                        (dk[k], nearest[k]) = (c, g);
+                        delta.set(dk);
                     }
                 }
+                true
             });
+            let delta = delta.get();
             [0, 1].map(|k| (delta[k], nearest[k]))
         })
         .collect();

@@ -497,7 +497,30 @@ impl Bvh {
     }
 
     /// Calls `f` with the items whose boxes overlap `query` until it returns `false`.
-    pub fn for_each_overlapping_while(&self, query: &Aabb, mut f: impl FnMut(u32) -> bool) {
+    pub fn for_each_overlapping_while(&self, query: &Aabb, f: impl FnMut(u32) -> bool) {
+        self.for_each_entering(|b| b.overlaps(query), f);
+    }
+
+    /// Walks the tree into the nodes, and calls `f` with the items, whose boxes `enter`
+    /// accepts, until `f` returns `false`: depth first, each node's first child first (for
+    /// trees up to 64 deep, as median splits make them), so an `enter` that turns away more
+    /// nodes leaves the other items in the same order.
+    ///
+    /// ```
+    /// use envelope_predicates::bvh::{Aabb, Bvh};
+    /// use glam::DVec3;
+    /// let at = |x: f64| Aabb::from_points(&[DVec3::splat(x), DVec3::splat(x + 1.0)]);
+    /// let tree = Bvh::new(&[at(0.0), at(5.0), at(9.0)]);
+    /// let mut got = Vec::new();
+    /// tree.for_each_entering(|b| b.max.x > 3.0, |i| { got.push(i); true });
+    /// got.sort_unstable();
+    /// assert_eq!(got, [1, 2]);
+    /// ```
+    pub fn for_each_entering(
+        &self,
+        mut enter: impl FnMut(&Aabb) -> bool,
+        mut f: impl FnMut(u32) -> bool,
+    ) {
         if self.nodes.is_empty() {
             return;
         }
@@ -516,12 +539,12 @@ impl Bvh {
                 break;
             };
             let node = &self.nodes[n as usize];
-            if !node.bounds.overlaps(query) {
+            if !enter(&node.bounds) {
                 continue;
             }
             if node.leaf {
                 for k in node.a as usize..(node.a + node.b) as usize {
-                    if self.boxes[k].overlaps(query) && !f(self.items[k]) {
+                    if enter(&self.boxes[k]) && !f(self.items[k]) {
                         return;
                     }
                 }

@@ -60,36 +60,94 @@ pub fn box_gap(a: &Aabb, b: &Aabb) -> f64 {
 /// length. f64; used only to skip work (see [`PRUNE_TOLERANCE`]).
 #[must_use]
 pub fn hull_misses(t: [DVec3; 3], top: [DVec3; 3], g: [DVec3; 3], tol: f64) -> bool {
-    let hull = [t[0], t[1], t[2], top[0], top[1], top[2]];
-    let apart = |axis: DVec3| {
-        let len = axis.length();
-        if !(len > 0.0 && len.is_finite()) {
-            return false;
-        }
-        let a = axis / len;
-        let (mut hlo, mut hhi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for p in hull {
-            let x = a.dot(p);
-            hlo = hlo.min(x);
-            hhi = hhi.max(x);
-        }
-        let (mut glo, mut ghi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for p in g {
-            let x = a.dot(p);
-            glo = glo.min(x);
-            ghi = ghi.max(x);
-        }
+    let normal = |c: [DVec3; 3]| (c[1] - c[0]).cross(c[2] - c[0]);
+    let apart = |(a, hlo, hhi): (DVec3, f64, f64)| {
+        let (glo, ghi) = projection(a, &g);
         glo > hhi + tol || ghi < hlo - tol
     };
+    let hull = [t[0], t[1], t[2], top[0], top[1], top[2]];
+    hull_axes(t, top).any(apart)
+        || unit(normal(g)).is_some_and(|a| {
+            let (hlo, hhi) = projection(a, &hull);
+            apart((a, hlo, hhi))
+        })
+}
+
+/// The separating axes of a prism's hull that do not depend on the other triangle (those of
+/// `t` and `top`, see [`hull_misses`]), with the hull's extent on each: computed once per
+/// prism for [`HullAxes::misses_box`].
+#[derive(Clone, Copy, Debug)]
+pub struct HullAxes {
+    axes: [(DVec3, f64, f64); 8],
+    len: usize,
+}
+
+impl HullAxes {
+    /// The axes of the prism's hull with bottom `t` and top `top` (f64).
+    #[must_use]
+    pub fn new(t: [DVec3; 3], top: [DVec3; 3]) -> Self {
+        let mut axes = [(DVec3::ZERO, 0.0, 0.0); 8];
+        let mut len = 0;
+        for a in hull_axes(t, top) {
+            axes[len] = a;
+            len += 1;
+        }
+        Self { axes, len }
+    }
+
+    /// True only when [`hull_misses`] is true, with any `tol` up to this one, for every
+    /// triangle whose corners lie in the closed box `b`: the box is apart from the hull along
+    /// one of these axes by `tol` plus the rounding of the projections. Lets a tree walk skip
+    /// a whole node (f64, like the rest).
+    #[must_use]
+    pub fn misses_box(&self, b: &Aabb, tol: f64) -> bool {
+        // A corner's computed projection is within 3.4e-16 |a|_1 |p|_max of the exact one,
+        // the box's extreme likewise (|a|_1 <= sqrt 3): 4e-15 of the magnitude covers both,
+        // and the rounding of the subtraction.
+        let round = 4e-15 * b.min.abs().max(b.max.abs()).max_element();
+        self.axes[..self.len].iter().any(|&(a, hlo, hhi)| {
+            let lo = DVec3::select(a.cmpge(DVec3::ZERO), b.min, b.max);
+            let hi = DVec3::select(a.cmpge(DVec3::ZERO), b.max, b.min);
+            a.dot(lo) - round > hhi + tol || a.dot(hi) + round < hlo - tol
+        })
+    }
+}
+
+/// `axis` normalised, when it has a finite non-zero length.
+fn unit(axis: DVec3) -> Option<DVec3> {
+    let len = axis.length();
+    (len > 0.0 && len.is_finite()).then(|| axis / len)
+}
+
+/// The smallest and largest `a . p` over `points` (f64).
+fn projection(a: DVec3, points: &[DVec3]) -> (f64, f64) {
+    points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            let x = a.dot(*p);
+            (lo.min(x), hi.max(x))
+        })
+}
+
+/// The separating axes of the prism's hull that do not depend on the other triangle (the
+/// normals of `t` and `top`, the in-plane normals of their edges), unit, each with the hull's
+/// projection onto it.
+fn hull_axes(t: [DVec3; 3], top: [DVec3; 3]) -> impl Iterator<Item = (DVec3, f64, f64)> {
+    let hull = [t[0], t[1], t[2], top[0], top[1], top[2]];
     let normal = |c: [DVec3; 3]| (c[1] - c[0]).cross(c[2] - c[0]);
     let (nt, ntop) = (normal(t), normal(top));
-    if apart(nt) || apart(ntop) || apart(normal(g)) {
-        return true;
-    }
-    (0..3).any(|i| {
+    let edges = (0..3).flat_map(move |i| {
         let j = (i + 1) % 3;
-        apart((t[j] - t[i]).cross(nt)) || apart((top[j] - top[i]).cross(ntop))
-    })
+        [(t[j] - t[i]).cross(nt), (top[j] - top[i]).cross(ntop)]
+    });
+    [nt, ntop]
+        .into_iter()
+        .chain(edges)
+        .filter_map(unit)
+        .map(move |a| {
+            let (lo, hi) = projection(a, &hull);
+            (a, lo, hi)
+        })
 }
 
 /// Distance from `t` of the closest point of triangle `g` inside the prism of `t` with
@@ -403,6 +461,66 @@ mod tests {
     /// `closest_in_prism` finds no point of (or none closer than a known `delta`): random prisms (diverging,
     /// converging and tilted corner directions) against random triangles near them, many of
     /// them clipped, many just outside.
+    /// A box the hull axes turn away holds only triangles that `hull_misses` skips: the
+    /// triangle the box was made from, and triangles on the box's corners.
+    #[test]
+    fn box_shortcut_skips_only_what_the_triangle_shortcut_skips() {
+        let mut bits = xorshift(0x9E37_79B9_7F4A_7C15);
+        let mut next = move || (bits() >> 11) as f64 / (1u64 << 53) as f64;
+        let (mut boxes_skipped, mut boxes_kept) = (0, 0);
+        for i in 0..20_000 {
+            let mut p = |s: f64| {
+                let (x, y, z) = (next(), next(), next());
+                DVec3::new(x - 0.5, y - 0.5, z - 0.5) * s
+            };
+            // Far from the origin every other time: the rounding grows with the magnitude.
+            let shift = if i % 2 == 0 { DVec3::ZERO } else { p(2e3) };
+            let t = [p(2.0) + shift, p(2.0) + shift, p(2.0) + shift];
+            let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+            if n == DVec3::ZERO {
+                continue;
+            }
+            let h = 0.05 + p(2.0).x.abs();
+            let top = [
+                t[0] + (n + p(1.2)) * h,
+                t[1] + (n + p(1.2)) * h,
+                t[2] + (n + p(1.2)) * h,
+            ];
+            let c = (t[0] + t[1] + t[2] + top[0] + top[1] + top[2]) / 6.0;
+            let g = [c + p(3.0), c + p(3.0), c + p(3.0)];
+            let b = Aabb::from_triangle(g);
+            let scale = [t, top, g]
+                .iter()
+                .flatten()
+                .map(|q| q.abs().max_element())
+                .fold(0.0, f64::max);
+            let tol = PRUNE_TOLERANCE * scale;
+            if !HullAxes::new(t, top).misses_box(&b, tol) {
+                boxes_kept += 1;
+                continue;
+            }
+            boxes_skipped += 1;
+            let corner = |k: usize| {
+                DVec3::new(
+                    if k & 1 == 0 { b.min.x } else { b.max.x },
+                    if k & 2 == 0 { b.min.y } else { b.max.y },
+                    if k & 4 == 0 { b.min.z } else { b.max.z },
+                )
+            };
+            for tol in [tol, tol / 2.0, 0.0] {
+                assert!(hull_misses(t, top, g, tol), "{t:?} {top:?} {g:?}");
+                for k in 0..8 {
+                    let on = [corner(k), corner(7 - k), corner((k + 3) % 8)];
+                    assert!(hull_misses(t, top, on, tol), "{t:?} {top:?} {on:?}");
+                }
+            }
+        }
+        assert!(
+            boxes_skipped > 2_000 && boxes_kept > 2_000,
+            "skipped {boxes_skipped}, kept {boxes_kept}"
+        );
+    }
+
     #[test]
     fn shortcuts_skip_only_triangles_that_cannot_lower_delta() {
         let mut bits = xorshift(0x2545_F491_4F6C_DD1D);
