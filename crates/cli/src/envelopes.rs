@@ -12,22 +12,12 @@ use std::time::Instant;
 
 use envelope::advanced::io::{Format, PlyEncoding, read_path};
 use envelope::advanced::offset::{
-    EnvelopeMethod, EnvelopeOptions, EpsilonField, build_envelopes, read_epsilon_file,
+    EnvelopeOptions, EpsilonField, build_envelopes, read_epsilon_file,
 };
 
 use crate::outputs::{Plan, Staging};
 use crate::ranges::{self, Length};
-
-/// Which epsilon method.
-#[derive(Clone, Copy, Debug, clap::ValueEnum)]
-enum MethodArg {
-    /// Prism clipping (4.1), then exact proof and repair.
-    Analytical,
-    /// Iterative growth with exact checks (4.2).
-    Numerical,
-    /// Analytical; where it falls short of epsilon, numerical growth from it.
-    Auto,
-}
+use crate::simplify::MethodArg;
 
 /// Output mesh format.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -49,8 +39,8 @@ pub(crate) struct Args {
     /// --epsilon), `#` comments.
     #[arg(long, conflicts_with = "epsilon")]
     epsilon_file: Option<PathBuf>,
-    /// Epsilon method.
-    #[arg(long, value_enum, default_value_t = MethodArg::Numerical)]
+    /// Epsilon method (the default is `simplify`'s).
+    #[arg(long, value_enum, default_value_t = MethodArg::default_())]
     method: MethodArg,
     /// Output directory: created if missing (its parent must exist); files in it are
     /// replaced only when the command completes.
@@ -112,11 +102,7 @@ pub(crate) fn run(args: &Args) -> Result<ExitCode, String> {
     };
     ranges::epsilon_in_range(&flag, &args.input.display().to_string(), &field, &soup)?;
     let mut options = EnvelopeOptions::new(field);
-    options.method = match args.method {
-        MethodArg::Analytical => EnvelopeMethod::Analytical,
-        MethodArg::Numerical => EnvelopeMethod::Numerical,
-        MethodArg::Auto => EnvelopeMethod::Auto,
-    };
+    options.method = args.method.method();
     options.tube_segments = (args.tube_segments > 0).then_some(args.tube_segments);
     let start = Instant::now();
     let env =
