@@ -172,30 +172,34 @@ pub(crate) fn analytical_eps(
                 let d = f.map(|i| normals[i as usize] * (2.0 * s * requested[i as usize]));
                 let top = clip::prism_top(v, d);
                 let (b, scale) = clip::prism_box(&t_box, top);
-                (d, top, b, scale, clip::HullAxes::new(v, top))
+                (d, top, b, scale)
             };
             let sides = [side(1.0), side(-1.0)];
             let delta = Cell::new(known.map(|k| k.map_or(f64::INFINITY, |(d, _)| d)));
             let mut nearest = known.map(|k| k.map_or(NONE, |(_, g)| g));
             let todo = known.map(|k| k.is_none());
             let query = sides[0].2.union(&sides[1].2);
+            // Only worth its cost where the prisms reach far beyond the face.
+            let tall =
+                (query.max - query.min).max_element() > 8.0 * (t_box.max - t_box.min).max_element();
+            let axes = tall.then(|| sides.map(|(_, top, ..)| clip::HullAxes::new(v, top)));
             // A node is entered only when a triangle in it could pass the two shortcuts
             // below on some side (the box forms of both skip nothing the triangle forms
             // would not): the same triangles are clipped, in the same order, and at a large
             // epsilon over small faces most of the query box is skipped whole.
             let enter = |b: &Aabb| {
                 b.overlaps(&query)
-                    && sides
-                        .iter()
-                        .enumerate()
-                        .any(|(k, (_, _, sb, scale, axes))| {
+                    && axes.as_ref().is_none_or(|axes| {
+                        (0..2).any(|k| {
+                            let (_, _, sb, scale) = &sides[k];
                             let tol = clip::PRUNE_TOLERANCE
                                 * scale.max(b.min.abs().max(b.max.abs()).max_element());
                             todo[k]
                                 && b.overlaps(sb)
                                 && clip::box_gap(&t_box, b) <= delta.get()[k] + tol
-                                && !axes.misses_box(b, tol)
+                                && !axes[k].misses_box(b, tol)
                         })
+                    })
             };
             bvh.for_each_entering(enter, |g| {
                 let gf = faces[g as usize];
@@ -205,7 +209,7 @@ pub(crate) fn analytical_eps(
                 let tg = gf.map(|i| soup.positions[i as usize]);
                 let g_box = Aabb::from_triangle(tg);
                 let g_scale = g_box.min.abs().max(g_box.max.abs()).max_element();
-                for (k, (d, top, b, scale, _)) in sides.iter().enumerate() {
+                for (k, (d, top, b, scale)) in sides.iter().enumerate() {
                     if !todo[k] || !g_box.overlaps(b) {
                         continue;
                     }
