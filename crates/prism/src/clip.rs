@@ -461,40 +461,93 @@ mod tests {
     /// `closest_in_prism` finds no point of (or none closer than a known `delta`): random prisms (diverging,
     /// converging and tilted corner directions) against random triangles near them, many of
     /// them clipped, many just outside.
+    #[test]
+    fn shortcuts_skip_only_triangles_that_cannot_lower_delta() {
+        let mut p = random_points(0x2545_F491_4F6C_DD1D);
+        let (mut skipped, mut met) = (0, 0);
+        for _ in 0..20_000 {
+            let Some(Case { t, d, top, g, tol }) = prism_and_triangle(&mut p, DVec3::ZERO) else {
+                continue;
+            };
+            let delta = closest_in_prism(t, d, g);
+            if delta.is_finite() {
+                met += 1;
+            }
+            if hull_misses(t, top, g, tol) {
+                skipped += 1;
+                assert_eq!(
+                    delta,
+                    f64::INFINITY,
+                    "skipped a clipped triangle: {t:?} {d:?} {g:?}"
+                );
+            }
+            let gap = box_gap(&Aabb::from_triangle(t), &Aabb::from_triangle(g));
+            assert!(
+                gap <= delta + tol,
+                "box gap {gap} above the distance {delta}"
+            );
+        }
+        assert!(
+            skipped > 2_000 && met > 2_000,
+            "skipped {skipped}, met {met}"
+        );
+    }
+
+    /// `p(s)`: a random point of the cube of side `s` around the origin, from `seed`.
+    fn random_points(seed: u64) -> impl FnMut(f64) -> DVec3 {
+        let mut bits = xorshift(seed);
+        let mut next = move || (bits() >> 11) as f64 / (1u64 << 53) as f64;
+        move |s: f64| {
+            let (x, y, z) = (next(), next(), next());
+            DVec3::new(x - 0.5, y - 0.5, z - 0.5) * s
+        }
+    }
+
+    /// A prism (bottom `t`, corner directions `d`, top `top`), a triangle `g` near it, and
+    /// the shortcuts' margin for the two.
+    struct Case {
+        t: [DVec3; 3],
+        d: [DVec3; 3],
+        top: [DVec3; 3],
+        g: [DVec3; 3],
+        tol: f64,
+    }
+
+    /// A random prism around `shift` (diverging, converging and tilted corner directions)
+    /// and a random triangle near it, from [`random_points`]; `None` for a degenerate bottom.
+    fn prism_and_triangle(p: &mut impl FnMut(f64) -> DVec3, shift: DVec3) -> Option<Case> {
+        let t = [p(2.0) + shift, p(2.0) + shift, p(2.0) + shift];
+        let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+        if n == DVec3::ZERO {
+            return None;
+        }
+        let h = 0.05 + p(2.0).x.abs();
+        let d = [(n + p(1.2)) * h, (n + p(1.2)) * h, (n + p(1.2)) * h];
+        let top = prism_top(t, d);
+        let c = (t[0] + t[1] + t[2] + top[0] + top[1] + top[2]) / 6.0;
+        let g = [c + p(3.0), c + p(3.0), c + p(3.0)];
+        let scale = [t, top, g]
+            .iter()
+            .flatten()
+            .map(|q| q.abs().max_element())
+            .fold(0.0, f64::max);
+        let tol = PRUNE_TOLERANCE * scale;
+        Some(Case { t, d, top, g, tol })
+    }
+
     /// A box the hull axes turn away holds only triangles that `hull_misses` skips: the
     /// triangle the box was made from, and triangles on the box's corners.
     #[test]
     fn box_shortcut_skips_only_what_the_triangle_shortcut_skips() {
-        let mut bits = xorshift(0x9E37_79B9_7F4A_7C15);
-        let mut next = move || (bits() >> 11) as f64 / (1u64 << 53) as f64;
+        let mut p = random_points(0x9E37_79B9_7F4A_7C15);
         let (mut boxes_skipped, mut boxes_kept) = (0, 0);
         for i in 0..20_000 {
-            let mut p = |s: f64| {
-                let (x, y, z) = (next(), next(), next());
-                DVec3::new(x - 0.5, y - 0.5, z - 0.5) * s
-            };
             // Far from the origin every other time: the rounding grows with the magnitude.
             let shift = if i % 2 == 0 { DVec3::ZERO } else { p(2e3) };
-            let t = [p(2.0) + shift, p(2.0) + shift, p(2.0) + shift];
-            let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
-            if n == DVec3::ZERO {
+            let Some(Case { t, top, g, tol, .. }) = prism_and_triangle(&mut p, shift) else {
                 continue;
-            }
-            let h = 0.05 + p(2.0).x.abs();
-            let top = [
-                t[0] + (n + p(1.2)) * h,
-                t[1] + (n + p(1.2)) * h,
-                t[2] + (n + p(1.2)) * h,
-            ];
-            let c = (t[0] + t[1] + t[2] + top[0] + top[1] + top[2]) / 6.0;
-            let g = [c + p(3.0), c + p(3.0), c + p(3.0)];
+            };
             let b = Aabb::from_triangle(g);
-            let scale = [t, top, g]
-                .iter()
-                .flatten()
-                .map(|q| q.abs().max_element())
-                .fold(0.0, f64::max);
-            let tol = PRUNE_TOLERANCE * scale;
             if !HullAxes::new(t, top).misses_box(&b, tol) {
                 boxes_kept += 1;
                 continue;
@@ -518,56 +571,6 @@ mod tests {
         assert!(
             boxes_skipped > 2_000 && boxes_kept > 2_000,
             "skipped {boxes_skipped}, kept {boxes_kept}"
-        );
-    }
-
-    #[test]
-    fn shortcuts_skip_only_triangles_that_cannot_lower_delta() {
-        let mut bits = xorshift(0x2545_F491_4F6C_DD1D);
-        let mut next = move || (bits() >> 11) as f64 / (1u64 << 53) as f64;
-        let (mut skipped, mut met) = (0, 0);
-        for _ in 0..20_000 {
-            let mut p = |s: f64| {
-                let (x, y, z) = (next(), next(), next());
-                DVec3::new(x - 0.5, y - 0.5, z - 0.5) * s
-            };
-            let t = [p(2.0), p(2.0), p(2.0)];
-            let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
-            if n == DVec3::ZERO {
-                continue;
-            }
-            let h = 0.05 + p(2.0).x.abs();
-            let d = [(n + p(1.2)) * h, (n + p(1.2)) * h, (n + p(1.2)) * h];
-            let top = [t[0] + d[0], t[1] + d[1], t[2] + d[2]];
-            let c = (t[0] + t[1] + t[2] + top[0] + top[1] + top[2]) / 6.0;
-            let g = [c + p(3.0), c + p(3.0), c + p(3.0)];
-            let delta = closest_in_prism(t, d, g);
-            if delta.is_finite() {
-                met += 1;
-            }
-            let scale = [t, top, g]
-                .iter()
-                .flatten()
-                .map(|q| q.abs().max_element())
-                .fold(0.0, f64::max);
-            let tol = PRUNE_TOLERANCE * scale;
-            if hull_misses(t, top, g, tol) {
-                skipped += 1;
-                assert_eq!(
-                    delta,
-                    f64::INFINITY,
-                    "skipped a clipped triangle: {t:?} {d:?} {g:?}"
-                );
-            }
-            let gap = box_gap(&Aabb::from_triangle(t), &Aabb::from_triangle(g));
-            assert!(
-                gap <= delta + tol,
-                "box gap {gap} above the distance {delta}"
-            );
-        }
-        assert!(
-            skipped > 2_000 && met > 2_000,
-            "skipped {skipped}, met {met}"
         );
     }
 }
