@@ -224,31 +224,71 @@ pub(crate) fn prove_envelopes_searching(
             if search == PairSearch::Faces {
                 // Large offsets against the faces: a prism's box (a face on all three
                 // surfaces) meets far more prisms than its faces meet faces, so each pair
-                // of surfaces is searched with the faces' own boxes: the envelopes' tree
-                // with itself (outer-outer, inner-inner, outer-inner) and with the input's,
-                // and the input's with itself when it is not known free. The same pairs.
-                let envelope_tree = input_tree.interleaved_refit(2, &boxes[nf as usize..]);
-                let (mut pairs, (cross, within)) = rayon::join(
-                    || envelope_tree.self_pairs_where(|a, b| meet(a + nf, b + nf)),
+                // of surfaces is searched with the faces' own boxes, one tree per envelope
+                // (the input's, refitted): a node of a tree holding both envelopes would be
+                // as thick as the two offsets, and meet every node within that distance.
+                // Outer with itself, inner with itself, outer with inner, each with the
+                // input, and the input with itself when it is not known free. The same
+                // pairs.
+                let refit =
+                    |k: u32| input_tree.refit(&boxes[(k * nf) as usize..((k + 1) * nf) as usize]);
+                let (outer, inner) = rayon::join(|| refit(1), || refit(2));
+                let on = |k: u32| move |a: u32, b: u32| meet(a + k * nf, b + k * nf);
+                let ((outer_self, inner_self), (between, (with_input, within))) = rayon::join(
                     || {
                         rayon::join(
-                            || envelope_tree.pairs_with_where(input_tree, |a, g| meet(a + nf, g)),
+                            || outer.self_pairs_where(on(1)),
+                            || inner.self_pairs_where(on(2)),
+                        )
+                    },
+                    || {
+                        rayon::join(
+                            || outer.pairs_with_where(&inner, |a, b| meet(a + nf, b + 2 * nf)),
                             || {
-                                if !known.input_free {
-                                    input_tree.self_pairs_where(meet)
-                                } else {
-                                    Vec::new()
-                                }
+                                rayon::join(
+                                    || {
+                                        let mut v = outer
+                                            .pairs_with_where(input_tree, |a, g| meet(a + nf, g));
+                                        for (a, _) in &mut v {
+                                            *a += nf;
+                                        }
+                                        let mut w = inner.pairs_with_where(input_tree, |a, g| {
+                                            meet(a + 2 * nf, g)
+                                        });
+                                        for (a, _) in &mut w {
+                                            *a += 2 * nf;
+                                        }
+                                        v.extend(w);
+                                        v
+                                    },
+                                    || {
+                                        if !known.input_free {
+                                            input_tree.self_pairs_where(meet)
+                                        } else {
+                                            Vec::new()
+                                        }
+                                    },
+                                )
                             },
                         )
                     },
                 );
-                for p in &mut pairs {
-                    *p = (p.0 + nf, p.1 + nf);
-                }
-                pairs.extend(cross.into_iter().map(|(a, g)| (g, a + nf)));
+                let mut pairs: Vec<(u32, u32)> = Vec::new();
+                pairs.extend(outer_self.into_iter().map(|(a, b)| (a + nf, b + nf)));
+                pairs.extend(
+                    inner_self
+                        .into_iter()
+                        .map(|(a, b)| (a + 2 * nf, b + 2 * nf)),
+                );
+                pairs.extend(between.into_iter().map(|(a, b)| (a + nf, b + 2 * nf)));
+                pairs.extend(with_input.into_iter().map(|(a, g)| (g, a)));
                 pairs.extend(within);
-                (envelope_tree, pairs)
+                // The tree returned, once the two searched are gone (the same memory).
+                drop((outer, inner));
+                (
+                    input_tree.interleaved_refit(2, &boxes[nf as usize..]),
+                    pairs,
+                )
             } else {
                 // The envelopes' tree is only returned: refitted beside the search.
                 let refit = || input_tree.interleaved_refit(2, &boxes[nf as usize..]);
