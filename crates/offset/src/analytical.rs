@@ -25,7 +25,7 @@
 //! ([`AnalyticalFaces`]): a face whose corners have the positions, normals and targets they
 //! had, and whose closest triangle is still there, has the same minimum over fewer triangles,
 //! so only the others are clipped again. The offsets are the same as without it.
-use std::cell::Cell;
+use std::cell::{Cell, OnceCell};
 use std::collections::HashMap;
 
 use envelope_mesh::{TriangleSoup, VertexFaces};
@@ -182,24 +182,25 @@ pub(crate) fn analytical_eps(
             // Only worth its cost where the prisms reach far beyond the face.
             let tall =
                 (query.max - query.min).max_element() > 8.0 * (t_box.max - t_box.min).max_element();
-            let axes = tall.then(|| sides.map(|(_, top, ..)| clip::HullAxes::new(v, top)));
+            // Each side's hull axes, once, when a node or a triangle asks.
+            let axes = [OnceCell::new(), OnceCell::new()];
+            let axes_of = |k: usize| axes[k].get_or_init(|| clip::HullAxes::new(v, sides[k].1));
             // A node is entered only when a triangle in it could pass the two shortcuts
             // below on some side (the box forms of both skip nothing the triangle forms
             // would not): the same triangles are clipped, in the same order, and at a large
             // epsilon over small faces most of the query box is skipped whole.
             let enter = |b: &Aabb| {
                 b.overlaps(&query)
-                    && axes.as_ref().is_none_or(|axes| {
-                        (0..2).any(|k| {
+                    && (!tall
+                        || (0..2).any(|k| {
                             let (_, _, sb, scale) = &sides[k];
                             let tol = clip::PRUNE_TOLERANCE
                                 * scale.max(b.min.abs().max(b.max.abs()).max_element());
                             todo[k]
                                 && b.overlaps(sb)
                                 && clip::box_gap(&t_box, b) <= delta.get()[k] + tol
-                                && !axes[k].misses_box(b, tol)
-                        })
-                    })
+                                && !axes_of(k).misses_box(b, tol)
+                        }))
             };
             bvh.for_each_entering(enter, |g| {
                 let gf = faces[g as usize];
@@ -209,7 +210,7 @@ pub(crate) fn analytical_eps(
                 let tg = gf.map(|i| soup.positions[i as usize]);
                 let g_box = Aabb::from_triangle(tg);
                 let g_scale = g_box.min.abs().max(g_box.max.abs()).max_element();
-                for (k, (d, top, b, scale)) in sides.iter().enumerate() {
+                for (k, (d, _, b, scale)) in sides.iter().enumerate() {
                     if !todo[k] || !g_box.overlaps(b) {
                         continue;
                     }
@@ -219,9 +220,7 @@ pub(crate) fn analytical_eps(
                     // in the convex hull of its six corners.
                     let tol = clip::PRUNE_TOLERANCE * scale.max(g_scale);
                     let mut dk = delta.get();
-                    if clip::box_gap(&t_box, &g_box) > dk[k] + tol
-                        || clip::hull_misses(v, *top, tg, tol)
-                    {
+                    if clip::box_gap(&t_box, &g_box) > dk[k] + tol || axes_of(k).misses(tg, tol) {
                         continue;
                     }
                     let c = clip::closest_in_prism(v, *d, tg);

@@ -60,24 +60,15 @@ pub fn box_gap(a: &Aabb, b: &Aabb) -> f64 {
 /// length. f64; used only to skip work (see [`PRUNE_TOLERANCE`]).
 #[must_use]
 pub fn hull_misses(t: [DVec3; 3], top: [DVec3; 3], g: [DVec3; 3], tol: f64) -> bool {
-    let normal = |c: [DVec3; 3]| (c[1] - c[0]).cross(c[2] - c[0]);
-    let apart = |(a, hlo, hhi): (DVec3, f64, f64)| {
-        let (glo, ghi) = projection(a, &g);
-        glo > hhi + tol || ghi < hlo - tol
-    };
-    let hull = [t[0], t[1], t[2], top[0], top[1], top[2]];
-    hull_axes(t, top).any(apart)
-        || unit(normal(g)).is_some_and(|a| {
-            let (hlo, hhi) = projection(a, &hull);
-            apart((a, hlo, hhi))
-        })
+    HullAxes::new(t, top).misses(g, tol)
 }
 
 /// The separating axes of a prism's hull that do not depend on the other triangle (those of
 /// `t` and `top`, see [`hull_misses`]), with the hull's extent on each: computed once per
-/// prism for [`HullAxes::misses_box`].
+/// prism for [`HullAxes::misses`] and [`HullAxes::misses_box`].
 #[derive(Clone, Copy, Debug)]
 pub struct HullAxes {
+    hull: [DVec3; 6],
     axes: [(DVec3, f64, f64); 8],
     len: usize,
 }
@@ -92,7 +83,23 @@ impl HullAxes {
             axes[len] = a;
             len += 1;
         }
-        Self { axes, len }
+        let hull = [t[0], t[1], t[2], top[0], top[1], top[2]];
+        Self { hull, axes, len }
+    }
+
+    /// [`hull_misses`] for this prism.
+    #[must_use]
+    pub fn misses(&self, g: [DVec3; 3], tol: f64) -> bool {
+        let normal = |c: [DVec3; 3]| (c[1] - c[0]).cross(c[2] - c[0]);
+        let apart = |(a, hlo, hhi): (DVec3, f64, f64)| {
+            let (glo, ghi) = projection(a, &g);
+            glo > hhi + tol || ghi < hlo - tol
+        };
+        self.axes[..self.len].iter().copied().any(apart)
+            || unit(normal(g)).is_some_and(|a| {
+                let (hlo, hhi) = projection(a, &self.hull);
+                apart((a, hlo, hhi))
+            })
     }
 
     /// True only when [`hull_misses`] is true, with any `tol` up to this one, for every
