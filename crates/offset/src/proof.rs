@@ -247,19 +247,17 @@ pub(crate) fn prove_envelopes_searching(
                             || {
                                 rayon::join(
                                     || {
-                                        let mut v = outer
-                                            .pairs_with_where(input_tree, |a, g| meet(a + nf, g));
-                                        for (a, _) in &mut v {
-                                            *a += nf;
-                                        }
-                                        let mut w = inner.pairs_with_where(input_tree, |a, g| {
-                                            meet(a + 2 * nf, g)
-                                        });
-                                        for (a, _) in &mut w {
-                                            *a += 2 * nf;
-                                        }
-                                        v.extend(w);
-                                        v
+                                        // (input face, envelope face) for either envelope.
+                                        let with_input = |tree: &Bvh, k: u32| {
+                                            tree.pairs_with_where(input_tree, |a, g| {
+                                                meet(a + k * nf, g)
+                                            })
+                                            .into_iter()
+                                            .map(move |(a, g)| (g, a + k * nf))
+                                        };
+                                        with_input(&outer, 1)
+                                            .chain(with_input(&inner, 2))
+                                            .collect::<Vec<_>>()
                                     },
                                     || {
                                         if !known.input_free {
@@ -281,7 +279,7 @@ pub(crate) fn prove_envelopes_searching(
                         .map(|(a, b)| (a + 2 * nf, b + 2 * nf)),
                 );
                 pairs.extend(between.into_iter().map(|(a, b)| (a + nf, b + 2 * nf)));
-                pairs.extend(with_input.into_iter().map(|(a, g)| (g, a)));
+                pairs.extend(with_input);
                 pairs.extend(within);
                 // The tree returned, once the two searched are gone (the same memory).
                 drop((outer, inner));
