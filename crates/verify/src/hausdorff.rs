@@ -26,6 +26,14 @@
 //!   taken exactly and proved against one triangle, the crossing points' error bounds added
 //!   up over the rounds (`Search::pieces_within`). Their vertices are lower-bound
 //!   candidates too, less their error bounds.
+//! * **Cells.** Where `to`'s triangles are several times larger than `eps`, a sub-triangle
+//!   is proved only where it is within `eps` of one of them, and a thin face crosses many:
+//!   subdividing takes many sub-triangles along every edge it crosses. Instead, the same
+//!   chord cuts go on through the planes through the edges of the triangles near a piece
+//!   and their neighbours (near a surface they bound the regions nearest to each
+//!   triangle), the most even cut first, until every piece is proved against one triangle
+//!   by its vertices (`Search::cells_within`): a few pieces per triangle under the face. A
+//!   piece it cannot settle within its budget sends the sub-triangle back to subdividing.
 //! * **Witness.** A violation is reported only for a point exactly on `T`: a corner whose f64
 //!   value is exact (`delta == 0`, checked with the f64 predicates) or, otherwise, the exact
 //!   rational corner, checked with rational arithmetic. It must exceed `eps` against every
@@ -94,6 +102,12 @@ const FIRST_PASS_TINY: u64 = 1 << 10;
 /// From this depth on, a sub-triangle that no single triangle covers is also tried with an
 /// exact cut between two (see `Search::split_within_exactly`).
 const SPLIT_LEVEL: u32 = 16;
+
+/// Candidates of a sub-triangle at most for a proof by cells (`Search::cells_within`):
+/// each cut computes its new points' distances to those near the piece.
+const CELL_CANDIDATES: usize = 128;
+/// The candidates' mean box extent, in eps, from which a proof by cells is tried.
+const CELL_EXTENT: f64 = 4.0;
 
 /// Faces per sequential chunk of the parallel loop (the nearest-triangle hint is carried
 /// within a chunk).
@@ -691,6 +705,20 @@ impl Search<'_> {
         }
     }
 
+    /// Whether the candidates are large enough against eps for [`Self::cells_within`] to
+    /// beat subdividing: their mean box extent at least [`CELL_EXTENT`] eps. Only a choice
+    /// of method; both prove the same.
+    fn cells_pay(&self, cands: &[u32]) -> bool {
+        let extent: f64 = cands
+            .iter()
+            .map(|&t| {
+                let b = &self.target.boxes[t as usize];
+                (b.max - b.min).max_element()
+            })
+            .sum();
+        extent >= CELL_EXTENT * self.tol.eps * cands.len() as f64
+    }
+
     fn corners_within(&self, s: &Sub, t: u32, e2: f64) -> bool {
         let tri = self.target.tris[t as usize];
         s.c.iter().all(|c| within(c.p, &tri, e2))
@@ -941,6 +969,20 @@ impl Search<'_> {
             if let Some(u) = self.prove(&tri, &s, &est, delta, &mut low) {
                 out.upper = out.upper.max(u);
                 farther(&mut out.lower_candidate, low);
+                continue;
+            }
+            // Over triangles several times larger than eps, their cells settle it in a few
+            // pieces each; over smaller ones, one triangle proves a sub-triangle larger than
+            // itself, and subdividing is cheaper.
+            if s.cands.len() <= CELL_CANDIDATES
+                && est.corner_min.iter().all(|&d| d < self.tol.e2lo)
+                && self.cells_pay(&s.cands)
+                && let Some((u, far, pieces)) =
+                    self.cells_within(&s.c.map(|c| c.p), &s.cands, &s.d, delta)
+            {
+                out.upper = out.upper.max(u);
+                farther(&mut out.lower_candidate, Some(far));
+                out.subdivisions += pieces - 1;
                 continue;
             }
             for j in 0..3 {

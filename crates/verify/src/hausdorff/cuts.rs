@@ -2,6 +2,7 @@
 //! by planes through the shared edges and corners of the triangles nearest to its corners,
 //! each piece proved against one triangle (the module docs of `hausdorff`, "Cuts").
 
+use envelope_predicates::bvh::Aabb;
 use envelope_predicates::exact_num::Rational;
 use envelope_predicates::{Orientation, collinear, orient3d};
 use glam::DVec3;
@@ -15,6 +16,10 @@ use crate::numeric::{
 
 /// Rounds of cuts [`Search::pieces_within`] makes at most (up to `2^PIECE_CUTS` pieces).
 pub(super) const PIECE_CUTS: u32 = 3;
+/// Pieces [`Search::cells_within`] makes at most for one polygon.
+const CELL_PIECES: u64 = 512;
+/// Rounds of cuts [`Search::cells_within`] makes at most on the way to one piece.
+const CELL_DEPTH: u32 = 32;
 
 impl Search<'_> {
     /// Like [`Self::split_within_f64`], with cuts in several rounds (at most
@@ -171,6 +176,233 @@ impl Search<'_> {
         None
     }
 
+    /// A proof of the whole polygon `poly` (f64 points, taken exactly, convex; its exact
+    /// polygon within `err`) by the cells of `to`'s triangles: where no single triangle
+    /// covers a piece, it is cut by the plane through an edge of a triangle near it and that
+    /// edge's neighbour ([`bisector_points`]), and each part goes on, until every piece is
+    /// proved against one triangle by its vertices (the proof of [`Self::pieces_within`],
+    /// with the same chords and error bounds added up over the rounds). Near a surface the
+    /// planes through its edges bound the regions nearest to each triangle, so a face over
+    /// many small triangles within `eps` of them takes a few pieces per triangle it lies
+    /// over, where subdividing takes many sub-triangles along every edge it crosses.
+    /// `cands` are the candidates, `d[i v + k]` the estimated squared distance of
+    /// `poly[k]` to `cands[i]` (`v` vertices). Returns the proved bound (at most `eps`), the
+    /// farthest piece vertex (a lower-bound candidate) and the number of pieces; `None` when
+    /// a piece has a vertex not within `eps` of any candidate by the estimates or finds no
+    /// cut, or past [`CELL_PIECES`] pieces or [`CELL_DEPTH`] rounds: the caller subdivides.
+    pub(super) fn cells_within(
+        &self,
+        poly: &[DVec3],
+        cands: &[u32],
+        d: &[f64],
+        err: f64,
+    ) -> Option<(f64, Low, u64)> {
+        struct Part {
+            points: SmallVec<[DVec3; 8]>,
+            err: f64,
+            /// Positions in `cands` of the triangles that may prove something here.
+            idx: Vec<u32>,
+            /// `d[i v + k]`: vertex `k` to `cands[idx[i]]`, `v` vertices.
+            d: Vec<f64>,
+            /// The edges already cut along on the way here ([`edge_key`]), `depth` of them.
+            used: [u64; CELL_DEPTH as usize],
+            depth: u32,
+        }
+        // Per candidate and edge, the plane through that edge and its neighbour's among
+        // `cands` (if any), made when first asked.
+        let mut planes: Vec<[(bool, Option<[DVec3; 3]>); 3]> =
+            vec![[(false, None); 3]; cands.len()];
+        let mut stack = vec![Part {
+            points: poly.iter().copied().collect(),
+            err,
+            idx: (0..cands.len() as u32).collect(),
+            d: d.to_vec(),
+            used: [0; CELL_DEPTH as usize],
+            depth: 0,
+        }];
+        let (mut upper, mut far, mut pieces) = (0.0f64, None::<Low>, 0u64);
+        while let Some(part) = stack.pop() {
+            pieces += 1;
+            let (n, v) = (part.idx.len(), part.points.len());
+            if pieces > CELL_PIECES || n == 0 {
+                return None;
+            }
+            let dist = |i: usize, k: usize| part.d[i * v + k];
+            // Each vertex's nearest candidate by the estimate, all within eps; and the few
+            // candidates with the smallest largest vertex estimate (a vertex on a corner of
+            // `to` is as near to its whole fan).
+            let mut order: SmallVec<[(f64, usize); 8]> = SmallVec::new();
+            let mut nearest = [(f64::INFINITY, 0usize); 8];
+            for i in 0..n {
+                let mut w = 0.0f64;
+                for k in 0..v {
+                    let x = dist(i, k);
+                    w = w.max(x);
+                    if k < 8 && x < nearest[k].0 {
+                        nearest[k] = (x, i);
+                    }
+                }
+                if order.len() < 3 || w < order[order.len() - 1].0 {
+                    let at = order.partition_point(|x| x.0 <= w);
+                    order.insert(at, (w, i));
+                    order.truncate(3);
+                }
+            }
+            for k in 0..v {
+                let (m, i) = if k < 8 {
+                    nearest[k]
+                } else {
+                    (0..n)
+                        .map(|i| (dist(i, k), i))
+                        .min_by(|a, b| a.0.total_cmp(&b.0))?
+                };
+                if m >= self.tol.e2lo {
+                    return None;
+                }
+                if !order.iter().any(|x| x.1 == i) {
+                    order.push((f64::INFINITY, i));
+                }
+                farther(&mut far, Some((m, part.points[k], part.err)));
+            }
+            // One triangle for the whole piece: the estimates first, then the exact tests.
+            let value = |k: usize, i: usize| self.tol.piece_value(dist(i, k));
+            let proved = order.iter().find_map(|&(_, i)| {
+                let promised = (0..v).map(|k| value(k, i)).fold(0.0, f64::max);
+                if promised > self.tol.e2hi || add_up(sqrt_up(promised), part.err) > self.tol.eps {
+                    return None;
+                }
+                let tri = &self.target.tris[cands[part.idx[i] as usize] as usize];
+                let u = (0..v).try_fold(0.0f64, |u, k| {
+                    let c = value(k, i);
+                    within(part.points[k], tri, c).then(|| u.max(sqrt_up(c)))
+                })?;
+                let total = add_up(u, part.err);
+                (total <= self.tol.eps).then_some(total)
+            });
+            if let Some(u) = proved {
+                upper = upper.max(u);
+                continue;
+            }
+            if part.depth >= CELL_DEPTH {
+                return None;
+            }
+            // A cut along an edge of one of those triangles that splits the piece.
+            let used = &part.used[..part.depth as usize];
+            // Among the edges of the first of those triangles that has a cut at all, the
+            // cut that splits the piece most evenly (the larger of the smaller reaches of
+            // the piece beyond the plane, in f64: only a choice among sound cuts; fewer
+            // pieces than the first cut found, where a long plane slices a thin piece).
+            let mut cut: Option<Cut> = None;
+            for &(_, i) in &order {
+                let pos = part.idx[i] as usize;
+                let a = &self.target.tris[cands[pos] as usize];
+                for e in 0..3 {
+                    let (p, q) = (a[e], a[(e + 1) % 3]);
+                    let key = edge_key(p, q);
+                    if used.contains(&key) {
+                        continue;
+                    }
+                    if !planes[pos][e].0 {
+                        let b = cands.iter().find(|&&j| {
+                            let b = &self.target.tris[j as usize];
+                            j != cands[pos] && b.contains(&p) && b.contains(&q)
+                        });
+                        planes[pos][e] = (
+                            true,
+                            b.and_then(|&b| bisector_points(a, &self.target.tris[b as usize])),
+                        );
+                    }
+                    let Some(plane) = planes[pos][e].1 else {
+                        continue;
+                    };
+                    let side: SmallVec<[Orientation; 8]> = part
+                        .points
+                        .iter()
+                        .map(|&x| orient3d(plane[0], plane[1], plane[2], x))
+                        .collect();
+                    if !side.contains(&Orientation::Positive)
+                        || !side.contains(&Orientation::Negative)
+                        || !is_chord(&side)
+                    {
+                        continue;
+                    }
+                    let normal = (plane[1] - plane[0]).cross(plane[2] - plane[0]);
+                    let (mut below, mut above) = (0.0f64, 0.0f64);
+                    for &x in &part.points {
+                        let h = normal.dot(x - plane[0]);
+                        below = below.min(h);
+                        above = above.max(h);
+                    }
+                    let score = (-below).min(above) / normal.length();
+                    if cut.as_ref().is_none_or(|c| score > c.score) {
+                        cut = Some(Cut {
+                            score,
+                            key,
+                            plane,
+                            side,
+                        });
+                    }
+                }
+                if cut.is_some() {
+                    break;
+                }
+            }
+            let Cut {
+                key, plane, side, ..
+            } = cut?;
+            let (lo, hi) = clip_f64(&part.points, &side, plane);
+            let mut used = part.used;
+            used[part.depth as usize] = key;
+            for half in [lo, hi] {
+                let points: SmallVec<[DVec3; 8]> = half.iter().map(|x| x.0).collect();
+                let e = half.iter().map(|x| x.1).fold(part.err, add_up);
+                let diam = points
+                    .iter()
+                    .flat_map(|x| points.iter().map(move |y| (*x - *y).length_squared()))
+                    .fold(0.0, f64::max)
+                    .sqrt();
+                // A triangle farther than eps + diam from a vertex proves nothing here.
+                let reach = (self.tol.eps + diam + 2.0 * e) * (1.0 + 1e-6);
+                let reach2 = reach * reach;
+                let rows: SmallVec<[Option<usize>; 8]> = points
+                    .iter()
+                    .map(|x| part.points.iter().position(|y| y == x))
+                    .collect();
+                let w = points.len();
+                // Nor does one whose box is farther than eps from the piece's.
+                let query = Aabb::from_points(&points).inflated(add_up(self.tol.eps, e));
+                let mut idx = Vec::with_capacity(n);
+                let mut d = Vec::with_capacity(n * w);
+                for (i, &c) in part.idx.iter().enumerate() {
+                    if !self.target.boxes[cands[c as usize] as usize].overlaps(&query) {
+                        continue;
+                    }
+                    let start = d.len();
+                    for (x, row) in points.iter().zip(&rows) {
+                        d.push(match row {
+                            Some(k) => dist(i, *k),
+                            None => self.sq_dist_or_inf(*x, cands[c as usize]),
+                        });
+                    }
+                    if d[start..].iter().all(|&x| x <= reach2) {
+                        idx.push(c);
+                    } else {
+                        d.truncate(start);
+                    }
+                }
+                stack.push(Part {
+                    points,
+                    err: e,
+                    idx,
+                    d,
+                    used,
+                    depth: part.depth + 1,
+                });
+            }
+        }
+        Some((upper, far?, pieces))
+    }
+
     /// [`Self::split_within_exactly`] in f64 with proved error bounds, for the f64
     /// sub-triangle `s` (its exact one is within `delta`): for each pair of the corners'
     /// nearest triangles that share an edge, cut `s` by the plane through that edge (exact
@@ -288,6 +520,26 @@ fn is_chord(side: &[Orientation]) -> bool {
         last = s;
     }
     changes + usize::from(last != first) <= 2
+}
+
+/// A cut of [`Search::cells_within`]: how evenly it splits the piece, its edge
+/// ([`edge_key`]), its plane and the exact sides of the piece's points.
+struct Cut {
+    score: f64,
+    key: u64,
+    plane: [DVec3; 3],
+    side: SmallVec<[Orientation; 8]>,
+}
+
+/// The edge `p q` (either way round) as a hash of its ends' bits: which edges a piece was
+/// already cut along (a collision only skips a cut).
+fn edge_key(p: DVec3, q: DVec3) -> u64 {
+    let h = |x: DVec3| {
+        x.to_array().iter().fold(0u64, |h, v| {
+            (h.rotate_left(23) ^ v.to_bits()).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        })
+    };
+    h(p) ^ h(q)
 }
 
 /// A part of a cut polygon: f64 points, each with a proved bound on its distance to the
