@@ -376,6 +376,21 @@ pub(crate) fn grow(
     policy: StepPolicy,
     stop: Option<&AtomicBool>,
 ) {
+    grow_rechecking(scene, movers, policy, stop, recheck_in_order);
+}
+
+/// How the accepted moves of a batch whose stars' boxes meet are checked again (see
+/// [`recheck_in_order`]).
+type Recheck = fn(&mut Scene<'_>, &mut [Mover], &[(u32, f64)], &mut [Option<u32>], StepPolicy);
+
+/// [`grow`], with the re-check of conflicting moves given.
+fn grow_rechecking(
+    scene: &mut Scene<'_>,
+    movers: &mut [Mover],
+    policy: StepPolicy,
+    stop: Option<&AtomicBool>,
+    recheck: Recheck,
+) {
     for m in movers.iter_mut() {
         let positive = |x: f64| x.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater);
         if !positive(m.target - m.t) || !positive(m.step) {
@@ -435,17 +450,13 @@ pub(crate) fn grow(
                     commit(scene, &mut movers[i as usize], t, policy);
                 }
             }
-            for (k, &(i, t)) in accepted.iter().enumerate() {
-                if conflicted[k] {
-                    match check(scene, &movers[i as usize], t, blockers[i as usize]) {
-                        Ok(()) => commit(scene, &mut movers[i as usize], t, policy),
-                        Err(g) => {
-                            blockers[i as usize] = Some(g);
-                            reject(&mut movers[i as usize], policy);
-                        }
-                    }
-                }
-            }
+            let pending: Vec<(u32, f64)> = accepted
+                .iter()
+                .zip(&conflicted)
+                .filter(|p| *p.1)
+                .map(|p| *p.0)
+                .collect();
+            recheck(scene, movers, &pending, &mut blockers, policy);
             for r in &results {
                 if let Err(g) = r.2 {
                     blockers[r.0 as usize] = Some(g);
@@ -457,6 +468,83 @@ pub(crate) fn grow(
             break;
         }
     }
+}
+
+/// Checks the accepted moves `pending` (in mover order) again, each against the scene as
+/// the moves before it in that order left it, and commits or rejects it: the outcome of
+/// checking them one by one in order. A move's check looks only at faces whose boxes meet
+/// its star's box at the proposed step (see [`check`]), and another move of the batch
+/// changes only faces of its own star, which lie in its region (its star's box now and at
+/// its proposed step) before and after. So a move waits only for the earlier moves whose
+/// regions meet its own: each move's level is one more than the highest level of those
+/// (0 if none), moves of one level have regions apart, and the levels are checked one
+/// after another, each in parallel against the scene the lower levels left.
+fn recheck_in_order(
+    scene: &mut Scene<'_>,
+    movers: &mut [Mover],
+    pending: &[(u32, f64)],
+    blockers: &mut [Option<u32>],
+    policy: StepPolicy,
+) {
+    if pending.is_empty() {
+        return;
+    }
+    let frozen: &Scene<'_> = scene;
+    let regions: Vec<Aabb> = pending
+        .par_iter()
+        .map(|&(i, t)| {
+            let m = &movers[i as usize];
+            let now = m.star.iter().fold(Aabb::EMPTY, |b, &f| {
+                let t = scene_triangle(frozen, f);
+                b.union(&Aabb::from_triangle(t))
+            });
+            star_box(frozen, m, t).union(&now)
+        })
+        .collect();
+    let mut earlier: Vec<Vec<u32>> = vec![Vec::new(); pending.len()];
+    for (a, b) in Bvh::new(&regions).self_pairs() {
+        earlier[a.max(b) as usize].push(a.min(b));
+    }
+    let mut level = vec![0usize; pending.len()];
+    for k in 0..pending.len() {
+        level[k] = earlier[k]
+            .iter()
+            .map(|&j| level[j as usize] + 1)
+            .max()
+            .unwrap_or(0);
+    }
+    let levels = level.iter().max().map_or(0, |&l| l + 1);
+    let mut by_level: Vec<Vec<usize>> = vec![Vec::new(); levels];
+    for (k, &l) in level.iter().enumerate() {
+        by_level[l].push(k);
+    }
+    for members in &by_level {
+        let frozen: &Scene<'_> = scene;
+        let ms: &[Mover] = movers;
+        let last: &[Option<u32>] = blockers;
+        let results: Vec<Result<(), u32>> = members
+            .par_iter()
+            .map(|&k| {
+                let (i, t) = pending[k];
+                check(frozen, &ms[i as usize], t, last[i as usize])
+            })
+            .collect();
+        for (&k, r) in members.iter().zip(results) {
+            let (i, t) = pending[k];
+            match r {
+                Ok(()) => commit(scene, &mut movers[i as usize], t, policy),
+                Err(g) => {
+                    blockers[i as usize] = Some(g);
+                    reject(&mut movers[i as usize], policy);
+                }
+            }
+        }
+    }
+}
+
+/// Face `f` where it is now.
+fn scene_triangle(scene: &Scene<'_>, f: u32) -> [DVec3; 3] {
+    scene.faces[f as usize].map(|i| scene.positions[i as usize])
 }
 
 /// The swept box of every face: the union of its vertices' sweep boxes.
@@ -486,4 +574,102 @@ pub(crate) fn sweep_box_from(base: DVec3, dir: DVec3, from: f64, target: f64) ->
     let end = base + dir * target;
     let scale = start.abs().max(end.abs()).max_element();
     Aabb::from_points(&[start, end]).inflated(scale * 8.0 * f64::EPSILON)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use envelope_mesh::{VertexFaces, VertexId, generate};
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// Moves re-checked by [`recheck_one_by_one`] over all its calls.
+    static RECHECKED: AtomicUsize = AtomicUsize::new(0);
+
+    /// [`recheck_in_order`] as it was: one move after the other, in order.
+    fn recheck_one_by_one(
+        scene: &mut Scene<'_>,
+        movers: &mut [Mover],
+        pending: &[(u32, f64)],
+        blockers: &mut [Option<u32>],
+        policy: StepPolicy,
+    ) {
+        RECHECKED.fetch_add(pending.len(), Ordering::Relaxed);
+        for &(i, t) in pending {
+            match check(scene, &movers[i as usize], t, blockers[i as usize]) {
+                Ok(()) => commit(scene, &mut movers[i as usize], t, policy),
+                Err(g) => {
+                    blockers[i as usize] = Some(g);
+                    reject(&mut movers[i as usize], policy);
+                }
+            }
+        }
+    }
+
+    /// Every vertex of two unit spheres 0.2 apart moving out along its normal towards 0.3:
+    /// the fronts meet in the gap, where the moves of one batch block each other (their
+    /// stars' boxes meet, and which one goes first decides where both stop).
+    fn grown(recheck: Recheck) -> (Vec<DVec3>, Vec<f64>) {
+        let sphere = generate::icosphere(3, 1.0);
+        let n = sphere.num_vertices();
+        let centre = |v: usize| {
+            if v < n {
+                DVec3::ZERO
+            } else {
+                DVec3::new(2.2, 0.0, 0.0)
+            }
+        };
+        let mut positions = sphere.positions.clone();
+        positions.extend(sphere.positions.iter().map(|&p| p + centre(n)));
+        let mut faces: Vec<[u32; 3]> = sphere.faces.iter().map(|f| f.map(|v| v.0)).collect();
+        faces.extend(sphere.faces.iter().map(|f| f.map(|v| v.0 + n as u32)));
+        let vf = VertexFaces::new(
+            2 * n,
+            &faces.iter().map(|f| f.map(VertexId)).collect::<Vec<_>>(),
+        );
+        let target = 0.3;
+        let dir = |v: usize| (positions[v] - centre(v)).normalize();
+        let sweep: Vec<Aabb> = (0..2 * n)
+            .map(|v| sweep_box(positions[v], dir(v), target))
+            .collect();
+        let swept = swept_face_boxes(&faces, &sweep);
+        let alias: Vec<u32> = (0..positions.len() as u32).collect();
+        let exempt = |_: u32, _: u32| false;
+        let mut scene = Scene::new(positions.clone(), alias, faces, swept, &exempt);
+        let mut movers: Vec<Mover> = (0..2 * n)
+            .map(|v| Mover {
+                verts: vec![v as u32],
+                base: vec![positions[v]],
+                dirs: vec![dir(v)],
+                star: vf.of(v).to_vec(),
+                group: 0,
+                target,
+                t: 0.0,
+                step: 0.01,
+                steps: 0,
+                halvings: 0,
+                done: false,
+            })
+            .collect();
+        let policy = StepPolicy {
+            k: 40,
+            max_halvings: 6,
+            growth: 1.5,
+        };
+        grow_rechecking(&mut scene, &mut movers, policy, None, recheck);
+        (scene.positions, movers.iter().map(|m| m.t).collect())
+    }
+
+    #[test]
+    fn rechecks_by_level_end_as_one_by_one() {
+        let (by_level, one_by_one) = (grown(recheck_in_order), grown(recheck_one_by_one));
+        assert!(RECHECKED.load(Ordering::Relaxed) > 100, "few conflicts");
+        assert_eq!(by_level, one_by_one);
+        // The fronts stopped each other in the gap; the rest reached the target.
+        let t = &one_by_one.1;
+        assert!(t.iter().any(|&t| t < 0.1), "{t:?}");
+        assert!(
+            t.iter().filter(|&&t| t == 0.3).count() > t.len() / 2,
+            "{t:?}"
+        );
+    }
 }
