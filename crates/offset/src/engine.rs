@@ -34,7 +34,8 @@
 //! movers are greedily coloured so that no two movers of one colour share a star vertex, and
 //! one colour of one group (outer, inner, tubes) is attempted at a time, in parallel, against
 //! the frozen scene. Accepted moves whose new star boxes overlap another accepted move's are
-//! re-checked one by one in mover order after the others are committed. The outcome depends
+//! re-checked after the others are committed, with the outcome of re-checking them one by
+//! one in mover order, by levels run in parallel (see `recheck_in_order`). The outcome depends
 //! only on the mover order, not on thread timing.
 use std::sync::atomic::AtomicBool;
 
