@@ -34,8 +34,8 @@
 //! movers are greedily coloured so that no two movers of one colour share a star vertex, and
 //! one colour of one group (outer, inner, tubes) is attempted at a time, in parallel, against
 //! the frozen scene. Accepted moves whose new star boxes overlap another accepted move's are
-//! re-checked after the others are committed, with the outcome of re-checking them one by
-//! one in mover order, by levels run in parallel (see `recheck_in_order`). The outcome depends
+//! re-checked one by one in mover order after the others are committed, each against the
+//! stars of the earlier ones it conflicts with (see `recheck_in_order`). The outcome depends
 //! only on the mover order, not on thread timing.
 use std::sync::atomic::AtomicBool;
 
@@ -183,6 +183,18 @@ pub(crate) fn reach(swept: &[Aabb], m: &Mover) -> Aabb {
 /// first. `Err` names a face the star at `t` meets. Which one depends on the order, the
 /// answer does not.
 fn check(scene: &Scene<'_>, m: &Mover, t: f64, blocker: Option<u32>) -> Result<(), u32> {
+    check_among(scene, m, t, blocker, None)
+}
+
+/// [`check`] against the faces `among` only, when given (in their order), instead of
+/// every face the trees find.
+fn check_among(
+    scene: &Scene<'_>,
+    m: &Mover,
+    t: f64,
+    blocker: Option<u32>,
+    among: Option<&[u32]>,
+) -> Result<(), u32> {
     let new = m.positions_at(t);
     let pos = |i: u32| match m.verts.iter().position(|&x| x == i) {
         Some(k) => new[k],
@@ -239,6 +251,11 @@ fn check(scene: &Scene<'_>, m: &Mover, t: f64, blocker: Option<u32>) -> Result<(
         }
         true
     };
+    if let Some(faces) = among {
+        return faces
+            .iter()
+            .try_for_each(|&g| if clear_of(g) { Ok(()) } else { Err(g) });
+    }
     // The face that stopped this mover last time first: a halved step usually meets it
     // again, and one pair test then answers instead of a walk over the neighbourhood. It
     // is a face of the trees (a walk found it), so the walk would find it too.
@@ -382,7 +399,8 @@ pub(crate) fn grow(
 
 /// How the accepted moves of a batch whose stars' boxes meet are checked again (see
 /// [`recheck_in_order`]).
-type Recheck = fn(&mut Scene<'_>, &mut [Mover], &[(u32, f64)], &mut [Option<u32>], StepPolicy);
+type Recheck =
+    fn(&mut Scene<'_>, &mut [Mover], &[(u32, f64)], &[Vec<u32>], &mut [Option<u32>], StepPolicy);
 
 /// [`grow`], with the re-check of conflicting moves given.
 fn grow_rechecking(
@@ -436,12 +454,14 @@ fn grow_rechecking(
                 .map(|r| (r.0, r.1))
                 .collect();
             let mut conflicted = vec![false; accepted.len()];
+            let mut pairs = Vec::new();
             if accepted.len() > 1 {
                 let boxes: Vec<Aabb> = accepted
                     .par_iter()
                     .map(|&(i, t)| star_box(frozen, &ms[i as usize], t))
                     .collect();
-                for (a, b) in Bvh::new(&boxes).self_pairs() {
+                pairs = Bvh::new(&boxes).self_pairs();
+                for &(a, b) in &pairs {
                     conflicted[a as usize] = true;
                     conflicted[b as usize] = true;
                 }
@@ -451,13 +471,21 @@ fn grow_rechecking(
                     commit(scene, &mut movers[i as usize], t, policy);
                 }
             }
-            let pending: Vec<(u32, f64)> = accepted
-                .iter()
-                .zip(&conflicted)
-                .filter(|p| *p.1)
-                .map(|p| *p.0)
-                .collect();
-            recheck(scene, movers, &pending, &mut blockers, policy);
+            // The conflicting moves in order, and for each the earlier ones it conflicts with.
+            let mut slot = vec![u32::MAX; accepted.len()];
+            let mut pending: Vec<(u32, f64)> = Vec::new();
+            for (k, &c) in conflicted.iter().enumerate() {
+                if c {
+                    slot[k] = pending.len() as u32;
+                    pending.push(accepted[k]);
+                }
+            }
+            let mut earlier: Vec<Vec<u32>> = vec![Vec::new(); pending.len()];
+            for &(a, b) in &pairs {
+                let (a, b) = (slot[a as usize], slot[b as usize]);
+                earlier[a.max(b) as usize].push(a.min(b));
+            }
+            recheck(scene, movers, &pending, &earlier, &mut blockers, policy);
             for r in &results {
                 if let Err(g) = r.2 {
                     blockers[r.0 as usize] = Some(g);
@@ -473,79 +501,41 @@ fn grow_rechecking(
 
 /// Checks the accepted moves `pending` (in mover order) again, each against the scene as
 /// the moves before it in that order left it, and commits or rejects it: the outcome of
-/// checking them one by one in order. A move's check looks only at faces whose boxes meet
-/// its star's box at the proposed step (see [`check`]), and another move of the batch
-/// changes only faces of its own star, which lie in its region (its star's box now and at
-/// its proposed step) before and after. So a move waits only for the earlier moves whose
-/// regions meet its own: each move's level is one more than the highest level of those
-/// (0 if none), moves of one level have regions apart, and the levels are checked one
-/// after another, each in parallel against the scene the lower levels left.
+/// [`check`] one by one in order. Each passed [`check`] against the scene before any of
+/// them moved, and the moves before it changed only the faces of their own stars (their
+/// old positions leave: nothing can meet them any more; the vertices they move are in no
+/// other star of the batch, so no other face changes, nor any alias another star face
+/// has). So it fails exactly when its star meets, at their new positions, the star of an
+/// earlier move that was committed and whose star's box meets its own (`earlier[k]`, by
+/// position in `pending`): those faces are all it is checked against.
 fn recheck_in_order(
     scene: &mut Scene<'_>,
     movers: &mut [Mover],
     pending: &[(u32, f64)],
+    earlier: &[Vec<u32>],
     blockers: &mut [Option<u32>],
     policy: StepPolicy,
 ) {
-    if pending.is_empty() {
-        return;
-    }
-    let frozen: &Scene<'_> = scene;
-    let regions: Vec<Aabb> = pending
-        .par_iter()
-        .map(|&(i, t)| {
-            let m = &movers[i as usize];
-            let now = m.star.iter().fold(Aabb::EMPTY, |b, &f| {
-                let t = scene_triangle(frozen, f);
-                b.union(&Aabb::from_triangle(t))
-            });
-            star_box(frozen, m, t).union(&now)
-        })
-        .collect();
-    let mut earlier: Vec<Vec<u32>> = vec![Vec::new(); pending.len()];
-    for (a, b) in Bvh::new(&regions).self_pairs() {
-        earlier[a.max(b) as usize].push(a.min(b));
-    }
-    let mut level = vec![0usize; pending.len()];
-    for k in 0..pending.len() {
-        level[k] = earlier[k]
-            .iter()
-            .map(|&j| level[j as usize] + 1)
-            .max()
-            .unwrap_or(0);
-    }
-    let levels = level.iter().max().map_or(0, |&l| l + 1);
-    let mut by_level: Vec<Vec<usize>> = vec![Vec::new(); levels];
-    for (k, &l) in level.iter().enumerate() {
-        by_level[l].push(k);
-    }
-    for members in &by_level {
-        let frozen: &Scene<'_> = scene;
-        let ms: &[Mover] = movers;
-        let last: &[Option<u32>] = blockers;
-        let results: Vec<Result<(), u32>> = members
-            .par_iter()
-            .map(|&k| {
-                let (i, t) = pending[k];
-                check(frozen, &ms[i as usize], t, last[i as usize])
-            })
-            .collect();
-        for (&k, r) in members.iter().zip(results) {
-            let (i, t) = pending[k];
-            match r {
-                Ok(()) => commit(scene, &mut movers[i as usize], t, policy),
-                Err(g) => {
-                    blockers[i as usize] = Some(g);
-                    reject(&mut movers[i as usize], policy);
-                }
+    let mut committed = vec![false; pending.len()];
+    let mut faces: Vec<u32> = Vec::new();
+    for (k, &(i, t)) in pending.iter().enumerate() {
+        faces.clear();
+        for &j in &earlier[k] {
+            if committed[j as usize] {
+                faces.extend(&movers[pending[j as usize].0 as usize].star);
+            }
+        }
+        match check_among(scene, &movers[i as usize], t, None, Some(&faces)) {
+            Ok(()) => {
+                commit(scene, &mut movers[i as usize], t, policy);
+                committed[k] = true;
+            }
+            Err(g) => {
+                blockers[i as usize] = Some(g);
+                reject(&mut movers[i as usize], policy);
             }
         }
     }
-}
-
-/// Face `f` where it is now.
-fn scene_triangle(scene: &Scene<'_>, f: u32) -> [DVec3; 3] {
-    scene.faces[f as usize].map(|i| scene.positions[i as usize])
 }
 
 /// The swept box of every face: the union of its vertices' sweep boxes.
@@ -586,11 +576,12 @@ mod tests {
     /// Moves re-checked by [`recheck_one_by_one`] over all its calls.
     static RECHECKED: AtomicUsize = AtomicUsize::new(0);
 
-    /// [`recheck_in_order`] as it was: one move after the other, in order.
+    /// [`recheck_in_order`] as it was: each move's full [`check`], one after the other.
     fn recheck_one_by_one(
         scene: &mut Scene<'_>,
         movers: &mut [Mover],
         pending: &[(u32, f64)],
+        _: &[Vec<u32>],
         blockers: &mut [Option<u32>],
         policy: StepPolicy,
     ) {
@@ -661,10 +652,10 @@ mod tests {
     }
 
     #[test]
-    fn rechecks_by_level_end_as_one_by_one() {
-        let (by_level, one_by_one) = (grown(recheck_in_order), grown(recheck_one_by_one));
+    fn rechecks_against_the_earlier_stars_end_as_full_checks() {
+        let (against_stars, one_by_one) = (grown(recheck_in_order), grown(recheck_one_by_one));
         assert!(RECHECKED.load(Ordering::Relaxed) > 100, "few conflicts");
-        assert_eq!(by_level, one_by_one);
+        assert_eq!(against_stars, one_by_one);
         // The fronts stopped each other in the gap; the rest reached the target.
         let t = &one_by_one.1;
         assert!(t.iter().any(|&t| t < 0.1), "{t:?}");
