@@ -111,21 +111,8 @@ impl Search<'_> {
             let Some(i) = cands.iter().position(|&c| c == t) else {
                 continue;
             };
-            let value = |k: usize| self.tol.piece_value(d[k * n + i]);
-            let promised = (0..poly.len()).map(value).fold(0.0, f64::max);
-            if promised > self.tol.e2hi || add_up(sqrt_up(promised), err) > self.tol.eps {
-                continue;
-            }
-            let tri = &self.target.tris[t as usize];
-            let bound = (0..poly.len()).try_fold(0.0f64, |u, k| {
-                let c = value(k);
-                within(poly[k], tri, c).then(|| u.max(sqrt_up(c)))
-            });
-            if let Some(u) = bound {
-                let total = add_up(u, err);
-                if total <= self.tol.eps {
-                    return Some((total, far));
-                }
+            if let Some(total) = self.piece_proved(poly, t, |k| d[k * n + i], err) {
+                return Some((total, far));
             }
         }
         if cuts == 0 {
@@ -176,6 +163,32 @@ impl Search<'_> {
         None
     }
 
+    /// A proved bound of the distance of the polygon `poly` (f64 points, taken exactly,
+    /// convex; its exact polygon within `err`) to the triangle `t` of `to`, plus `err`, when
+    /// at most `eps`: every vertex within it (convexity). `sq(k)` is the estimated squared
+    /// distance of `poly[k]` to `t`: the estimates first, the exact tests only where they
+    /// promise a proof.
+    fn piece_proved(
+        &self,
+        poly: &[DVec3],
+        t: u32,
+        sq: impl Fn(usize) -> f64,
+        err: f64,
+    ) -> Option<f64> {
+        let value = |k: usize| self.tol.piece_value(sq(k));
+        let promised = (0..poly.len()).map(value).fold(0.0, f64::max);
+        if promised > self.tol.e2hi || add_up(sqrt_up(promised), err) > self.tol.eps {
+            return None;
+        }
+        let tri = &self.target.tris[t as usize];
+        let u = (0..poly.len()).try_fold(0.0f64, |u, k| {
+            let c = value(k);
+            within(poly[k], tri, c).then(|| u.max(sqrt_up(c)))
+        })?;
+        let total = add_up(u, err);
+        (total <= self.tol.eps).then_some(total)
+    }
+
     /// A proof of the whole polygon `poly` (f64 points, taken exactly, convex; its exact
     /// polygon within `err`) by the cells of `to`'s triangles: where no single triangle
     /// covers a piece, it is cut by the plane through an edge of a triangle near it and that
@@ -210,8 +223,7 @@ impl Search<'_> {
         }
         // Per candidate and edge, the plane through that edge and its neighbour's among
         // `cands` (if any), made when first asked.
-        let mut planes: Vec<[(bool, Option<[DVec3; 3]>); 3]> =
-            vec![[(false, None); 3]; cands.len()];
+        let mut planes: Vec<[Option<Option<[DVec3; 3]>>; 3]> = vec![[None; 3]; cands.len()];
         let mut stack = vec![Part {
             points: poly.iter().copied().collect(),
             err,
@@ -264,20 +276,9 @@ impl Search<'_> {
                 }
                 farther(&mut far, Some((m, part.points[k], part.err)));
             }
-            // One triangle for the whole piece: the estimates first, then the exact tests.
-            let value = |k: usize, i: usize| self.tol.piece_value(dist(i, k));
             let proved = order.iter().find_map(|&(_, i)| {
-                let promised = (0..v).map(|k| value(k, i)).fold(0.0, f64::max);
-                if promised > self.tol.e2hi || add_up(sqrt_up(promised), part.err) > self.tol.eps {
-                    return None;
-                }
-                let tri = &self.target.tris[cands[part.idx[i] as usize] as usize];
-                let u = (0..v).try_fold(0.0f64, |u, k| {
-                    let c = value(k, i);
-                    within(part.points[k], tri, c).then(|| u.max(sqrt_up(c)))
-                })?;
-                let total = add_up(u, part.err);
-                (total <= self.tol.eps).then_some(total)
+                let t = cands[part.idx[i] as usize];
+                self.piece_proved(&part.points, t, |k| dist(i, k), part.err)
             });
             if let Some(u) = proved {
                 upper = upper.max(u);
@@ -302,17 +303,14 @@ impl Search<'_> {
                     if used.contains(&key) {
                         continue;
                     }
-                    if !planes[pos][e].0 {
+                    let plane = planes[pos][e].get_or_insert_with(|| {
                         let b = cands.iter().find(|&&j| {
                             let b = &self.target.tris[j as usize];
                             j != cands[pos] && b.contains(&p) && b.contains(&q)
                         });
-                        planes[pos][e] = (
-                            true,
-                            b.and_then(|&b| bisector_points(a, &self.target.tris[b as usize])),
-                        );
-                    }
-                    let Some(plane) = planes[pos][e].1 else {
+                        b.and_then(|&b| bisector_points(a, &self.target.tris[b as usize]))
+                    });
+                    let Some(plane) = *plane else {
                         continue;
                     };
                     let side: SmallVec<[Orientation; 8]> = part
