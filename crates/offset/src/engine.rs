@@ -308,6 +308,26 @@ fn commit(scene: &mut Scene<'_>, m: &mut Mover, t: f64, policy: StepPolicy) {
     }
 }
 
+/// Commits move `(i, t)` when its check passed, else rejects it and keeps the face that
+/// refused it as mover `i`'s blocker; true when committed.
+fn settle(
+    scene: &mut Scene<'_>,
+    movers: &mut [Mover],
+    blockers: &mut [Option<u32>],
+    (i, t): (u32, f64),
+    answer: Result<(), u32>,
+    policy: StepPolicy,
+) -> bool {
+    match answer {
+        Ok(()) => commit(scene, &mut movers[i as usize], t, policy),
+        Err(g) => {
+            blockers[i as usize] = Some(g);
+            reject(&mut movers[i as usize], policy);
+        }
+    }
+    answer.is_ok()
+}
+
 fn reject(m: &mut Mover, policy: StepPolicy) {
     if m.steps < policy.k && m.halvings < policy.max_halvings {
         m.step *= 0.5;
@@ -486,10 +506,9 @@ fn grow_rechecking(
                 earlier[a.max(b) as usize].push(a.min(b));
             }
             recheck(scene, movers, &pending, &earlier, &mut blockers, policy);
-            for r in &results {
-                if let Err(g) = r.2 {
-                    blockers[r.0 as usize] = Some(g);
-                    reject(&mut movers[r.0 as usize], policy);
+            for &(i, t, answer) in &results {
+                if answer.is_err() {
+                    settle(scene, movers, &mut blockers, (i, t), answer, policy);
                 }
             }
         }
@@ -525,16 +544,8 @@ fn recheck_in_order(
                 faces.extend(&movers[pending[j as usize].0 as usize].star);
             }
         }
-        match check_among(scene, &movers[i as usize], t, None, Some(&faces)) {
-            Ok(()) => {
-                commit(scene, &mut movers[i as usize], t, policy);
-                committed[k] = true;
-            }
-            Err(g) => {
-                blockers[i as usize] = Some(g);
-                reject(&mut movers[i as usize], policy);
-            }
-        }
+        let answer = check_among(scene, &movers[i as usize], t, None, Some(&faces));
+        committed[k] = settle(scene, movers, blockers, (i, t), answer, policy);
     }
 }
 
@@ -587,13 +598,8 @@ mod tests {
     ) {
         RECHECKED.fetch_add(pending.len(), Ordering::Relaxed);
         for &(i, t) in pending {
-            match check(scene, &movers[i as usize], t, blockers[i as usize]) {
-                Ok(()) => commit(scene, &mut movers[i as usize], t, policy),
-                Err(g) => {
-                    blockers[i as usize] = Some(g);
-                    reject(&mut movers[i as usize], policy);
-                }
-            }
+            let answer = check(scene, &movers[i as usize], t, blockers[i as usize]);
+            settle(scene, movers, blockers, (i, t), answer, policy);
         }
     }
 
