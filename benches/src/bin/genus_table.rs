@@ -13,7 +13,8 @@
 //!
 //! `--closing` prints instead, for every part at alpha 2 % and 5 % (or `--alpha`), the genus
 //! after `reduce_genus` on the input itself beside the closing's genus, and whether it meets
-//! issue 37's target (at most the closing's genus plus `max(1, genus_in / 10)`).
+//! issue 37's target (at most the closing's genus plus `max(1, genus_in / 10)`), and exits 1
+//! when a row misses it (CI runs `--closing --fill-closing --only cheese --alpha 5`).
 //!
 //! `cargo run --release -p envelope-benches --bin genus_table -- [--quick] [--corpus DIR]
 //! [--eps PCT] [--alpha PCT] [--only NAME] [--union | --fill-closing] [--closing]`; `--union`
@@ -140,6 +141,7 @@ fn closing_table(
         "| mesh | faces | genus | border loops | genus (voxels) | alpha % | GR s | genus (ours) | closing (voxels) | target | met |"
     );
     println!("|{}", "---|".repeat(11));
+    let mut missed = false;
     for &name in names {
         if only.is_some_and(|o| o != name) {
             continue;
@@ -173,6 +175,7 @@ fn closing_table(
                 (Ok(None), _) => ("-".to_string(), "-"),
                 (Err(e), _) => (format!("error: {e}"), "no"),
             };
+            missed |= met == "no";
             let show = |x: Option<i64>| x.map_or_else(|| "-".to_string(), |v| v.to_string());
             println!(
                 "| {name} | {} | {g_in} | {} | {g_vox} | {alpha_pct} | {secs:.3} | {ours} | {} | {} | {met} |",
@@ -183,7 +186,11 @@ fn closing_table(
             );
         }
     }
-    ExitCode::SUCCESS
+    if missed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
 }
 
 fn main() -> ExitCode {

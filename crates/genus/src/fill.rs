@@ -19,6 +19,17 @@
 //! a region still refused is kept whole. A tunnel whose mouth cannot be capped is so kept up
 //! to where it joins the rest of its network, which is capped there.
 //!
+//! **Cells (our choice).** The voxels' answer is ragged where it changes: strips of a tunnel
+//! wall near a wide opening come out kept, and one refused loop used to peel a layer of faces
+//! at a time, merging the fronts of neighbouring tunnels into longer loops until whole
+//! networks went back. So the surface is also cut along its edges sharper than
+//! [`CELL_BETA`] into *cells* (a tunnel's wall between its junctions, a flat face): a cell at
+//! least [`CELL_SNAP`] swallowed (by area) is swallowed whole and one at most `1 -
+//! CELL_SNAP` swallowed is kept whole, and peeling gives back the whole cells at a refused
+//! loop, so the new loops are the cells' sharp junction curves, which cap. A cell holding
+//! at least half of its region (a smooth part without sharp edges) peels by faces as
+//! before.
+//!
 //! **Levels.** The closing is taken at `alpha`, then at [`LEVELS`] of it on the result: a
 //! region refused at the full radius (its loops too wide) often fills at a smaller one, where
 //! the closing's boundary runs deeper inside the tunnels. Every cap's corners are input
@@ -29,13 +40,21 @@ use std::collections::{HashMap, HashSet};
 use envelope_check::DegeneracyClass;
 use envelope_mesh::{FaceId, TriangleSoup, VertexId};
 
-use crate::rim::{Candidate, Capped, cap_of, split_simple};
-use crate::tessellation::{EdgeMap, border_edges, patches};
+use crate::rim::{Candidate, Capped, Edge, cap_of, split_simple};
+use crate::tessellation::{EdgeMap, border_edges, face_normals, patches, tessellation_edges};
 use crate::union::{cut_edges, fill_islands, patch_rims};
 use crate::validation::new_findings;
 
 /// Fractions of `alpha` at which the closing is taken, in order, each on the previous result.
 pub(crate) const LEVELS: [f64; 3] = [1.0, 0.75, 0.5];
+
+/// Dihedral angle, in degrees, past which an edge bounds a cell (see the module docs): low
+/// enough that the walls of two crossing tunnels part at their junction.
+pub(crate) const CELL_BETA: f64 = 40.0;
+
+/// Fraction of its area past which the closing's answer for most of a cell is taken for all
+/// of it (see the module docs).
+pub(crate) const CELL_SNAP: f64 = 0.8;
 
 /// Rounds of peeling per level.
 pub(crate) const PEEL_ROUNDS: usize = 48;
@@ -80,6 +99,8 @@ pub(crate) fn fill_closing(
         let Some(mut swallowed) = crate::closing::swallowed_faces(&cur, alpha * frac) else {
             break;
         };
+        let cells = cells_of(&cur, &edges);
+        snap_to_cells(&cur, &cells, &mut swallowed);
         fill_islands(&cur, &edges, &mut swallowed, true);
         if level == 0 {
             done.swallowed = swallowed.iter().filter(|&&s| s).count();
@@ -185,18 +206,38 @@ pub(crate) fn fill_closing(
             } else if last {
                 whole.extend(give_back.keys().copied());
             }
-            // The regions' faces at their refused loops go back to the kept side (whole
-            // regions at the last round).
-            for f in cur.face_ids() {
+            // The regions' faces at their refused loops go back to the kept side, with their
+            // cells unless a cell is half its region (whole regions at the last round).
+            let at_loop = |f: FaceId| {
                 let p = pat.of_face[f.index()];
-                let Some(vs) = give_back.get(&p) else {
-                    continue;
-                };
-                if swallowed[f.index()]
-                    && (whole.contains(&p) || cur.faces[f.index()].iter().any(|v| vs.contains(v)))
-                {
-                    swallowed[f.index()] = false;
-                }
+                swallowed[f.index()]
+                    && give_back
+                        .get(&p)
+                        .is_some_and(|vs| cur.faces[f.index()].iter().any(|v| vs.contains(v)))
+            };
+            let (mut region_size, mut cell_size) = (HashMap::new(), HashMap::new());
+            for f in cur.face_ids().filter(|f| swallowed[f.index()]) {
+                *region_size.entry(pat.of_face[f.index()]).or_insert(0usize) += 1;
+                *cell_size.entry(cells[f.index()]).or_insert(0usize) += 1;
+            }
+            let back_cells: HashSet<usize> = cur
+                .face_ids()
+                .filter(|&f| at_loop(f))
+                .map(|f| cells[f.index()])
+                .filter(|c| *c != usize::MAX)
+                .collect();
+            let back: Vec<FaceId> = cur
+                .face_ids()
+                .filter(|&f| {
+                    let (p, c) = (pat.of_face[f.index()], cells[f.index()]);
+                    swallowed[f.index()]
+                        && (at_loop(f)
+                            || (whole.contains(&p) && give_back.contains_key(&p))
+                            || (back_cells.contains(&c) && 2 * cell_size[&c] <= region_size[&p]))
+                })
+                .collect();
+            for f in back {
+                swallowed[f.index()] = false;
             }
         }
     }
@@ -211,6 +252,36 @@ pub(crate) fn fill_closing(
     done.added = (0..cur.num_faces()).filter(|&f| is_cap[f]).collect();
     done.soup = cur;
     done
+}
+
+/// The cell of every face (`usize::MAX` for a face with a repeated vertex): the surface cut
+/// along its edges sharper than [`CELL_BETA`] and its border edges.
+fn cells_of(soup: &TriangleSoup, edges: &EdgeMap) -> Vec<usize> {
+    let sharp: HashSet<Edge> = tessellation_edges(edges, &face_normals(soup), CELL_BETA)
+        .into_iter()
+        .collect();
+    patches(soup, edges, &sharp).of_face
+}
+
+/// Takes the closing's answer for most of a cell for all of it (see the module docs); the
+/// areas are f64 and only weigh a proposal.
+fn snap_to_cells(soup: &TriangleSoup, cells: &[usize], swallowed: &mut [bool]) {
+    let mut area: HashMap<usize, [f64; 2]> = HashMap::new();
+    for f in soup.face_ids() {
+        let [a, b, c] = soup.triangle(f);
+        area.entry(cells[f.index()]).or_default()[usize::from(swallowed[f.index()])] +=
+            (b - a).cross(c - a).length();
+    }
+    for (f, s) in swallowed.iter_mut().enumerate() {
+        let c = cells[f];
+        let [kept, gone] = area[&c];
+        if c == usize::MAX || kept + gone <= 0.0 {
+            continue;
+        }
+        if gone >= CELL_SNAP * (kept + gone) {
+            *s = true;
+        }
+    }
 }
 
 /// `None` when `out` has no more findings of the validated classes than `baseline`;
@@ -268,4 +339,44 @@ fn assemble(
         TriangleSoup::new(soup.positions.clone(), faces),
         cap_of_face,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_cell_mostly_swallowed_is_swallowed_whole_and_no_cell_is_kept_for_its_majority() {
+        // A plate with one hole: its flat top is one cell of many faces.
+        let plate = crate::testmeshes::plate_with_square_holes(&[1], 1, 1.0);
+        let edges = EdgeMap::new(&plate);
+        let cells = cells_of(&plate, &edges);
+        let top = cells[0];
+        let in_top: Vec<usize> = (0..cells.len()).filter(|&f| cells[f] == top).collect();
+        assert!(
+            in_top.len() >= 6,
+            "{} faces in the first cell",
+            in_top.len()
+        );
+        assert!(
+            in_top.len() < cells.len(),
+            "the plate is more than one cell"
+        );
+        // All but one face of the cell swallowed: the cell is swallowed whole, nothing else.
+        let mut swallowed = vec![false; cells.len()];
+        for &f in &in_top[1..] {
+            swallowed[f] = true;
+        }
+        snap_to_cells(&plate, &cells, &mut swallowed);
+        for (f, &s) in swallowed.iter().enumerate() {
+            assert_eq!(s, cells[f] == top, "face {f}");
+        }
+        // One face of it: nothing changes (the closing may swallow a minority of a smooth
+        // cell, as the inner band of a torus).
+        let mut swallowed = vec![false; cells.len()];
+        swallowed[in_top[0]] = true;
+        let before = swallowed.clone();
+        snap_to_cells(&plate, &cells, &mut swallowed);
+        assert_eq!(swallowed, before);
+    }
 }
