@@ -29,3 +29,40 @@ fn b9_mesh_border_vertices_stay_within_epsilon() {
         assert!(out.num_faces() < soup.num_faces(), "{percent} %");
     }
 }
+
+/// `cheese.off` simplified at 0.5 % (the starting point of El-Sana and Varshney's Table 1),
+/// then genus-reduced at 5 % with the closing's regions: the simplified tunnel walls are
+/// coarse prisms whose facets meet at 30 to 45 degrees, so cells cut at one angle either
+/// split every wall into facets or joined the network into one cell, and peeling gave back
+/// the network: genus 114 left, with face peeling or with cells at 40 degrees only. With
+/// cells at several angles, each face peeling with its coarsest cell at most half its
+/// region, 24.
+#[test]
+fn simplified_cheese_loses_most_tunnels_at_five_percent() {
+    use envelope_genus::{GenusOptions, TessellationSource, reduce_genus_with};
+    let Some(dir) = corpus_dir() else {
+        return;
+    };
+    let (soup, _) = read_path(dir.join("cheese.off")).expect("cheese.off reads");
+    let d = soup.diagonal();
+    let options = SimplifyOptions::new(EpsilonField::Constant(0.005 * d));
+    let (base, _) = simplify(&soup, &options, &mut ()).expect("simplified");
+    let g_base = envelope_mesh::analyze(&base).genus;
+    assert_eq!(g_base, Some(133), "genus kept by the simplifier");
+    let (out, report) = reduce_genus_with(
+        &base,
+        &GenusOptions::new(0.05 * d),
+        TessellationSource::Closing,
+    )
+    .expect("reduced");
+    let topo = envelope_mesh::analyze(&out);
+    assert_eq!(topo.num_border_loops(), 0, "closed");
+    let c = envelope_check::check(&out, &envelope_check::CheckOptions::default());
+    assert_eq!(
+        c.finding(envelope_check::DegeneracyClass::IntersectingTriangles)
+            .count,
+        0
+    );
+    let g = topo.genus.expect("manifold");
+    assert!(g <= 40, "genus 133 -> {g}: {report:?}");
+}

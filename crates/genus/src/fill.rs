@@ -22,13 +22,14 @@
 //! **Cells (our choice).** The voxels' answer is ragged where it changes: strips of a tunnel
 //! wall near a wide opening come out kept, and one refused loop used to peel a layer of faces
 //! at a time, merging the fronts of neighbouring tunnels into longer loops until whole
-//! networks went back. So the surface is also cut along its edges sharper than
-//! [`CELL_BETA`] into *cells* (a tunnel's wall between its junctions, a flat face): a cell at
-//! least [`CELL_SNAP`] swallowed (by area) is swallowed whole and one at most `1 -
-//! CELL_SNAP` swallowed is kept whole, and peeling gives back the whole cells at a refused
-//! loop, so the new loops are the cells' sharp junction curves, which cap. A cell holding
-//! at least half of its region (a smooth part without sharp edges) peels by faces as
-//! before.
+//! networks went back. So the surface is also cut along its edges sharper than an angle
+//! into *cells* (a tunnel's wall between its junctions, a flat face): a cell at least
+//! [`CELL_SNAP`] swallowed (by area) at the first of [`CELL_BETAS`] is swallowed whole, and
+//! peeling gives back, with each face at a refused loop, its cell at the first angle where
+//! that cell is at most half of its region (finer angles split the walls of a coarse,
+//! simplified tunnel network that a coarser one leaves joined). The new loops are then the
+//! cells' sharp junction curves, which cap. A face whose cell is more than half its region at
+//! every angle (a smooth part) peels alone, as before.
 //!
 //! **Levels.** The closing is taken at `alpha`, then at [`LEVELS`] of it on the result: a
 //! region refused at the full radius (its loops too wide) often fills at a smaller one, where
@@ -48,9 +49,9 @@ use crate::validation::new_findings;
 /// Fractions of `alpha` at which the closing is taken, in order, each on the previous result.
 pub(crate) const LEVELS: [f64; 3] = [1.0, 0.75, 0.5];
 
-/// Dihedral angle, in degrees, past which an edge bounds a cell (see the module docs): low
-/// enough that the walls of two crossing tunnels part at their junction.
-pub(crate) const CELL_BETA: f64 = 40.0;
+/// Dihedral angles, in degrees, past which an edge bounds a cell, coarsest first (see the
+/// module docs): low enough that the walls of two crossing tunnels part at their junction.
+pub(crate) const CELL_BETAS: [f64; 5] = [40.0, 35.0, 30.0, 25.0, 20.0];
 
 /// Fraction of its area past which the closing's answer for most of a cell is taken for all
 /// of it (see the module docs).
@@ -99,8 +100,11 @@ pub(crate) fn fill_closing(
         let Some(mut swallowed) = crate::closing::swallowed_faces(&cur, alpha * frac) else {
             break;
         };
-        let cells = cells_of(&cur, &edges);
-        snap_to_cells(&cur, &cells, &mut swallowed);
+        let cells: Vec<Vec<usize>> = CELL_BETAS
+            .iter()
+            .map(|&b| cells_of(&cur, &edges, b))
+            .collect();
+        snap_to_cells(&cur, &cells[0], &mut swallowed);
         fill_islands(&cur, &edges, &mut swallowed, true);
         if level == 0 {
             done.swallowed = swallowed.iter().filter(|&&s| s).count();
@@ -206,8 +210,9 @@ pub(crate) fn fill_closing(
             } else if last {
                 whole.extend(give_back.keys().copied());
             }
-            // The regions' faces at their refused loops go back to the kept side, with their
-            // cells unless a cell is half its region (whole regions at the last round).
+            // The regions' faces at their refused loops go back to the kept side, each with
+            // its coarsest cell that is at most half its region (whole regions at the last
+            // round).
             let at_loop = |f: FaceId| {
                 let p = pat.of_face[f.index()];
                 swallowed[f.index()]
@@ -215,25 +220,31 @@ pub(crate) fn fill_closing(
                         .get(&p)
                         .is_some_and(|vs| cur.faces[f.index()].iter().any(|v| vs.contains(v)))
             };
-            let (mut region_size, mut cell_size) = (HashMap::new(), HashMap::new());
+            let mut region_size: HashMap<usize, usize> = HashMap::new();
+            let mut cell_size: HashMap<(usize, usize), usize> = HashMap::new();
             for f in cur.face_ids().filter(|f| swallowed[f.index()]) {
-                *region_size.entry(pat.of_face[f.index()]).or_insert(0usize) += 1;
-                *cell_size.entry(cells[f.index()]).or_insert(0usize) += 1;
+                *region_size.entry(pat.of_face[f.index()]).or_default() += 1;
+                for (l, of) in cells.iter().enumerate() {
+                    *cell_size.entry((l, of[f.index()])).or_default() += 1;
+                }
             }
-            let back_cells: HashSet<usize> = cur
-                .face_ids()
-                .filter(|&f| at_loop(f))
-                .map(|f| cells[f.index()])
-                .filter(|c| *c != usize::MAX)
-                .collect();
+            let mut back_cells: HashSet<(usize, usize)> = HashSet::new();
+            for f in cur.face_ids().filter(|&f| at_loop(f)) {
+                let half = region_size[&pat.of_face[f.index()]] / 2;
+                let small = (0..cells.len())
+                    .map(|l| (l, cells[l][f.index()]))
+                    .find(|&(l, c)| c != usize::MAX && cell_size[&(l, c)] <= half);
+                back_cells.extend(small);
+            }
             let back: Vec<FaceId> = cur
                 .face_ids()
                 .filter(|&f| {
-                    let (p, c) = (pat.of_face[f.index()], cells[f.index()]);
+                    let p = pat.of_face[f.index()];
                     swallowed[f.index()]
                         && (at_loop(f)
                             || (whole.contains(&p) && give_back.contains_key(&p))
-                            || (back_cells.contains(&c) && 2 * cell_size[&c] <= region_size[&p]))
+                            || (0..cells.len())
+                                .any(|l| back_cells.contains(&(l, cells[l][f.index()]))))
                 })
                 .collect();
             for f in back {
@@ -255,9 +266,9 @@ pub(crate) fn fill_closing(
 }
 
 /// The cell of every face (`usize::MAX` for a face with a repeated vertex): the surface cut
-/// along its edges sharper than [`CELL_BETA`] and its border edges.
-fn cells_of(soup: &TriangleSoup, edges: &EdgeMap) -> Vec<usize> {
-    let sharp: HashSet<Edge> = tessellation_edges(edges, &face_normals(soup), CELL_BETA)
+/// along its edges sharper than `beta` degrees and its border edges.
+fn cells_of(soup: &TriangleSoup, edges: &EdgeMap, beta: f64) -> Vec<usize> {
+    let sharp: HashSet<Edge> = tessellation_edges(edges, &face_normals(soup), beta)
         .into_iter()
         .collect();
     patches(soup, edges, &sharp).of_face
@@ -350,7 +361,7 @@ mod tests {
         // A plate with one hole: its flat top is one cell of many faces.
         let plate = crate::testmeshes::plate_with_square_holes(&[1], 1, 1.0);
         let edges = EdgeMap::new(&plate);
-        let cells = cells_of(&plate, &edges);
+        let cells = cells_of(&plate, &edges, CELL_BETAS[0]);
         let top = cells[0];
         let in_top: Vec<usize> = (0..cells.len()).filter(|&f| cells[f] == top).collect();
         assert!(
