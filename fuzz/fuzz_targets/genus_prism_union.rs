@@ -64,6 +64,23 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
     if let (Some(a), Some(b)) = (topo_in.genus, topo_out.genus) {
         assert!(b <= a, "genus grew: {a} -> {b}");
     }
+    // Filling only adds material: on a closed input the enclosed volume never shrinks (f64,
+    // with room for its rounding).
+    if topo_in.num_border_loops() == 0 {
+        let volume = |s: &envelope_mesh::TriangleSoup| -> (f64, f64) {
+            s.face_ids().fold((0.0, 0.0), |(v, size), f| {
+                let [a, b, c] = s.triangle(f);
+                let t = a.dot(b.cross(c));
+                (v + t, size + t.abs())
+            })
+        };
+        let ((v_in, s_in), (v_out, s_out)) = (volume(&soup), volume(&out));
+        let sign = if v_in >= 0.0 { 1.0 } else { -1.0 };
+        assert!(
+            sign * v_out >= sign * v_in - 1e-9 * (s_in + s_out),
+            "material taken away: {v_in} -> {v_out}"
+        );
+    }
     // Inputs with a non-manifold vertex are accepted (and kept as they are); when the input
     // builds a half-edge mesh, the output must too.
     if out.num_faces() > 0 && HalfEdgeMesh::from_soup(&soup).is_ok() {

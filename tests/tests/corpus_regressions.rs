@@ -66,3 +66,41 @@ fn simplified_cheese_loses_most_tunnels_at_five_percent() {
     let g = topo.genus.expect("manifold");
     assert!(g <= 40, "genus 133 -> {g}: {report:?}");
 }
+
+/// `cheese.off` simplified at 1 %, then genus-reduced at 5 % (sharp edges, and the closing's
+/// regions after them): two sharp rims around a few faces were capped with the rest of the
+/// part as their region, and the output was a closed, clean polyhedron of 26 faces with
+/// genus 0, the part gone. A fill may only add material: the output's volume is at least
+/// the input's.
+#[test]
+fn simplified_cheese_is_not_replaced_by_a_few_faces() {
+    use envelope_genus::{GenusOptions, TessellationSource, reduce_genus_with};
+    let Some(dir) = corpus_dir() else {
+        return;
+    };
+    let (soup, _) = read_path(dir.join("cheese.off")).expect("cheese.off reads");
+    let d = soup.diagonal();
+    let options = SimplifyOptions::new(EpsilonField::Constant(0.01 * d));
+    let (base, _) = simplify(&soup, &options, &mut ()).expect("simplified");
+    let volume = |s: &envelope_mesh::TriangleSoup| -> f64 {
+        s.face_ids()
+            .map(|f| {
+                let [a, b, c] = s.triangle(f);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum()
+    };
+    let v_in = volume(&base);
+    assert!(v_in > 0.0);
+    for source in [TessellationSource::SharpEdges, TessellationSource::Closing] {
+        let (out, report) =
+            reduce_genus_with(&base, &GenusOptions::new(0.05 * d), source).expect("reduced");
+        let v_out = volume(&out);
+        assert!(
+            v_out >= v_in * (1.0 - 1e-9),
+            "{source:?}: volume {v_in:.4e} -> {v_out:.4e}, faces {} -> {}: {report:?}",
+            base.num_faces(),
+            out.num_faces()
+        );
+    }
+}

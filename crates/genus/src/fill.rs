@@ -36,14 +36,17 @@
 //! the closing's boundary runs deeper inside the tunnels. Every cap's corners are input
 //! vertices, so every cap of every level lies in the union of the input's alpha-prisms.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 use envelope_check::DegeneracyClass;
 use envelope_mesh::{FaceId, TriangleSoup, VertexId};
 
 use crate::rim::{Candidate, Capped, Edge, cap_of, split_simple};
-use crate::tessellation::{EdgeMap, border_edges, face_normals, patches, tessellation_edges};
+use crate::tessellation::{
+    EdgeMap, border_edges, face_normals, patches, signed_volume, tessellation_edges,
+};
 use crate::union::{cut_edges, fill_islands, patch_rims};
+use crate::validation::Fill;
 use crate::validation::new_findings;
 
 /// Fractions of `alpha` at which the closing is taken, in order, each on the previous result.
@@ -91,6 +94,11 @@ pub(crate) fn fill_closing(
     baseline: &HashMap<DegeneracyClass, usize>,
 ) -> Filled {
     let border_edges = border_edges(&EdgeMap::new(soup)).len();
+    let sign = if signed_volume(soup) >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    };
     let mut cur = soup.clone();
     let mut is_cap = added_in.to_vec();
     let mut done = Filled::default();
@@ -161,6 +169,11 @@ pub(crate) fn fill_closing(
                 }
             }
             let mut whole: HashSet<usize> = HashSet::new();
+            // A region whose caps would take material away goes back whole.
+            for p in shrinking_regions(&cur, &swallowed, &pat.of_face, &caps, sign) {
+                give_back.entry(p).or_default();
+                whole.insert(p);
+            }
             if give_back.is_empty() {
                 if caps.is_empty() {
                     break;
@@ -293,6 +306,32 @@ fn snap_to_cells(soup: &TriangleSoup, cells: &[usize], swallowed: &mut [bool]) {
             *s = true;
         }
     }
+}
+
+/// The regions whose caps in `caps` would take material away from the solid (see
+/// [`Fill::takes_material`]); `sign` is the input's orientation.
+fn shrinking_regions(
+    soup: &TriangleSoup,
+    swallowed: &[bool],
+    region_of: &[usize],
+    caps: &[(usize, Candidate)],
+    sign: f64,
+) -> BTreeSet<usize> {
+    let mut fills: BTreeMap<usize, Fill> = BTreeMap::new();
+    for (p, c) in caps {
+        let added = &mut fills.entry(*p).or_default().caps;
+        added.extend(c.cap.iter().map(|t| t.map(|v| soup.position(v))));
+    }
+    for f in soup.face_ids().filter(|f| swallowed[f.index()]) {
+        if let Some(fill) = fills.get_mut(&region_of[f.index()]) {
+            fill.removed.push(soup.triangle(f));
+        }
+    }
+    fills
+        .into_iter()
+        .filter(|(_, fill)| fill.takes_material(sign))
+        .map(|(p, _)| p)
+        .collect()
 }
 
 /// `None` when `out` has no more findings of the validated classes than `baseline`;

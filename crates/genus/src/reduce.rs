@@ -29,7 +29,7 @@
 //! in conflict with something else (a cap duplicating kept faces, e.g. over the outer loop
 //! of a face) is refused first, otherwise the later one.
 
-use std::collections::{BTreeSet, HashMap, HashSet, VecDeque};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet, VecDeque};
 use std::time::Instant;
 
 use envelope_check::{CheckOptions, DegeneracyClass, Element, check};
@@ -43,7 +43,7 @@ use crate::tessellation::{
     tessellation_edges,
 };
 use crate::union::{TessellationSource, union_rims};
-use crate::validation::{class_counts, new_findings};
+use crate::validation::{Fill, class_counts, new_findings};
 
 /// Options of [`reduce_genus`].
 #[derive(Clone, Debug, PartialEq)]
@@ -362,9 +362,15 @@ pub fn reduce_genus_with(
     let mut baseline: Option<HashMap<DegeneracyClass, usize>> = None;
     let (out, added, active, filled) = loop {
         let (active, filled) = select(&edges, &candidates, &cells, &refused);
-        let (out, added, cap_of_face) = assemble(soup, &candidates, &active);
+        let (out, added, cap_of_face, removed) = assemble(soup, &candidates, &active);
         if cap_of_face.is_empty() {
             break (out, added, active, filled);
+        }
+        let shrinking = fills_taking_material(soup, &out, &removed, &cap_of_face, outward);
+        if !shrinking.is_empty() {
+            refused_validation.extend(shrinking.iter().copied());
+            refused.extend(shrinking);
+            continue;
         }
         let base = baseline.get_or_insert_with(|| class_counts(soup));
         let implicated = validate(&out, &cap_of_face, base);
@@ -774,13 +780,18 @@ fn rim_sets(
     (barrier, kept)
 }
 
-/// Output faces (input ids), the indices of the added faces in it, the number of removed
-/// input faces, and the candidate of each added face.
+/// Output faces (input ids), the indices of the added faces in it, the candidate of each
+/// added face, and the removed input faces.
 fn assemble(
     soup: &TriangleSoup,
     cands: &[Candidate],
     active: &[usize],
-) -> (TriangleSoup, Vec<usize>, HashMap<usize, usize>) {
+) -> (
+    TriangleSoup,
+    Vec<usize>,
+    HashMap<usize, usize>,
+    HashSet<FaceId>,
+) {
     let edges = EdgeMap::new(soup);
     let (barrier, kept) = rim_sets(cands, active);
     let mut removed: HashSet<FaceId> = HashSet::new();
@@ -807,7 +818,72 @@ fn assemble(
         TriangleSoup::new(soup.positions.clone(), faces),
         added,
         cap_of_face,
+        removed,
     )
+}
+
+/// The candidates of the fills that would take material away (see
+/// [`Fill::takes_material`]): the removed faces and the caps of `out` are
+/// grouped by shared edges into fills (a region with its caps), each weighed on its own.
+fn fills_taking_material(
+    soup: &TriangleSoup,
+    out: &TriangleSoup,
+    removed: &HashSet<FaceId>,
+    cap_of_face: &HashMap<usize, usize>,
+    outward: bool,
+) -> BTreeSet<usize> {
+    let mut removed: Vec<FaceId> = removed.iter().copied().collect();
+    removed.sort_unstable();
+    let mut caps: Vec<usize> = cap_of_face.keys().copied().collect();
+    caps.sort_unstable();
+    // Nodes: the removed faces, then the cap faces; joined where they share an edge.
+    let tri = |i: usize| {
+        if i < removed.len() {
+            soup.faces[removed[i].index()]
+        } else {
+            out.faces[caps[i - removed.len()]]
+        }
+    };
+    let n = removed.len() + caps.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let mut first_at: HashMap<Edge, usize> = HashMap::new();
+    for i in 0..n {
+        let t = tri(i);
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let j = *first_at.entry((a.min(b), a.max(b))).or_insert(i);
+            let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
+            parent[ri] = rj;
+        }
+    }
+    let mut fills: BTreeMap<usize, Fill> = BTreeMap::new();
+    for i in 0..n {
+        let r = root(&mut parent, i);
+        let t = tri(i).map(|v| soup.position(v));
+        let fill = fills.entry(r).or_default();
+        if i < removed.len() {
+            fill.removed.push(t);
+        } else {
+            fill.caps.push(t);
+        }
+    }
+    let sign = if outward { 1.0 } else { -1.0 };
+    let mut bad = BTreeSet::new();
+    for (r, fill) in &fills {
+        if fill.takes_material(sign) {
+            for i in (removed.len()..n).filter(|&i| root(&mut parent, i) == *r) {
+                bad.insert(cap_of_face[&caps[i - removed.len()]]);
+            }
+        }
+    }
+    bad
 }
 
 /// `None` when the output is clean; otherwise the candidates implicated (possibly none).

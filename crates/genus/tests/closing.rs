@@ -38,6 +38,20 @@ fn certified(
     assert!(c.manifold, "output not manifold");
     let topo = analyze(&out);
     assert_eq!(topo.num_border_loops(), 0, "output not closed");
+    // Filling only adds material (the closing contains the solid).
+    let volume = |s: &TriangleSoup| -> f64 {
+        s.face_ids()
+            .map(|f| {
+                let [a, b, c] = s.triangle(f);
+                a.dot(b.cross(c))
+            })
+            .sum()
+    };
+    let (v_in, v_out) = (volume(soup), volume(&out));
+    assert!(
+        v_out >= v_in - 1e-9 * v_in.abs(),
+        "volume {v_in} -> {v_out}: material taken away"
+    );
     assert_eq!(report.genus_out, topo.genus);
     for &f in &report.added_faces {
         let t = out.triangle(f);
