@@ -1,6 +1,7 @@
 //! Corpus inputs that once failed, each with what failed. They need the corpus
 //! (`scripts/corpus.sh`); under `CI=true` a missing corpus fails them.
 
+use envelope_genus::{GenusOptions, TessellationSource, reduce_genus_with};
 use envelope_io::read_path;
 use envelope_offset::EpsilonField;
 use envelope_simplify::{SimplifyOptions, simplify};
@@ -30,6 +31,17 @@ fn b9_mesh_border_vertices_stay_within_epsilon() {
     }
 }
 
+/// `cheese.off` of the corpus simplified at `percent` of its diagonal, and the diagonal;
+/// `None` without the corpus.
+fn simplified_cheese(percent: f64) -> Option<(envelope_mesh::TriangleSoup, f64)> {
+    let dir = corpus_dir()?;
+    let (soup, _) = read_path(dir.join("cheese.off")).expect("cheese.off reads");
+    let d = soup.diagonal();
+    let options = SimplifyOptions::new(EpsilonField::Constant(percent / 100.0 * d));
+    let (base, _) = simplify(&soup, &options, &mut ()).expect("simplified");
+    Some((base, d))
+}
+
 /// `cheese.off` simplified at 0.5 % (the starting point of El-Sana and Varshney's Table 1),
 /// then genus-reduced at 5 % with the closing's regions: the simplified tunnel walls are
 /// coarse prisms whose facets meet at 30 to 45 degrees, so cells cut at one angle either
@@ -39,14 +51,9 @@ fn b9_mesh_border_vertices_stay_within_epsilon() {
 /// region, 24.
 #[test]
 fn simplified_cheese_loses_most_tunnels_at_five_percent() {
-    use envelope_genus::{GenusOptions, TessellationSource, reduce_genus_with};
-    let Some(dir) = corpus_dir() else {
+    let Some((base, d)) = simplified_cheese(0.5) else {
         return;
     };
-    let (soup, _) = read_path(dir.join("cheese.off")).expect("cheese.off reads");
-    let d = soup.diagonal();
-    let options = SimplifyOptions::new(EpsilonField::Constant(0.005 * d));
-    let (base, _) = simplify(&soup, &options, &mut ()).expect("simplified");
     let g_base = envelope_mesh::analyze(&base).genus;
     assert_eq!(g_base, Some(133), "genus kept by the simplifier");
     let (out, report) = reduce_genus_with(
@@ -74,14 +81,9 @@ fn simplified_cheese_loses_most_tunnels_at_five_percent() {
 /// the input's.
 #[test]
 fn simplified_cheese_is_not_replaced_by_a_few_faces() {
-    use envelope_genus::{GenusOptions, TessellationSource, reduce_genus_with};
-    let Some(dir) = corpus_dir() else {
+    let Some((base, d)) = simplified_cheese(1.0) else {
         return;
     };
-    let (soup, _) = read_path(dir.join("cheese.off")).expect("cheese.off reads");
-    let d = soup.diagonal();
-    let options = SimplifyOptions::new(EpsilonField::Constant(0.01 * d));
-    let (base, _) = simplify(&soup, &options, &mut ()).expect("simplified");
     let volume = |s: &envelope_mesh::TriangleSoup| -> f64 {
         s.face_ids()
             .map(|f| {
