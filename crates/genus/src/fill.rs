@@ -20,9 +20,9 @@
 //! to where it joins the rest of its network, which is capped there.
 //!
 //! **Cells (our choice).** The voxels' answer is ragged where it changes: strips of a tunnel
-//! wall near a wide opening come out kept, and one refused loop used to peel a layer of faces
-//! at a time, merging the fronts of neighbouring tunnels into longer loops until whole
-//! networks went back. So the surface is also cut along its edges sharper than an angle
+//! wall near a wide opening come out kept; and peeling a layer of faces at a time from a
+//! refused loop merges the fronts of neighbouring tunnels, whose walls are single long
+//! triangles, into ever longer loops until whole networks go back. So the surface is also cut along its edges sharper than an angle
 //! into *cells* (a tunnel's wall between its junctions, a flat face): a cell at least
 //! [`CELL_SNAP`] swallowed (by area) at the first of [`CELL_BETAS`] is swallowed whole, and
 //! peeling gives back, with each face at a refused loop, its cell at the first angle where
@@ -46,8 +46,7 @@ use crate::tessellation::{
     EdgeMap, border_edges, face_normals, patches, signed_volume, tessellation_edges,
 };
 use crate::union::{cut_edges, fill_islands, patch_rims};
-use crate::validation::Fill;
-use crate::validation::new_findings;
+use crate::validation::{Fill, new_findings};
 
 /// Fractions of `alpha` at which the closing is taken, in order, each on the previous result.
 pub(crate) const LEVELS: [f64; 3] = [1.0, 0.75, 0.5];
@@ -397,7 +396,7 @@ mod tests {
 
     #[test]
     fn a_cell_mostly_swallowed_is_swallowed_whole_and_no_cell_is_kept_for_its_majority() {
-        // A plate with one hole: its flat top is one cell of many faces.
+        // A plate with one hole: its flat top is one cell of several faces.
         let plate = crate::testmeshes::plate_with_square_holes(&[1], 1, 1.0);
         let edges = EdgeMap::new(&plate);
         let cells = cells_of(&plate, &edges, CELL_BETAS[0]);
