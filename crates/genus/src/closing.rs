@@ -80,14 +80,29 @@ pub(crate) fn swallowed_faces(soup: &TriangleSoup, alpha: f64) -> Option<Vec<boo
     let (lo, hi) = bounds(soup)?;
     // The cube must pass all around the part: a margin of 2 alpha and two voxels.
     let mut h = alpha / VOXELS_PER_ALPHA;
+    if !h.is_normal() {
+        return None; // a tiny alpha: voxels of its size would not be numbers apart
+    }
+    // Voxels per axis, saturating (a part huge against alpha asks for more than exist).
     let dims_for = |h: f64| {
         let ext = (hi - lo) + DVec3::splat(4.0 * alpha + 4.0 * h);
-        [ext.x, ext.y, ext.z].map(|e| (e / h).ceil() as usize + 1)
+        [ext.x, ext.y, ext.z].map(|e| {
+            let n = (e / h).ceil();
+            if n.is_finite() && n < MAX_VOXELS as f64 {
+                n as usize + 1
+            } else {
+                usize::MAX
+            }
+        })
     };
     let mut dims = dims_for(h);
     let total = |d: [usize; 3]| d[0].saturating_mul(d[1]).saturating_mul(d[2]);
+    // Each round grows h by at least 5 %, by the cube root of the excess when it is known.
     while total(dims) > MAX_VOXELS {
         h *= ((total(dims) as f64) / MAX_VOXELS as f64).cbrt().max(1.05);
+        if !h.is_finite() {
+            return None;
+        }
         dims = dims_for(h);
     }
     let k = (alpha / h).round() as usize;
