@@ -264,9 +264,10 @@ def genus(
     """Fill the holes and tunnels an L-infinity cube of side ``2 alpha`` cannot pass.
 
     (El-Sana and Varshney 1997.) ``beta_degrees`` is the sharp-edge angle between face
-    normals; ``source`` is ``"sharp_edges"``, ``"prism_union"`` or ``"closing"`` (where the
-    rims of the filled regions come from; ``"closing"`` also fills the regions the cube's
-    closing swallows, networks of tunnels whose junctions are not sharp).
+    normals; ``source`` is ``"closing"`` (the default: the sharp-edge step, then the regions
+    the cube's closing swallows, networks of tunnels whose junctions are not sharp),
+    ``"sharp_edges"`` (the paper's sharp-edge step alone) or ``"prism_union"`` (where the
+    rims of the filled regions come from).
 
     >>> import envelope
     >>> out = envelope.genus(*envelope.demo(), "1%")

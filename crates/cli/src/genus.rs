@@ -1,7 +1,9 @@
-//! `envelope genus IN OUT --alpha A [--beta DEG] [--union] [--report R.json]`: controlled
-//! genus reduction (El-Sana and Varshney 1997) with `envelope::advanced::genus::reduce_genus_with`;
-//! `--union` adds the rims from the union of alpha-prisms (the paper's option, sections 3.3
-//! and 4), which fill narrow passages through smooth surfaces.
+//! `envelope genus IN OUT --alpha A [--beta DEG] [--sharp | --union] [--report R.json]`:
+//! controlled genus reduction (El-Sana and Varshney 1997) with
+//! `envelope::advanced::genus::reduce_genus_with`. By default the sharp-edge step, then the
+//! regions the L-infinity closing swallows (`--closing`, said explicitly); `--sharp` the
+//! sharp-edge step alone; `--union` the rims from the union of alpha-prisms (the paper's
+//! option, sections 3.3 and 4).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -26,15 +28,21 @@ pub struct Args {
     /// Sharp-edge threshold in degrees (angle between face normals): (0, 180).
     #[arg(long, default_value_t = defaults::GENUS_BETA_DEGREES, value_parser = ranges::beta, allow_hyphen_values = true)]
     pub beta: f64,
-    /// Also take rims from the union of alpha-prisms (fills narrow tunnels and holes through
-    /// smooth, non-sharp surfaces; slower: every face's prism is paired).
-    #[arg(long, conflicts_with = "closing")]
+    /// Take rims from the sharp edges and the union of alpha-prisms instead (fills narrow
+    /// tunnels and holes through smooth, non-sharp surfaces; slower: every face's prism is
+    /// paired).
+    #[arg(long, conflicts_with_all = ["closing", "sharp"])]
     pub union: bool,
-    /// After the sharp-edge rims, fill the regions the L-infinity closing by the cube
-    /// swallows (estimated on voxels, every cap checked exactly): networks of tunnels whose
-    /// junctions are not sharp. Slower (a voxel grid of alpha/8).
-    #[arg(long)]
+    /// The default, said explicitly: after the sharp-edge rims, fill the regions the
+    /// L-infinity closing by the cube swallows (estimated on voxels, every cap checked
+    /// exactly): networks of tunnels whose junctions are not sharp. Inputs with borders
+    /// (no solid) get the sharp-edge step alone.
+    #[arg(long, conflicts_with = "sharp")]
     pub closing: bool,
+    /// The paper's sharp-edge step alone: only regions bounded by sharp rims are filled
+    /// (faster; a network of tunnels whose junctions are not sharp stays).
+    #[arg(long)]
+    pub sharp: bool,
     /// Write the report as JSON here (its directory must exist).
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -65,12 +73,12 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
     let alpha = args
         .alpha
         .resolve("--alpha", &args.input.display().to_string(), mesh.soup())?;
-    let source = if args.closing {
-        TessellationSource::Closing
+    let source = if args.sharp {
+        TessellationSource::SharpEdges
     } else if args.union {
         TessellationSource::PrismUnion
     } else {
-        TessellationSource::SharpEdges
+        TessellationSource::Closing
     };
     let (out, report) = reduce(&mesh, alpha, args.beta, source)
         .map_err(|e| format!("{}: {e}", args.input.display()))?;
@@ -89,7 +97,7 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
         json["alpha"] = serde_json::json!(alpha);
         json["beta_degrees"] = serde_json::json!(args.beta);
         json["union"] = serde_json::json!(args.union);
-        json["closing"] = serde_json::json!(args.closing);
+        json["closing"] = serde_json::json!(source == TessellationSource::Closing);
         json["input"] = serde_json::json!(args.input.display().to_string());
         let text = serde_json::to_string_pretty(&json).map_err(|e| e.to_string())?;
         staging.text(path, &(text + "\n"))?;

@@ -84,8 +84,8 @@ enum Command {
     /// Fill the holes and tunnels an L-infinity cube of side 2*alpha cannot pass (El-Sana and
     /// Varshney 1997) and write OUT atomically.
     Genus(genus::Args),
-    /// Alternate genus-preserving (eX) and genus-reducing (aX; uX with the union of
-    /// alpha-prisms, cX with the closing's regions) steps; writes
+    /// Alternate genus-preserving (eX) and genus-reducing (aX as `envelope genus`; sX the
+    /// sharp-edge step alone, uX the union of alpha-prisms) steps; writes
     /// OUTDIR/stage-0.off (the input), stage-1.off, ... and summary.json.
     Pipeline(pipeline::Args),
     /// Simplify every item of a JSON Lines manifest into OUTDIR/<id>/, resumably (a rerun

@@ -1,7 +1,7 @@
 //! `envelope pipeline IN OUTDIR --steps "e0.5%,a2%,e1%,a5%,e2%"`: alternating genus-preserving
 //! (`e`, the local simplifier at that epsilon) and genus-reducing (`a`, `envelope genus` at
-//! that alpha; `u`, the same with the union-of-alpha-prisms rims, `envelope genus --union`;
-//! `c`, the same followed by the closing's regions, `envelope genus --closing`)
+//! that alpha, or `c`, the same said explicitly; `s`, the sharp-edge step alone, `envelope
+//! genus --sharp`; `u`, the union-of-alpha-prisms rims, `envelope genus --union`)
 //! steps, as in Fig. 11 and Table 1 of El-Sana and Varshney (1997). Percentages
 //! are of the *input's* bounding-box diagonal (the paper's convention). Writes
 //! OUTDIR/stage-0.off (the input), stage-1.off, ... and summary.json, all put in place
@@ -29,9 +29,9 @@ pub struct Args {
     /// Output directory: created if missing (its parent must exist); files in it are
     /// replaced only when every step has run.
     pub out_dir: PathBuf,
-    /// Comma-separated steps: `eX` genus-preserving at epsilon X, `aX` genus-reducing at
-    /// alpha X, `uX` genus-reducing at alpha X with the union-of-prisms rims (`--union`), `cX`
-    /// with the closing's regions (`--closing`);
+    /// Comma-separated steps: `eX` genus-preserving at epsilon X, `aX` (or `cX`)
+    /// genus-reducing at alpha X as `envelope genus` does, `sX` with the sharp-edge step
+    /// alone (`--sharp`), `uX` with the union-of-prisms rims (`--union`);
     /// each X > 0, absolute or a percentage of the input diagonal.
     #[arg(long, default_value = "e0.5%,a2%,e1%,a5%,e2%", value_parser = parse_steps)]
     pub steps: Steps,
@@ -63,12 +63,12 @@ fn parse_steps(s: &str) -> Result<Steps, String> {
         let mut chars = t.chars();
         let kind = match chars.next() {
             Some('e') => Kind::Preserve,
-            Some('a') => Kind::Reduce(TessellationSource::SharpEdges),
+            Some('a' | 'c') => Kind::Reduce(TessellationSource::Closing),
+            Some('s') => Kind::Reduce(TessellationSource::SharpEdges),
             Some('u') => Kind::Reduce(TessellationSource::PrismUnion),
-            Some('c') => Kind::Reduce(TessellationSource::Closing),
             _ => {
                 return Err(format!(
-                    "step {} {t:?} must start with 'e' (genus-preserving), 'a', 'u' or 'c' (genus-reducing)",
+                    "step {} {t:?} must start with 'e' (genus-preserving), 'a', 'c', 's' or 'u' (genus-reducing)",
                     i + 1
                 ));
             }
@@ -133,18 +133,11 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
     );
     // A failed step names its input, its number and its text as the user wrote it.
     let fail = |k: usize, e: String| {
-        let (kind, length) = &args.steps.steps[k];
-        let letter = match kind {
-            Kind::Preserve => 'e',
-            Kind::Reduce(TessellationSource::SharpEdges) => 'a',
-            Kind::Reduce(TessellationSource::PrismUnion) => 'u',
-            Kind::Reduce(TessellationSource::Closing) => 'c',
-        };
+        let written = args.steps.text.split(',').nth(k).unwrap_or("").trim();
         format!(
-            "{}: --steps step {} {letter}{}: {e}",
+            "{}: --steps step {} {written}: {e}",
             args.input.display(),
             k + 1,
-            length.text
         )
     };
     for (k, step) in steps.iter().enumerate() {
@@ -207,12 +200,13 @@ mod tests {
             &[[0.0, 0.0, 0.0], [6.0, 0.0, 0.0], [0.0, 8.0, 0.0]],
             &[[0, 1, 2]],
         );
-        let s = parse_steps("e1%, a0.5").unwrap();
+        let s = parse_steps("e1%, a0.5, s1").unwrap();
         assert_eq!(
             resolve_steps(&s, "t", &tri).unwrap(),
             vec![
                 (Kind::Preserve, 0.1),
-                (Kind::Reduce(TessellationSource::SharpEdges), 0.5)
+                (Kind::Reduce(TessellationSource::Closing), 0.5),
+                (Kind::Reduce(TessellationSource::SharpEdges), 1.0)
             ]
         );
         let s = parse_steps("u2%").unwrap();
@@ -225,7 +219,7 @@ mod tests {
             resolve_steps(&s, "t", &tri).unwrap(),
             vec![(Kind::Reduce(TessellationSource::Closing), 0.5)]
         );
-        for bad in ["u", "c", "x1", "e-1", "a", "", "e1%,"] {
+        for bad in ["u", "c", "s", "x1", "e-1", "a", "", "e1%,"] {
             assert!(parse_steps(bad).is_err(), "{bad}");
         }
     }

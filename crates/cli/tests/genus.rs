@@ -182,7 +182,7 @@ fn genus_union_fills_the_smooth_torus_hole() {
     let output = dir.path().join("out.off");
     let report = dir.path().join("r.json");
     let genus = |union: bool| {
-        let flags: &[&str] = if union { &["--union"] } else { &[] };
+        let flags: &[&str] = if union { &["--union"] } else { &["--sharp"] };
         let r = genus_report(&input, &output, &report, "0.5", flags);
         assert_eq!(r["union"], union);
         (analyze(&read_path(&output).unwrap().0).genus, r)
@@ -199,9 +199,9 @@ fn genus_union_fills_the_smooth_torus_hole() {
     assert_eq!(g, Some(1));
     assert_eq!(r["swallowed_faces"], 0);
 
-    // The same as a pipeline step: `u` fills, `a` does not.
+    // The same as a pipeline step: `u` fills, `s` (sharp edges alone) does not.
     let out_dir = dir.path().join("stages");
-    let stages = pipeline(&input, &out_dir, "a0.5,u0.5");
+    let stages = pipeline(&input, &out_dir, "s0.5,u0.5");
     assert_eq!(stages[1]["genus"], 1);
     assert_eq!(stages[2]["genus"], 0);
 }
@@ -215,25 +215,38 @@ fn genus_closing_fills_a_smooth_torus_and_pipeline_takes_c_steps() {
     let output = dir.path().join("out.off");
     let report = dir.path().join("r.json");
     let run = |flags: &[&str]| genus_report(&input, &output, &report, "0.75", flags);
-    let sharp = run(&[]);
+    let sharp = run(&["--sharp"]);
     assert_eq!(
         (&sharp["genus_out"], &sharp["closing"]),
         (&1.into(), &false.into())
     );
-    let closing = run(&["--closing"]);
-    assert_eq!(
-        (&closing["genus_out"], &closing["closing"]),
-        (&0.into(), &true.into())
-    );
-    assert_eq!(analyze(&read_path(&output).unwrap().0).genus, Some(0));
-    // --union and --closing are two answers to one question.
-    let both = envelope()
-        .args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
-        .args(["--alpha", "0.75", "--union", "--closing"])
-        .output()
-        .unwrap();
-    assert_eq!(both.status.code(), Some(2));
+    // The closing is the default; --closing says so.
+    for flags in [&[][..], &["--closing"][..]] {
+        let closing = run(flags);
+        assert_eq!(
+            (&closing["genus_out"], &closing["closing"]),
+            (&0.into(), &true.into()),
+            "{flags:?}"
+        );
+        assert_eq!(analyze(&read_path(&output).unwrap().0).genus, Some(0));
+    }
+    // --sharp, --union and --closing are three answers to one question.
+    for pair in [
+        ["--union", "--closing"],
+        ["--sharp", "--closing"],
+        ["--sharp", "--union"],
+    ] {
+        let both = envelope()
+            .args(["genus", input.to_str().unwrap(), output.to_str().unwrap()])
+            .args(["--alpha", "0.75"])
+            .args(pair)
+            .output()
+            .unwrap();
+        assert_eq!(both.status.code(), Some(2), "{pair:?}");
+    }
 
-    let stages = pipeline(&input, &dir.path().join("p"), "c0.75");
-    assert_eq!(stages.last().unwrap()["genus"], 0);
+    for (steps, genus) in [("c0.75", 0), ("a0.75", 0), ("s0.75", 1)] {
+        let stages = pipeline(&input, &dir.path().join(steps), steps);
+        assert_eq!(stages.last().unwrap()["genus"], genus, "{steps}");
+    }
 }

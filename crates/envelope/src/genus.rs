@@ -31,7 +31,7 @@ impl Genus {
         Genus {
             alpha,
             beta_degrees: defaults::GENUS_BETA_DEGREES,
-            source: TessellationSource::SharpEdges,
+            source: TessellationSource::default(),
             threads: None,
         }
     }
@@ -43,7 +43,8 @@ impl Genus {
         self
     }
 
-    /// Where the rims of the filled regions come from.
+    /// Where the rims of the filled regions come from (default: the sharp-edge step, then the
+    /// regions the L-infinity closing swallows).
     #[must_use]
     pub fn source(mut self, source: TessellationSource) -> Self {
         self.source = source;

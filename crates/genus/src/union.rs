@@ -53,18 +53,22 @@ use crate::neighbourhood::alpha_close_pairs_where;
 use crate::tessellation::{EdgeMap, Patches, face_normals, patches};
 use crate::{AlphaPrism, GenusError};
 
-/// Where the tessellation rims come from.
+/// Where the tessellation rims come from. The default is [`TessellationSource::Closing`]: it
+/// fills what the cube cannot pass, as the method promises, where the sharp-edge step alone
+/// leaves networks of tunnels whose junctions are not sharp (issue 37).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum TessellationSource {
-    /// Sharp edges (dihedral angle above `beta`) and border edges only.
-    #[default]
+    /// Sharp edges (dihedral angle above `beta`) and border edges only: the paper's
+    /// heuristic step alone.
     SharpEdges,
     /// Sharp and border edges, plus the rims of the regions swallowed by the union of
     /// alpha-prisms (see the [`crate::union`] module docs).
     PrismUnion,
     /// The sharp-edge step, then the regions the L-infinity closing by the cube of side
     /// `2 alpha` swallows (estimated on voxels) replaced by caps over their loops, with
-    /// peeling where a loop cannot be capped (see the crate README, issue 37).
+    /// peeling where a loop cannot be capped (see the crate README, issue 37). On inputs with
+    /// borders (no solid) the sharp-edge step alone.
+    #[default]
     Closing,
 }
 
