@@ -366,7 +366,12 @@ pub fn reduce_genus_with(
         if cap_of_face.is_empty() {
             break (out, added, active, filled);
         }
-        let shrinking = fills_taking_material(soup, &out, &removed, &cap_of_face, outward);
+        // Material is defined where there is a solid: on inputs without borders.
+        let shrinking = if topo_in.num_border_loops() == 0 {
+            fills_taking_material(soup, &out, &removed, &cap_of_face, outward)
+        } else {
+            BTreeSet::new()
+        };
         if !shrinking.is_empty() {
             refused_validation.extend(shrinking.iter().copied());
             refused.extend(shrinking);

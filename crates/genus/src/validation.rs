@@ -94,7 +94,8 @@ impl Fill {
     /// adds material (the closing contains the solid); a region taken on the wrong side of
     /// its rims (the whole part around a few faces) takes nearly all of it away while
     /// leaving a closed, clean surface that none of [`VALIDATED`] sees. An f64 estimate that
-    /// only refuses.
+    /// only refuses; asked only of inputs without borders (a solid), where the removed faces
+    /// and the caps of a fill close up.
     pub(crate) fn takes_material(&self, sign: f64) -> bool {
         let Some(o) = self.caps.first().or(self.removed.first()).map(|t| t[0]) else {
             return false;
