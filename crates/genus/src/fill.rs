@@ -103,14 +103,15 @@ pub(crate) fn fill_closing(
     let mut done = Filled::default();
     let mut tried: HashMap<Vec<(VertexId, VertexId)>, Option<bool>> = HashMap::new();
     for (level, &frac) in LEVELS.iter().enumerate() {
-        let edges = EdgeMap::new(&cur);
         let Some(mut swallowed) = crate::closing::swallowed_faces(&cur, alpha * frac) else {
             break;
         };
-        let cells: Vec<Vec<usize>> = CELL_BETAS
-            .iter()
-            .map(|&b| cells_of(&cur, &edges, b))
-            .collect();
+        if !swallowed.contains(&true) {
+            continue; // nothing the cube cannot reach at this radius
+        }
+        let edges = EdgeMap::new(&cur);
+        // The cells at the first angle; the finer ones when peeling first needs them.
+        let mut cells: Vec<Vec<usize>> = vec![cells_of(&cur, &edges, CELL_BETAS[0])];
         snap_to_cells(&cur, &cells[0], &mut swallowed);
         fill_islands(&cur, &edges, &mut swallowed, true);
         if level == 0 {
@@ -225,6 +226,9 @@ pub(crate) fn fill_closing(
             // The regions' faces at their refused loops go back to the kept side, each with
             // its coarsest cell that is at most half its region (whole regions at the last
             // round).
+            if cells.len() < CELL_BETAS.len() {
+                cells.extend(CELL_BETAS[1..].iter().map(|&b| cells_of(&cur, &edges, b)));
+            }
             let at_loop = |f: FaceId| {
                 let p = pat.of_face[f.index()];
                 swallowed[f.index()]

@@ -422,8 +422,12 @@ pub fn reduce_genus_with(
         crate::alpha_close_pairs(soup, alpha, Some(&rim_faces))?.len()
     };
     let (mut out, mut added, mut holes_filled) = (out, added, active.len());
-    // The closing needs a solid: an input with borders keeps the sharp-edge result.
-    if source == TessellationSource::Closing && topo_in.num_border_loops() == 0 {
+    // The closing needs a solid: an input with borders keeps the sharp-edge result. It only
+    // fills regions with two loops or more (handles), so a result of genus 0 has none left.
+    if source == TessellationSource::Closing
+        && topo_in.num_border_loops() == 0
+        && analyze(&out).genus != Some(0)
+    {
         let base = baseline.get_or_insert_with(|| class_counts(soup));
         let mut is_cap = vec![false; out.num_faces()];
         for &f in &added {

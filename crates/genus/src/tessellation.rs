@@ -22,19 +22,25 @@ use std::collections::{HashMap, HashSet};
 
 use envelope_mesh::{FaceId, TriangleSoup, VertexId};
 use glam::DVec3;
+use rustc_hash::FxHashMap;
 
 /// Edge adjacency of a soup: undirected edge -> the faces using it and the direction.
 #[derive(Clone, Debug, Default)]
 pub struct EdgeMap {
-    /// `(min, max)` -> `(face, runs min -> max)`.
-    pub faces: HashMap<(VertexId, VertexId), Vec<(FaceId, bool)>>,
+    /// `(min, max)` -> `(face, runs min -> max)`; a fast hasher (the lookups dominate the
+    /// cuts of a large surface into patches).
+    pub faces: FxHashMap<(VertexId, VertexId), Vec<(FaceId, bool)>>,
+    /// The face across edge `k` (from corner `k` to `k + 1`) of face `f`, at `3 f + k`:
+    /// `u32::MAX` where the edge does not have exactly two faces. The floods of [`patches`]
+    /// read this instead of the map (a large map's lookups miss the cache).
+    pub across_at: Vec<u32>,
 }
 
 impl EdgeMap {
     /// Builds the map (faces with a repeated index are skipped).
     #[must_use]
     pub fn new(soup: &TriangleSoup) -> Self {
-        let mut faces: HashMap<(VertexId, VertexId), Vec<(FaceId, bool)>> = HashMap::new();
+        let mut faces: FxHashMap<(VertexId, VertexId), Vec<(FaceId, bool)>> = FxHashMap::default();
         for f in soup.face_ids() {
             let t = soup.faces[f.index()];
             if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
@@ -48,7 +54,23 @@ impl EdgeMap {
                     .push((f, a < b));
             }
         }
-        EdgeMap { faces }
+        let mut across_at = vec![u32::MAX; 3 * soup.num_faces()];
+        for (&(a, b), fs) in &faces {
+            if let [(f, _), (g, _)] = fs.as_slice() {
+                for (x, y) in [(*f, *g), (*g, *f)] {
+                    let t = soup.faces[x.index()];
+                    // The corner of x where the edge a-b starts.
+                    let k = (0..3).find(|&k| {
+                        let (p, q) = (t[k], t[(k + 1) % 3]);
+                        (p.min(q), p.max(q)) == (a, b)
+                    });
+                    if let Some(k) = k {
+                        across_at[3 * x.index() + k] = y.0;
+                    }
+                }
+            }
+        }
+        EdgeMap { faces, across_at }
     }
 
     /// The face across the edge `a-b` from `f` (when exactly two faces use it).
@@ -236,11 +258,16 @@ pub fn patches(
 ) -> Patches {
     let n = soup.num_faces();
     let mut of_face = vec![usize::MAX; n];
-    let key = |a: VertexId, b: VertexId| (a.min(b), a.max(b));
-    let is_cut = |a: VertexId, b: VertexId| {
-        let k = key(a, b);
-        tess.contains(&k) || edges.faces.get(&k).is_none_or(|v| v.len() != 2)
-    };
+    // Per face corner: the edge from it is cut (in `tess`, or not shared by exactly two faces).
+    let cut: Vec<bool> = (0..3 * n)
+        .map(|i| {
+            let t = soup.faces[i / 3];
+            let (a, b) = (t[i % 3], t[(i % 3 + 1) % 3]);
+            edges.across_at.get(i).is_none_or(|&g| g == u32::MAX)
+                || tess.contains(&(a.min(b), a.max(b)))
+        })
+        .collect();
+    let across = |f: FaceId, k: usize| FaceId(edges.across_at[3 * f.index() + k]);
     let mut count = 0;
     for f in soup.face_ids() {
         let t = soup.faces[f.index()];
@@ -250,17 +277,14 @@ pub fn patches(
         let mut stack = vec![f];
         of_face[f.index()] = count;
         while let Some(g) = stack.pop() {
-            let t = soup.faces[g.index()];
             for k in 0..3 {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                if is_cut(a, b) {
+                if cut[3 * g.index() + k] {
                     continue;
                 }
-                if let Some(h) = edges.across(g, a, b) {
-                    if of_face[h.index()] == usize::MAX {
-                        of_face[h.index()] = count;
-                        stack.push(h);
-                    }
+                let h = across(g, k);
+                if of_face[h.index()] == usize::MAX {
+                    of_face[h.index()] = count;
+                    stack.push(h);
                 }
             }
         }
@@ -268,7 +292,8 @@ pub fn patches(
     }
     // Directed boundary half-edges per patch, linked by rotating around the end vertex.
     let mut loops: Vec<Vec<PatchLoop>> = vec![Vec::new(); count];
-    let mut visited: HashSet<(FaceId, usize)> = HashSet::new();
+    // Boundary half-edges already on a loop, by face and corner.
+    let mut visited = vec![false; 3 * n];
     let corner = |f: FaceId, v: VertexId| soup.faces[f.index()].iter().position(|&x| x == v);
     for f in soup.face_ids() {
         let p = of_face[f.index()];
@@ -276,8 +301,7 @@ pub fn patches(
             continue;
         }
         for k in 0..3 {
-            let t = soup.faces[f.index()];
-            if !is_cut(t[k], t[(k + 1) % 3]) || visited.contains(&(f, k)) {
+            if !cut[3 * f.index() + k] || visited[3 * f.index() + k] {
                 continue;
             }
             let mut lp = PatchLoop {
@@ -287,7 +311,7 @@ pub fn patches(
             let (mut g, mut e) = (f, k);
             let mut ok = true;
             loop {
-                if !visited.insert((g, e)) {
+                if std::mem::replace(&mut visited[3 * g.index() + e], true) {
                     ok = (g, e) == (f, k);
                     break;
                 }
@@ -299,15 +323,11 @@ pub fn patches(
                 let (mut h, mut out) = (g, (e + 1) % 3);
                 let mut guard = 0;
                 loop {
-                    let th = soup.faces[h.index()];
-                    let c = th[(out + 1) % 3];
-                    if is_cut(b, c) {
+                    if cut[3 * h.index() + out] {
                         break;
                     }
-                    match edges
-                        .across(h, b, c)
-                        .and_then(|x| corner(x, b).map(|i| (x, i)))
-                    {
+                    let x = across(h, out);
+                    match corner(x, b).map(|i| (x, i)) {
                         Some((x, i)) => {
                             h = x;
                             out = i;
