@@ -36,6 +36,7 @@
 //! the closing's boundary runs deeper inside the tunnels. Every cap's corners are input
 //! vertices, so every cap of every level lies in the union of the input's alpha-prisms.
 
+use std::cell::OnceCell;
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 use envelope_check::DegeneracyClass;
@@ -46,7 +47,7 @@ use crate::tessellation::{
     EdgeMap, border_edges, face_normals, patches, signed_volume, tessellation_edges,
 };
 use crate::union::{cut_edges, fill_islands, patch_rims};
-use crate::validation::{Fill, new_findings};
+use crate::validation::{Fill, class_counts, new_findings};
 
 /// Fractions of `alpha` at which the closing is taken, in order, each on the previous result.
 pub(crate) const LEVELS: [f64; 3] = [1.0, 0.75, 0.5];
@@ -84,13 +85,15 @@ pub(crate) struct Filled {
 }
 
 /// Fills the regions the closing of `soup` swallows at each of [`LEVELS`] (see the module
-/// docs). `added_in` marks the faces of `soup` that are already caps; `baseline` holds the
-/// original input's counts of the validated classes.
+/// docs). `added_in` marks the faces of `soup` that are already caps; `baseline` holds (or
+/// takes, when a first output is validated) the original input's counts of the validated
+/// classes.
 pub(crate) fn fill_closing(
     soup: &TriangleSoup,
     added_in: &[bool],
     alpha: f64,
-    baseline: &HashMap<DegeneracyClass, usize>,
+    baseline: &OnceCell<HashMap<DegeneracyClass, usize>>,
+    input: &TriangleSoup,
 ) -> Filled {
     let border_edges = border_edges(&EdgeMap::new(soup)).len();
     let sign = if signed_volume(soup) >= 0.0 {
@@ -180,7 +183,8 @@ pub(crate) fn fill_closing(
                 }
                 let cands: Vec<Candidate> = caps.iter().map(|(_, c)| c.clone()).collect();
                 let (out, cap_of_face) = assemble(&cur, &swallowed, &cands);
-                match blame(&out, &cap_of_face, baseline, border_edges) {
+                let base = baseline.get_or_init(|| class_counts(input));
+                match blame(&out, &cap_of_face, base, border_edges) {
                     None => {
                         let kept: Vec<bool> = cur
                             .face_ids()

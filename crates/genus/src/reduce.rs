@@ -29,6 +29,7 @@
 //! in conflict with something else (a cap duplicating kept faces, e.g. over the outer loop
 //! of a face) is refused first, otherwise the later one.
 
+use std::cell::OnceCell;
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet, VecDeque};
 use std::time::Instant;
 
@@ -359,7 +360,8 @@ pub fn reduce_genus_with(
 
     let mut refused: HashSet<usize> = HashSet::new();
     let mut refused_validation: HashSet<usize> = HashSet::new();
-    let mut baseline: Option<HashMap<DegeneracyClass, usize>> = None;
+    // The input's counts of the validated classes, taken when a first output is validated.
+    let baseline: OnceCell<HashMap<DegeneracyClass, usize>> = OnceCell::new();
     let (out, added, active, filled) = loop {
         let (active, filled) = select(&edges, &candidates, &cells, &refused);
         let (out, added, cap_of_face, removed) = assemble(soup, &candidates, &active);
@@ -377,7 +379,7 @@ pub fn reduce_genus_with(
             refused.extend(shrinking);
             continue;
         }
-        let base = baseline.get_or_insert_with(|| class_counts(soup));
+        let base = baseline.get_or_init(|| class_counts(soup));
         let implicated = validate(&out, &cap_of_face, base);
         match implicated {
             None => break (out, added, active, filled),
@@ -428,12 +430,11 @@ pub fn reduce_genus_with(
         && topo_in.num_border_loops() == 0
         && analyze(&out).genus != Some(0)
     {
-        let base = baseline.get_or_insert_with(|| class_counts(soup));
         let mut is_cap = vec![false; out.num_faces()];
         for &f in &added {
             is_cap[f] = true;
         }
-        let filled = crate::fill::fill_closing(&out, &is_cap, alpha, base);
+        let filled = crate::fill::fill_closing(&out, &is_cap, alpha, &baseline, soup);
         out = filled.soup;
         added = filled.added;
         holes_filled += filled.caps;
