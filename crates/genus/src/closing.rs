@@ -24,8 +24,6 @@ use envelope_mesh::TriangleSoup;
 use envelope_predicates::{Orientation, orient2d};
 use glam::{DVec2, DVec3};
 
-use crate::tessellation::signed_volume;
-
 /// Largest grid, in voxels (one byte each).
 pub(crate) const MAX_VOXELS: usize = 1 << 22;
 
@@ -72,11 +70,12 @@ impl Grid {
     }
 }
 
-/// For every face of `soup` (closed, consistently oriented), whether the L-infinity closing
-/// by the cube of side `2 alpha` swallows it (see the module docs). `None` when the grid
+/// For every face of `soup` (closed, consistently oriented; `outward` when its faces face
+/// out, as the sign of its signed volume says), whether the L-infinity closing by the cube of
+/// side `2 alpha` swallows it (see the module docs). `None` when the grid
 /// would be degenerate (no extent, or a cube narrower than one voxel at [`MAX_VOXELS`]) or
 /// the voxelization too costly (see [`MAX_COLUMN_TESTS`]).
-pub(crate) fn swallowed_faces(soup: &TriangleSoup, alpha: f64) -> Option<Vec<bool>> {
+pub(crate) fn swallowed_faces(soup: &TriangleSoup, alpha: f64, outward: bool) -> Option<Vec<bool>> {
     let (lo, hi) = bounds(soup)?;
     // The cube must pass all around the part: a margin of 2 alpha and two voxels.
     let mut h = alpha / VOXELS_PER_ALPHA;
@@ -118,12 +117,7 @@ pub(crate) fn swallowed_faces(soup: &TriangleSoup, alpha: f64) -> Option<Vec<boo
         *c = !*c;
     }
     let reach = dilate(&grid, centres, k);
-    // Outward from the signed volume (f64).
-    let outward = if signed_volume(soup) >= 0.0 {
-        1.0
-    } else {
-        -1.0
-    };
+    let outward = if outward { 1.0 } else { -1.0 };
     let swallowed = soup
         .face_ids()
         .map(|f| {
@@ -273,14 +267,16 @@ fn dilate(grid: &Grid, mut cells: Vec<bool>, k: usize) -> Vec<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tessellation::signed_volume;
     use envelope_mesh::generate;
 
     #[test]
     fn a_narrow_tunnel_is_swallowed_and_a_wide_one_is_not() {
         let part = generate::box_with_tunnel();
         let faces = part.num_faces();
-        let narrow = swallowed_faces(&part, 0.75).unwrap();
-        let wide = swallowed_faces(&part, 0.1).unwrap();
+        let outward = signed_volume(&part) >= 0.0;
+        let narrow = swallowed_faces(&part, 0.75, outward).unwrap();
+        let wide = swallowed_faces(&part, 0.1, outward).unwrap();
         let n_narrow = narrow.iter().filter(|&&s| s).count();
         let n_wide = wide.iter().filter(|&&s| s).count();
         assert!(n_narrow > 0 && n_narrow < faces, "{n_narrow} of {faces}");

@@ -41,11 +41,10 @@ use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 use envelope_check::DegeneracyClass;
 use envelope_mesh::{FaceId, TriangleSoup, VertexId};
+use glam::DVec3;
 
 use crate::rim::{Candidate, Capped, Edge, cap_of, split_simple};
-use crate::tessellation::{
-    EdgeMap, border_edges, face_normals, patches, signed_volume, tessellation_edges,
-};
+use crate::tessellation::{EdgeMap, border_edges, face_normals, patches, tessellation_edges};
 use crate::union::{cut_edges, fill_islands, patch_rims};
 use crate::validation::{Fill, class_counts, new_findings};
 
@@ -87,34 +86,33 @@ pub(crate) struct Filled {
 /// Fills the regions the closing of `soup` swallows at each of [`LEVELS`] (see the module
 /// docs). `added_in` marks the faces of `soup` that are already caps; `baseline` holds (or
 /// takes, when a first output is validated) the original input's counts of the validated
-/// classes.
+/// classes; `outward` is the input's orientation (the sign of its signed volume).
 pub(crate) fn fill_closing(
     soup: &TriangleSoup,
     added_in: &[bool],
     alpha: f64,
     baseline: &OnceCell<HashMap<DegeneracyClass, usize>>,
     input: &TriangleSoup,
+    outward: bool,
 ) -> Filled {
     let border_edges = border_edges(&EdgeMap::new(soup)).len();
-    let sign = if signed_volume(soup) >= 0.0 {
-        1.0
-    } else {
-        -1.0
-    };
+    let sign = if outward { 1.0 } else { -1.0 };
     let mut cur = soup.clone();
     let mut is_cap = added_in.to_vec();
     let mut done = Filled::default();
     let mut tried: HashMap<Vec<(VertexId, VertexId)>, Option<bool>> = HashMap::new();
     for (level, &frac) in LEVELS.iter().enumerate() {
-        let Some(mut swallowed) = crate::closing::swallowed_faces(&cur, alpha * frac) else {
+        let Some(mut swallowed) = crate::closing::swallowed_faces(&cur, alpha * frac, outward)
+        else {
             break;
         };
         if !swallowed.contains(&true) {
             continue; // nothing the cube cannot reach at this radius
         }
         let edges = EdgeMap::new(&cur);
+        let normals = face_normals(&cur);
         // The cells at the first angle; the finer ones when peeling first needs them.
-        let mut cells: Vec<Vec<usize>> = vec![cells_of(&cur, &edges, CELL_BETAS[0])];
+        let mut cells: Vec<Vec<usize>> = vec![cells_of(&cur, &edges, &normals, CELL_BETAS[0])];
         snap_to_cells(&cur, &cells[0], &mut swallowed);
         fill_islands(&cur, &edges, &mut swallowed, true);
         if level == 0 {
@@ -231,7 +229,11 @@ pub(crate) fn fill_closing(
             // its coarsest cell that is at most half its region (whole regions at the last
             // round).
             if cells.len() < CELL_BETAS.len() {
-                cells.extend(CELL_BETAS[1..].iter().map(|&b| cells_of(&cur, &edges, b)));
+                cells.extend(
+                    CELL_BETAS[1..]
+                        .iter()
+                        .map(|&b| cells_of(&cur, &edges, &normals, b)),
+                );
             }
             let at_loop = |f: FaceId| {
                 let p = pat.of_face[f.index()];
@@ -262,7 +264,7 @@ pub(crate) fn fill_closing(
                     let p = pat.of_face[f.index()];
                     swallowed[f.index()]
                         && (at_loop(f)
-                            || (whole.contains(&p) && give_back.contains_key(&p))
+                            || whole.contains(&p)
                             || (0..cells.len())
                                 .any(|l| back_cells.contains(&(l, cells[l][f.index()]))))
                 })
@@ -286,9 +288,15 @@ pub(crate) fn fill_closing(
 }
 
 /// The cell of every face (`usize::MAX` for a face with a repeated vertex): the surface cut
-/// along its edges sharper than `beta` degrees and its border edges.
-fn cells_of(soup: &TriangleSoup, edges: &EdgeMap, beta: f64) -> Vec<usize> {
-    let sharp: HashSet<Edge> = tessellation_edges(edges, &face_normals(soup), beta)
+/// along its edges sharper than `beta` degrees (between the faces' `normals`) and its
+/// border edges.
+fn cells_of(
+    soup: &TriangleSoup,
+    edges: &EdgeMap,
+    normals: &[Option<DVec3>],
+    beta: f64,
+) -> Vec<usize> {
+    let sharp: HashSet<Edge> = tessellation_edges(edges, normals, beta)
         .into_iter()
         .collect();
     patches(soup, edges, &sharp).of_face
@@ -407,7 +415,7 @@ mod tests {
         // A plate with one hole: its flat top is one cell of several faces.
         let plate = crate::testmeshes::plate_with_square_holes(&[1], 1, 1.0);
         let edges = EdgeMap::new(&plate);
-        let cells = cells_of(&plate, &edges, CELL_BETAS[0]);
+        let cells = cells_of(&plate, &edges, &face_normals(&plate), CELL_BETAS[0]);
         let top = cells[0];
         let in_top: Vec<usize> = (0..cells.len()).filter(|&f| cells[f] == top).collect();
         assert!(

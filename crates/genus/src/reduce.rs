@@ -434,7 +434,7 @@ pub fn reduce_genus_with(
         for &f in &added {
             is_cap[f] = true;
         }
-        let filled = crate::fill::fill_closing(&out, &is_cap, alpha, &baseline, soup);
+        let filled = crate::fill::fill_closing(&out, &is_cap, alpha, &baseline, soup, outward);
         out = filled.soup;
         added = filled.added;
         holes_filled += filled.caps;
