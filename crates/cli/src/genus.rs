@@ -77,8 +77,10 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
         TessellationSource::SharpEdges
     } else if args.union {
         TessellationSource::PrismUnion
-    } else {
+    } else if args.closing {
         TessellationSource::Closing
+    } else {
+        TessellationSource::default()
     };
     let (out, report) = reduce(&mesh, alpha, args.beta, source)
         .map_err(|e| format!("{}: {e}", args.input.display()))?;

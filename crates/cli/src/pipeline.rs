@@ -63,7 +63,8 @@ fn parse_steps(s: &str) -> Result<Steps, String> {
         let mut chars = t.chars();
         let kind = match chars.next() {
             Some('e') => Kind::Preserve,
-            Some('a' | 'c') => Kind::Reduce(TessellationSource::Closing),
+            Some('a') => Kind::Reduce(TessellationSource::default()),
+            Some('c') => Kind::Reduce(TessellationSource::Closing),
             Some('s') => Kind::Reduce(TessellationSource::SharpEdges),
             Some('u') => Kind::Reduce(TessellationSource::PrismUnion),
             _ => {
