@@ -1,18 +1,23 @@
 //! Genus reduction on random small parts (voxel blocks from a random 4x4x3 occupancy, flat
-//! grids with random holes) at random alphas, from the sharp rims or with the closing's
-//! regions (`TessellationSource::Closing`). Checks: inputs the reduction accepts give an
+//! grids with random holes, coarse plates with a slot) at random alphas, from the sharp rims
+//! or with the closing's regions (`TessellationSource::Closing`). Checks: inputs the reduction accepts give an
 //! output whose half-edge structure passes `sanity_check()` (when the input's builds), with no new intersecting,
 //! coincident or non-manifold element (exact `envelope-check`), and every added triangle lies
 //! in the union of alpha-prisms: it is covered by its corners' alpha-cubes (exact) and each
-//! corner's cube lies in the alpha-prism of an input face at that corner (exact containment).
+//! corner's cube lies in the alpha-prism of an input face at that corner (exact containment;
+//! a corner on an input edge with the cube of the closing mode's smaller radius), and every
+//! piece of a split input face lies in that face's alpha-prism (`tests/support/prisms.rs` of
+//! the genus crate).
 #![no_main]
 
 use envelope_check::{CheckOptions, DegeneracyClass, check};
-use envelope_genus::details::{covered_by_corner_cubes, cube_corners};
-use envelope_genus::testmeshes::disk_with_square_holes;
-use envelope_genus::{AlphaPrism, GenusOptions, TessellationSource, reduce_genus_with};
+use envelope_genus::testmeshes::{disk_with_square_holes, plate_with_slot};
+use envelope_genus::{GenusOptions, TessellationSource, reduce_genus_with};
 use envelope_mesh::{HalfEdgeMesh, analyze, generate};
 use glam::DVec3;
+
+#[path = "../../crates/genus/tests/support/prisms.rs"]
+mod prisms;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
     if data.len() < 6 {
@@ -28,6 +33,11 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
             .map(|b| u32::from(b % 4) + 1)
             .collect();
         disk_with_square_holes(&widths, cell)
+    } else if data[3] % 4 == 1 {
+        // A coarse plate with a long slot: the closing's caps need points on its rims.
+        let length = f64::from(data[4] % 32 + 1) * cell / 2.0;
+        let width = f64::from(data[5] % 8 + 1) * cell / 4.0;
+        plate_with_slot(length, width, cell)
     } else {
         let bits: Vec<bool> = (0..48)
             .map(|i| data.get(4 + i / 8).is_none_or(|b| b >> (i % 8) & 1 == 1))
@@ -102,22 +112,5 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
             "{class:?} added"
         );
     }
-    for &f in &report.added_faces {
-        let t = out.triangle(f);
-        assert!(covered_by_corner_cubes(t, alpha), "added face not covered");
-        for p in t {
-            let v = soup
-                .positions
-                .iter()
-                .position(|&q| q == p)
-                .expect("input vertex");
-            let face = soup
-                .faces
-                .iter()
-                .find(|t| t.iter().any(|w| w.index() == v))
-                .expect("vertex on a face");
-            let prism = AlphaPrism::new(face.map(|w| soup.position(w)), alpha).unwrap();
-            assert!(cube_corners(p, alpha).iter().all(|&c| prism.contains(c)));
-        }
-    }
+    prisms::assert_inside_prisms(&soup, &out, &report, alpha);
 });

@@ -105,8 +105,16 @@ pub fn run(args: &Args) -> Result<ExitCode, String> {
         staging.text(path, &(text + "\n"))?;
     }
     staging.commit()?;
+    let pieces = if report.pieces > 0 {
+        format!(
+            " ({} split into {} pieces at {} points on long rim edges)",
+            report.split_faces, report.pieces, report.points_added
+        )
+    } else {
+        String::new()
+    };
     println!(
-        "genus {} -> {}, border loops {} -> {}, {} rims capped, {} triangles added, {} removed, faces {} -> {}, {:.3} s (alpha = {})",
+        "genus {} -> {}, border loops {} -> {}, {} rims capped, {} triangles added, {} removed{pieces}, faces {} -> {}, {:.3} s (alpha = {})",
         show_genus(report.genus_in),
         show_genus(report.genus_out),
         report.border_loops_in,

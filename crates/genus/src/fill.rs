@@ -8,7 +8,10 @@
 //! network of tunnels) is replaced by caps over its loops. What keeps the guarantees is
 //! exact and shared with [`crate::reduce_genus`]: every cap passes the alpha test (diagonals
 //! within the cube, triangles inside their corners' cubes, no fold over the kept face), and
-//! the output is validated with `envelope-check` against the input's counts.
+//! the output is validated with `envelope-check` against the input's counts. A cap takes no
+//! diagonal on an edge a kept face still uses (non-manifold: the validation would refuse
+//! it after the whole round was assembled). A loop refused as wider than the cube is tried
+//! again with points on its long edges ([`crate::steiner`]), its input faces there split.
 //!
 //! **Peeling (our choice; the paper has one region per rim).** On real parts the closing's
 //! boundary is ragged where a pocket or a groove wider than a tunnel meets the network, and
@@ -34,7 +37,8 @@
 //! **Levels.** The closing is taken at `alpha`, then at [`LEVELS`] of it on the result: a
 //! region refused at the full radius (its loops too wide) often fills at a smaller one, where
 //! the closing's boundary runs deeper inside the tunnels. Every cap's corners are input
-//! vertices, so every cap of every level lies in the union of the input's alpha-prisms.
+//! vertices or points on input edges (split faces are never split again), so every cap of
+//! every level lies in the union of the input's alpha-prisms.
 
 use std::cell::OnceCell;
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
@@ -43,7 +47,8 @@ use envelope_check::DegeneracyClass;
 use envelope_mesh::{FaceId, TriangleSoup, VertexId};
 use glam::DVec3;
 
-use crate::rim::{Candidate, Capped, Edge, cap_of, split_simple};
+use crate::rim::{Candidate, Capped, Edge, cap_avoiding, split_simple};
+use crate::steiner::{Refined, refine};
 use crate::tessellation::{EdgeMap, border_edges, face_normals, patches, tessellation_edges};
 use crate::union::{cut_edges, fill_islands, patch_rims};
 use crate::validation::{Fill, class_counts, new_findings};
@@ -69,6 +74,12 @@ pub(crate) struct Filled {
     pub soup: TriangleSoup,
     /// Which faces of `soup` are caps, of this step or already of the input (`added_in`).
     pub added: Vec<usize>,
+    /// Which faces of `soup` are pieces of input faces split at points of a cap's loop
+    /// ([`crate::steiner`]).
+    pub pieces: Vec<usize>,
+    /// Input faces split into pieces (some of them may be gone since, swallowed at a later
+    /// level).
+    pub split_faces: usize,
     /// Caps over the closing's loops.
     pub caps: usize,
     /// Faces swallowed by the closing at the full radius, before peeling.
@@ -99,6 +110,8 @@ pub(crate) fn fill_closing(
     let sign = if outward { 1.0 } else { -1.0 };
     let mut cur = soup.clone();
     let mut is_cap = added_in.to_vec();
+    // Pieces of input faces split at the points of refined loops ([`crate::steiner`]).
+    let mut is_piece = vec![false; soup.num_faces()];
     let mut done = Filled::default();
     let mut tried: HashMap<Vec<(VertexId, VertexId)>, Option<bool>> = HashMap::new();
     for (level, &frac) in LEVELS.iter().enumerate() {
@@ -120,6 +133,8 @@ pub(crate) fn fill_closing(
         }
         // Cap or refusal of each loop (vertices, kept faces) met at this level.
         let mut memo: HashMap<(Vec<VertexId>, Vec<FaceId>), Capped> = HashMap::new();
+        let mut memo_refined: HashMap<(Vec<VertexId>, Vec<FaceId>), Option<Refined>> =
+            HashMap::new();
         for round in 0..PEEL_ROUNDS {
             let last = round + 1 == PEEL_ROUNDS;
             let cut = cut_edges(&edges, &swallowed);
@@ -139,6 +154,18 @@ pub(crate) fn fill_closing(
             // Per region refused, the vertices of its refused loops.
             let mut give_back: HashMap<usize, HashSet<VertexId>> = HashMap::new();
             let mut caps: Vec<(usize, Candidate)> = Vec::new();
+            // The refined caps of this round (by index in `caps`), their points (numbered
+            // after `cur`'s positions) and the faces they split.
+            let mut refined: HashMap<usize, Refined> = HashMap::new();
+            let mut points: Vec<DVec3> = Vec::new();
+            let mut split: HashSet<FaceId> = HashSet::new();
+            // An edge with a face that stays: no cap may take it as a diagonal.
+            let kept_edge = |a: VertexId, b: VertexId| {
+                edges
+                    .faces
+                    .get(&(a.min(b), a.max(b)))
+                    .is_some_and(|fs| fs.iter().any(|(f, _)| !swallowed[f.index()]))
+            };
             for (p, lp, rim) in patch_rims(&edges, &swallowed, &pat) {
                 let pieces = rim.map(|(v, f)| split_simple(&v, &f)).unwrap_or_default();
                 // A piece dropped by the split (a slit) would leave its edges open.
@@ -151,7 +178,7 @@ pub(crate) fn fill_closing(
                     let mut c = Candidate::rim(v, f);
                     let result = memo
                         .entry((c.vertices.clone(), c.keep.clone()))
-                        .or_insert_with(|| cap_of(&cur, &c, alpha))
+                        .or_insert_with(|| cap_avoiding(&cur, &c, alpha, &kept_edge))
                         .clone();
                     match result {
                         Ok(cap) => {
@@ -160,8 +187,35 @@ pub(crate) fn fill_closing(
                             caps.push((p, c));
                         }
                         Err((_, shape)) => {
-                            tried.insert(c.key.clone(), Some(shape));
-                            fine = false;
+                            // Wider than the cube along long edges: points on them may
+                            // let a cap pass ([`crate::steiner`]); only input faces split,
+                            // each by one cap.
+                            let splittable = |f: FaceId| {
+                                !is_cap[f.index()] && !is_piece[f.index()] && !split.contains(&f)
+                            };
+                            let r = if shape {
+                                None
+                            } else {
+                                memo_refined
+                                    .entry((c.vertices.clone(), c.keep.clone()))
+                                    .or_insert_with(|| {
+                                        refine(&cur, &c, alpha, splittable, &kept_edge)
+                                    })
+                                    .as_ref()
+                                    .filter(|r| r.split.iter().all(|(f, _)| splittable(*f)))
+                                    .map(|r| r.shifted(points.len()))
+                            };
+                            if let Some(r) = r {
+                                tried.entry(c.key.clone()).or_insert(None);
+                                points.extend(&r.points);
+                                split.extend(r.split.iter().map(|(f, _)| *f));
+                                c.cap.clone_from(&r.cap);
+                                refined.insert(caps.len(), r);
+                                caps.push((p, c));
+                            } else {
+                                tried.insert(c.key.clone(), Some(shape));
+                                fine = false;
+                            }
                         }
                     }
                 }
@@ -171,7 +225,15 @@ pub(crate) fn fill_closing(
             }
             let mut whole: HashSet<usize> = HashSet::new();
             // A region whose caps would take material away goes back whole.
-            for p in shrinking_regions(&cur, &swallowed, &pat.of_face, &caps, sign) {
+            let n_old = cur.positions.len();
+            let position = |v: VertexId| {
+                if v.index() < n_old {
+                    cur.position(v)
+                } else {
+                    points[v.index() - n_old]
+                }
+            };
+            for p in shrinking_regions(&cur, &swallowed, &pat.of_face, &caps, sign, &position) {
                 give_back.entry(p).or_default();
                 whole.insert(p);
             }
@@ -180,18 +242,23 @@ pub(crate) fn fill_closing(
                     break;
                 }
                 let cands: Vec<Candidate> = caps.iter().map(|(_, c)| c.clone()).collect();
-                let (out, cap_of_face) = assemble(&cur, &swallowed, &cands);
+                let (out, cap_of_face, piece_faces) =
+                    assemble(&cur, &swallowed, &cands, &refined, &points);
                 let base = baseline.get_or_init(|| class_counts(input));
                 match blame(&out, &cap_of_face, base, border_edges) {
                     None => {
-                        let kept: Vec<bool> = cur
+                        let kept: Vec<FaceId> = cur
                             .face_ids()
-                            .filter(|f| !swallowed[f.index()])
-                            .map(|f| is_cap[f.index()])
+                            .filter(|f| !swallowed[f.index()] && !split.contains(f))
                             .collect();
-                        is_cap = kept;
-                        is_cap.resize(out.num_faces(), true);
+                        is_cap = kept.iter().map(|f| is_cap[f.index()]).collect();
+                        is_piece = kept.iter().map(|f| is_piece[f.index()]).collect();
+                        for f in kept.len()..out.num_faces() {
+                            is_cap.push(!piece_faces.contains(&f));
+                            is_piece.push(piece_faces.contains(&f));
+                        }
                         done.caps += cands.len();
+                        done.split_faces += split.len();
                         cur = out;
                         break;
                     }
@@ -283,6 +350,7 @@ pub(crate) fn fill_closing(
         }
     }
     done.added = (0..cur.num_faces()).filter(|&f| is_cap[f]).collect();
+    done.pieces = (0..cur.num_faces()).filter(|&f| is_piece[f]).collect();
     done.soup = cur;
     done
 }
@@ -331,11 +399,12 @@ fn shrinking_regions(
     region_of: &[usize],
     caps: &[(usize, Candidate)],
     sign: f64,
+    position: &dyn Fn(VertexId) -> DVec3,
 ) -> BTreeSet<usize> {
     let mut fills: BTreeMap<usize, Fill> = BTreeMap::new();
     for (p, c) in caps {
         let added = &mut fills.entry(*p).or_default().caps;
-        added.extend(c.cap.iter().map(|t| t.map(|v| soup.position(v))));
+        added.extend(c.cap.iter().map(|t| t.map(position)));
     }
     for f in soup.face_ids().filter(|f| swallowed[f.index()]) {
         if let Some(fill) = fills.get_mut(&region_of[f.index()]) {
@@ -381,29 +450,43 @@ fn blame(
     any.then_some((caps, at))
 }
 
-/// `soup` without its swallowed faces, with the caps of `cands` after the kept faces, and
-/// the candidate of each cap face.
+/// `soup` without its swallowed faces and the faces the `refined` caps split, with after
+/// the kept faces each candidate's pieces of split faces and its caps; the candidate of each
+/// of those faces, and which are pieces. `points` are the refined caps' points, numbered
+/// after `soup`'s positions.
 fn assemble(
     soup: &TriangleSoup,
     swallowed: &[bool],
     cands: &[Candidate],
-) -> (TriangleSoup, HashMap<usize, usize>) {
+    refined: &HashMap<usize, Refined>,
+    points: &[DVec3],
+) -> (TriangleSoup, HashMap<usize, usize>, HashSet<usize>) {
+    let split: HashSet<FaceId> = refined
+        .values()
+        .flat_map(|r| r.split.iter().map(|(f, _)| *f))
+        .collect();
     let mut faces: Vec<[VertexId; 3]> = soup
         .face_ids()
-        .filter(|f| !swallowed[f.index()])
+        .filter(|f| !swallowed[f.index()] && !split.contains(f))
         .map(|f| soup.faces[f.index()])
         .collect();
-    let mut cap_of_face = HashMap::new();
+    let (mut cap_of_face, mut pieces) = (HashMap::new(), HashSet::new());
     for (i, c) in cands.iter().enumerate() {
+        for (_, fan) in refined.get(&i).map_or(&[][..], |r| &r.split[..]) {
+            for t in fan {
+                cap_of_face.insert(faces.len(), i);
+                pieces.insert(faces.len());
+                faces.push(*t);
+            }
+        }
         for t in &c.cap {
             cap_of_face.insert(faces.len(), i);
             faces.push(*t);
         }
     }
-    (
-        TriangleSoup::new(soup.positions.clone(), faces),
-        cap_of_face,
-    )
+    let mut positions = soup.positions.clone();
+    positions.extend_from_slice(points);
+    (TriangleSoup::new(positions, faces), cap_of_face, pieces)
 }
 
 #[cfg(test)]

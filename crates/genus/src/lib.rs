@@ -39,6 +39,7 @@ mod neighbourhood;
 pub mod prism;
 mod reduce;
 mod rim;
+mod steiner;
 mod tessellation;
 pub mod testmeshes;
 mod triangulate;
@@ -92,6 +93,7 @@ pub enum GenusError {
 pub mod details {
     pub use crate::exact::{covered_by_corner_cubes, linf_close};
     pub use crate::prism::{cube_corners, vertex_bits};
+    pub use crate::steiner::POINT_ERROR;
     pub use crate::tessellation::{
         Chain, EdgeMap, PatchLoop, Patches, face_normals, link_chains, normal_variation, patches,
         tessellation_edges,

@@ -11,7 +11,8 @@
 //! triangle lies inside the union of alpha-prisms. A hole wider than `2 alpha` fails this
 //! (its middle is farther than `alpha` from every rim vertex). With
 //! [`TessellationSource::Closing`] the closing's regions are filled afterwards
-//! ([`crate::fill`]).
+//! ([`crate::fill`]), whose caps may also have corners on points of input edges
+//! ([`crate::steiner`]).
 //!
 //! **Interior triangles (3.4), over tunnel networks (issue 37).** The surface is cut along
 //! every candidate rim into cells; [`select`] decides which cells fill: the preferred side
@@ -112,18 +113,29 @@ pub struct GenusReport {
     pub holes_filled: usize,
     /// Triangles added by the caps.
     pub triangles_added: usize,
-    /// Input triangles removed as interior.
+    /// Input triangles removed: interior ones, and those split into `pieces`.
     pub triangles_removed: usize,
+    /// Pieces of input triangles split at points added on a cap's long loop edges
+    /// ([`crate::steiner`]); `faces_out = faces_in + triangles_added + pieces -
+    /// triangles_removed`.
+    pub pieces: usize,
+    /// Input triangles split into `pieces` (counted in `triangles_removed`).
+    pub split_faces: usize,
+    /// Points added on input edges (output vertices that are not input vertices).
+    pub points_added: usize,
     /// Alpha-close face pairs among the faces at the accepted rims (section 4.2).
     pub alpha_close_pairs: usize,
     /// Wall-clock seconds.
     pub seconds: f64,
     /// The added triangles, as face ids of the output.
     pub added_faces: Vec<FaceId>,
+    /// The pieces, as face ids of the output.
+    pub piece_faces: Vec<FaceId>,
 }
 
 impl GenusReport {
-    /// The report as JSON (stable field names, the fields above without `added_faces`).
+    /// The report as JSON (stable field names, the fields above without `added_faces` and
+    /// `piece_faces`).
     #[must_use]
     pub fn to_json(&self) -> serde_json::Value {
         serde_json::json!({
@@ -147,6 +159,9 @@ impl GenusReport {
             "internal_rims": self.internal_rims,
             "triangles_added": self.triangles_added,
             "triangles_removed": self.triangles_removed,
+            "pieces": self.pieces,
+            "split_faces": self.split_faces,
+            "points_added": self.points_added,
             "alpha_close_pairs": self.alpha_close_pairs,
             "seconds": self.seconds,
         })
@@ -424,6 +439,7 @@ pub fn reduce_genus_with(
         crate::alpha_close_pairs(soup, alpha, Some(&rim_faces))?.len()
     };
     let (mut out, mut added, mut holes_filled) = (out, added, active.len());
+    let (mut pieces, mut split_faces) = (Vec::new(), 0);
     // The closing needs a solid: an input with borders keeps the sharp-edge result. It only
     // fills regions with two loops or more (handles), so a result of genus 0 has none left.
     if source == TessellationSource::Closing
@@ -437,6 +453,8 @@ pub fn reduce_genus_with(
         let filled = crate::fill::fill_closing(&out, &is_cap, alpha, &baseline, soup, outward);
         out = filled.soup;
         added = filled.added;
+        pieces = filled.pieces;
+        split_faces = filled.split_faces;
         holes_filled += filled.caps;
         swallowed_faces = filled.swallowed;
         union_candidates = filled.loops_tried;
@@ -444,8 +462,17 @@ pub fn reduce_genus_with(
         refused_wide += filled.refused_wide;
         refused_by_validation += filled.refused_validation;
     }
-    // Input faces gone: the faces of the output that are not caps are input faces.
-    let removed = soup.num_faces() - (out.num_faces() - added.len());
+    // Input faces gone: the faces of the output that are neither caps nor pieces are input
+    // faces.
+    let removed = soup.num_faces() - (out.num_faces() - added.len() - pieces.len());
+    // The output's positions begin with the input's; the points come after them.
+    let mut used = vec![false; out.num_vertices()];
+    for v in out.faces.iter().flatten() {
+        used[v.index()] = true;
+    }
+    let points_added = used
+        .get(soup.num_vertices()..)
+        .map_or(0, |u| u.iter().filter(|&&u| u).count());
     let (out, added_faces) = compact(&out, added);
     let topo_out = analyze(&out);
     let report = GenusReport {
@@ -469,9 +496,13 @@ pub fn reduce_genus_with(
         holes_filled,
         triangles_added: added_faces.len(),
         triangles_removed: removed,
+        pieces: pieces.len(),
+        split_faces,
+        points_added,
         alpha_close_pairs: alpha_close,
         seconds: start.elapsed().as_secs_f64(),
         added_faces,
+        piece_faces: pieces.into_iter().map(FaceId::from_index).collect(),
     };
     Ok((out, report))
 }

@@ -8,6 +8,8 @@
 //! lie in the union of the alpha-cubes of its three corners (exact), and no cap triangle on
 //! a loop edge may fold back over that edge's kept face (exact). The Delaunay or
 //! shortest-diagonal cap is tried first, then the least-area cap whose every triangle passes.
+//! [`cap_avoiding`] also keeps diagonals off the edges a caller names (edges the output
+//! keeps).
 
 use std::collections::{BTreeSet, HashMap, HashSet};
 
@@ -66,6 +68,17 @@ pub(crate) type Capped = Result<Vec<[VertexId; 3]>, (Vec<[VertexId; 3]>, bool)>;
 /// built and whether it was refused for its shape (repeated vertex, no triangulation, folding
 /// back over its kept face) rather than as wider than the cube.
 pub(crate) fn cap_of(soup: &TriangleSoup, c: &Candidate, alpha: f64) -> Capped {
+    cap_avoiding(soup, c, alpha, &|_, _| false)
+}
+
+/// [`cap_of`] with no diagonal on a pair of vertices `kept` names (an edge the output keeps
+/// elsewhere: a cap edge there would be non-manifold).
+pub(crate) fn cap_avoiding(
+    soup: &TriangleSoup,
+    c: &Candidate,
+    alpha: f64,
+    kept: &dyn Fn(VertexId, VertexId) -> bool,
+) -> Capped {
     let distinct: BTreeSet<VertexId> = c.vertices.iter().copied().collect();
     if distinct.len() != c.vertices.len() {
         return Err((Vec::new(), true));
@@ -76,7 +89,7 @@ pub(crate) fn cap_of(soup: &TriangleSoup, c: &Candidate, alpha: f64) -> Capped {
             (0..3).all(|k| {
                 let (a, b) = (t[k], t[(k + 1) % 3]);
                 loop_edges.contains(&(a.min(b), a.max(b)))
-                    || linf_close(soup.position(a), soup.position(b), alpha)
+                    || (linf_close(soup.position(a), soup.position(b), alpha) && !kept(a, b))
             }) && covered_by_corner_cubes(t.map(|v| soup.position(v)), alpha)
         })
     };
@@ -94,7 +107,7 @@ pub(crate) fn cap_of(soup: &TriangleSoup, c: &Candidate, alpha: f64) -> Capped {
     let cap = constrained_triangulation(
         &pts,
         &c.vertices,
-        |i, j| linf_close(pts[i], pts[j], alpha),
+        |i, j| linf_close(pts[i], pts[j], alpha) && !kept(c.vertices[i], c.vertices[j]),
         |i, k, j| {
             // A triangle on a rim edge must not fold over that edge's kept face.
             let folds = [(i, k, j), (k, j, i), (i, j, k)].iter().any(|&(p, q, x)| {

@@ -1,5 +1,6 @@
 //! CAD-like test parts with known answers (plates with square through-holes of several
-//! widths, blocks with blind pockets, square-section tori, flat disks with holes). They live
+//! widths, blocks with blind pockets, square-section tori, flat disks with holes, a
+//! coarsely triangulated plate with a long slot). They live
 //! here rather than in `envelope_mesh::generate` because only the genus tests need them.
 //! Every part is a closed (or, for the disks, bordered) outward-oriented 2-manifold with
 //! integer coordinates times `cell`.
@@ -141,6 +142,52 @@ pub fn square_torus(major: f64, minor: f64, nu: u32) -> TriangleSoup {
             faces.push([a, d, c]);
             faces.push([a, c, b]);
         }
+    }
+    TriangleSoup::new(positions, faces)
+}
+
+/// A plate `thickness` thick with one rectangular through-slot `length x width` (along x),
+/// framed by a border of 1, triangulated coarsely: each face of the plate is two or eight
+/// triangles, so the slot's rims run along single edges `length` long. Genus 1, 32 faces.
+///
+/// ```
+/// use envelope_genus::testmeshes::plate_with_slot;
+/// use envelope_mesh::analyze;
+/// let plate = plate_with_slot(8.0, 1.0, 1.0);
+/// assert_eq!((analyze(&plate).genus, plate.num_faces()), (Some(1), 32));
+/// ```
+#[must_use]
+pub fn plate_with_slot(length: f64, width: f64, thickness: f64) -> TriangleSoup {
+    let (lx, ly) = (length + 2.0, width + 2.0);
+    // Outer corners then slot corners, each counter-clockwise seen from +z; bottom then top.
+    let outline = [(0.0, 0.0), (lx, 0.0), (lx, ly), (0.0, ly)];
+    let slot = [
+        (1.0, 1.0),
+        (1.0 + length, 1.0),
+        (1.0 + length, 1.0 + width),
+        (1.0, 1.0 + width),
+    ];
+    let mut positions = Vec::new();
+    for z in [0.0, thickness] {
+        for &(x, y) in outline.iter().chain(&slot) {
+            positions.push(DVec3::new(x, y, z));
+        }
+    }
+    // Outer corner i, slot corner i, at the bottom (top = false) or the top.
+    let o = |i: u32, top: bool| VertexId(i % 4 + if top { 8 } else { 0 });
+    let s = |i: u32, top: bool| VertexId(4 + i % 4 + if top { 8 } else { 0 });
+    let mut faces = Vec::new();
+    for i in 0..4 {
+        // The frame between the outline and the slot: one slot edge per triangle at most.
+        faces.push([o(i, true), o(i + 1, true), s(i + 1, true)]);
+        faces.push([o(i, true), s(i + 1, true), s(i, true)]);
+        faces.push([o(i, false), s(i + 1, false), o(i + 1, false)]);
+        faces.push([o(i, false), s(i, false), s(i + 1, false)]);
+        // Outer walls face out, slot walls face into the slot.
+        faces.push([o(i, false), o(i + 1, false), o(i + 1, true)]);
+        faces.push([o(i, false), o(i + 1, true), o(i, true)]);
+        faces.push([s(i, false), s(i + 1, true), s(i + 1, false)]);
+        faces.push([s(i, false), s(i, true), s(i + 1, true)]);
     }
     TriangleSoup::new(positions, faces)
 }

@@ -7,12 +7,12 @@
 mod support;
 
 use envelope_check::{CheckOptions, DegeneracyClass, check};
-use envelope_genus::details::covered_by_corner_cubes;
-use envelope_genus::testmeshes::plate_with_square_holes;
+use envelope_genus::testmeshes::{plate_with_slot, plate_with_square_holes};
 use envelope_genus::{GenusOptions, GenusReport, TessellationSource, reduce_genus_with};
 use envelope_mesh::{TriangleSoup, analyze, generate};
 use glam::DVec3;
 use proptest::prelude::*;
+use support::prisms::assert_inside_prisms;
 use support::voxel_closing::{closing_genus, voxel_genus};
 
 /// Runs the reduction (both sources) and asserts what must always hold; returns the output
@@ -53,19 +53,7 @@ fn certified(
         "volume {v_in} -> {v_out}: material taken away"
     );
     assert_eq!(report.genus_out, topo.genus);
-    for &f in &report.added_faces {
-        let t = out.triangle(f);
-        assert!(
-            covered_by_corner_cubes(t, alpha),
-            "added face {f:?} outside its corners' cubes"
-        );
-        for p in t {
-            assert!(
-                soup.positions.contains(&p),
-                "added corner {p} is not an input vertex"
-            );
-        }
-    }
+    assert_inside_prisms(soup, &out, &report, alpha);
     (out, report)
 }
 
@@ -223,6 +211,27 @@ fn the_closing_never_leaves_more_genus_than_the_sharp_rims() {
     }
 }
 
+#[test]
+fn a_slot_longer_than_the_cube_is_capped_through_points_on_its_rims() {
+    // A slot 1 wide and 8 long; the cube (2 alpha = 1.5) cannot enter it, and its rims are
+    // single edges 8 long: a cap on the rim's corners alone has diagonals of 8.
+    let plate = plate_with_slot(8.0, 1.0, 1.0);
+    let alpha = 0.75;
+    assert_eq!(closing_genus(&plate, alpha, 0.05), 0);
+    let (_, sharp) = certified(&plate, alpha, TessellationSource::SharpEdges);
+    assert_eq!(sharp.genus_out, Some(1), "no cap on the corners alone");
+    let (out, r) = certified(&plate, alpha, TessellationSource::Closing);
+    assert_eq!(r.genus_out, Some(0), "{r:?}");
+    // Points every at most alpha on both long rims and the short ones, top and bottom; the
+    // frame triangle on each refined rim edge split into pieces.
+    assert!(r.points_added >= 4 * 10, "{r:?}");
+    assert_eq!(r.split_faces, 8, "{r:?}");
+    assert_eq!(out.num_vertices(), plate.num_vertices() + r.points_added);
+    // A wider slot (2 alpha = 0.9 < 1) stays.
+    let (_, r) = certified(&plate, 0.45, TessellationSource::Closing);
+    assert_eq!((r.genus_out, r.pieces), (Some(1), 0), "{r:?}");
+}
+
 /// `cheese.off` of the corpus (`scripts/corpus.sh`): a block with 133 crossing tunnels, cut
 /// open by notches and grooves, whose closing at 5 % leaves about genus 1. Face-by-face
 /// peeling stopped at genus 80 (the voxels keep strips of tunnel wall near wide openings, and
@@ -251,6 +260,10 @@ fn the_corpus_cheese_at_five_percent_is_near_its_closing() {
         g_out <= closed + g_in / 10,
         "genus {g_in} -> {g_out}, closing {closed}; {r:?}"
     );
+    // Caps that avoid the kept edges as diagonals and refine long rim edges fill what
+    // capping on rim corners left (genus 11).
+    assert!(g_out <= 8, "genus {g_in} -> {g_out}; {r:?}");
+    assert!(r.points_added > 0, "{r:?}");
 }
 
 proptest! {

@@ -1,1 +1,2 @@
+pub mod prisms;
 pub mod voxel_closing;
