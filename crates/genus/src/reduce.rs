@@ -115,9 +115,8 @@ pub struct GenusReport {
     pub triangles_added: usize,
     /// Input triangles removed: interior ones, and those split into `pieces`.
     pub triangles_removed: usize,
-    /// Pieces of input triangles split at points added on a cap's long loop edges
-    /// ([`crate::steiner`]); `faces_out = faces_in + triangles_added + pieces -
-    /// triangles_removed`.
+    /// Pieces of input triangles split at points added on a cap's long loop edges (closing
+    /// mode); `faces_out = faces_in + triangles_added + pieces - triangles_removed`.
     pub pieces: usize,
     /// Input triangles split into `pieces` (counted in `triangles_removed`).
     pub split_faces: usize,
