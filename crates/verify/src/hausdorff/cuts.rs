@@ -351,6 +351,16 @@ impl Search<'_> {
             let (lo, hi) = clip_f64(&part.points, &side, plane);
             let mut used = part.used;
             used[part.depth as usize] = key;
+            // The cut's crossing points are vertices of both halves: each one's distances
+            // are computed once, when a half first asks (NaN: not yet; the estimates are
+            // never NaN).
+            let crossing: SmallVec<[DVec3; 2]> = lo
+                .iter()
+                .map(|x| x.0)
+                .filter(|x| !part.points.contains(x))
+                .collect();
+            let mut crossing_d: SmallVec<[f64; 64]> =
+                SmallVec::from_elem(f64::NAN, crossing.len() * n);
             for half in [lo, hi] {
                 let points: SmallVec<[DVec3; 8]> = half.iter().map(|x| x.0).collect();
                 let e = half.iter().map(|x| x.1).fold(part.err, add_up);
@@ -362,9 +372,15 @@ impl Search<'_> {
                 // A triangle farther than eps + diam from a vertex proves nothing here.
                 let reach = (self.tol.eps + diam + 2.0 * e) * (1.0 + 1e-6);
                 let reach2 = reach * reach;
-                let rows: SmallVec<[Option<usize>; 8]> = points
+                // Each vertex: a vertex of the part (its row), or a crossing point.
+                let rows: SmallVec<[Result<usize, Option<usize>>; 8]> = points
                     .iter()
-                    .map(|x| part.points.iter().position(|y| y == x))
+                    .map(|x| {
+                        part.points
+                            .iter()
+                            .position(|y| y == x)
+                            .ok_or_else(|| crossing.iter().position(|y| y == x))
+                    })
                     .collect();
                 let w = points.len();
                 // Nor does one whose box is farther than eps from the piece's.
@@ -377,9 +393,16 @@ impl Search<'_> {
                     }
                     let start = d.len();
                     for (x, row) in points.iter().zip(&rows) {
-                        d.push(match row {
-                            Some(k) => dist(i, *k),
-                            None => self.sq_dist_or_inf(*x, cands[c as usize]),
+                        d.push(match *row {
+                            Ok(k) => dist(i, k),
+                            Err(Some(j)) => {
+                                let known = &mut crossing_d[j * n + i];
+                                if known.is_nan() {
+                                    *known = self.sq_dist_or_inf(*x, cands[c as usize]);
+                                }
+                                *known
+                            }
+                            Err(None) => self.sq_dist_or_inf(*x, cands[c as usize]),
                         });
                     }
                     if d[start..].iter().all(|&x| x <= reach2) {
