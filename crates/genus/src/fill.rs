@@ -64,6 +64,17 @@ pub(crate) const CELL_BETAS: [f64; 5] = [40.0, 35.0, 30.0, 25.0, 20.0];
 /// of it (see the module docs).
 pub(crate) const CELL_SNAP: f64 = 0.8;
 
+/// Where a face of the step's current surface comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Origin {
+    /// An input face.
+    Input,
+    /// A cap, of this step or already of its input.
+    Cap,
+    /// A piece of an input face split at points of a cap's loop ([`crate::steiner`]).
+    Piece,
+}
+
 /// Rounds of peeling per level.
 pub(crate) const PEEL_ROUNDS: usize = 48;
 
@@ -109,9 +120,10 @@ pub(crate) fn fill_closing(
     let border_edges = border_edges(&EdgeMap::new(soup)).len();
     let sign = if outward { 1.0 } else { -1.0 };
     let mut cur = soup.clone();
-    let mut is_cap = added_in.to_vec();
-    // Pieces of input faces split at the points of refined loops ([`crate::steiner`]).
-    let mut is_piece = vec![false; soup.num_faces()];
+    let mut origin: Vec<Origin> = added_in
+        .iter()
+        .map(|&cap| if cap { Origin::Cap } else { Origin::Input })
+        .collect();
     let mut done = Filled::default();
     let mut tried: HashMap<Vec<(VertexId, VertexId)>, Option<bool>> = HashMap::new();
     for (level, &frac) in LEVELS.iter().enumerate() {
@@ -191,7 +203,7 @@ pub(crate) fn fill_closing(
                             // let a cap pass ([`crate::steiner`]); only input faces split,
                             // each by one cap.
                             let splittable = |f: FaceId| {
-                                !is_cap[f.index()] && !is_piece[f.index()] && !split.contains(&f)
+                                origin[f.index()] == Origin::Input && !split.contains(&f)
                             };
                             let r = if shape {
                                 None
@@ -242,21 +254,12 @@ pub(crate) fn fill_closing(
                     break;
                 }
                 let cands: Vec<Candidate> = caps.iter().map(|(_, c)| c.clone()).collect();
-                let (out, cap_of_face, piece_faces) =
-                    assemble(&cur, &swallowed, &cands, &refined, &points);
+                let (out, out_origin, cap_of_face) =
+                    assemble(&cur, &origin, &swallowed, &split, &cands, &refined, &points);
                 let base = baseline.get_or_init(|| class_counts(input));
                 match blame(&out, &cap_of_face, base, border_edges) {
                     None => {
-                        let kept: Vec<FaceId> = cur
-                            .face_ids()
-                            .filter(|f| !swallowed[f.index()] && !split.contains(f))
-                            .collect();
-                        is_cap = kept.iter().map(|f| is_cap[f.index()]).collect();
-                        is_piece = kept.iter().map(|f| is_piece[f.index()]).collect();
-                        for f in kept.len()..out.num_faces() {
-                            is_cap.push(!piece_faces.contains(&f));
-                            is_piece.push(piece_faces.contains(&f));
-                        }
+                        origin = out_origin;
                         done.caps += cands.len();
                         done.split_faces += split.len();
                         cur = out;
@@ -349,8 +352,9 @@ pub(crate) fn fill_closing(
             done.refused_wide += 1;
         }
     }
-    done.added = (0..cur.num_faces()).filter(|&f| is_cap[f]).collect();
-    done.pieces = (0..cur.num_faces()).filter(|&f| is_piece[f]).collect();
+    let of = |o: Origin| (0..cur.num_faces()).filter(|&f| origin[f] == o).collect();
+    done.added = of(Origin::Cap);
+    done.pieces = of(Origin::Piece);
     done.soup = cur;
     done
 }
@@ -450,43 +454,40 @@ fn blame(
     any.then_some((caps, at))
 }
 
-/// `soup` without its swallowed faces and the faces the `refined` caps split, with after
-/// the kept faces each candidate's pieces of split faces and its caps; the candidate of each
-/// of those faces, and which are pieces. `points` are the refined caps' points, numbered
-/// after `soup`'s positions.
+/// `soup` without its swallowed faces and the faces in `split`, with after the kept faces
+/// each candidate's pieces of split faces (from `refined`, by candidate) and its caps; the
+/// origin of every face of the result (`origin`: of `soup`'s), and the candidate of each new
+/// one. `points` are the refined caps' points, numbered after `soup`'s positions.
 fn assemble(
     soup: &TriangleSoup,
+    origin: &[Origin],
     swallowed: &[bool],
+    split: &HashSet<FaceId>,
     cands: &[Candidate],
     refined: &HashMap<usize, Refined>,
     points: &[DVec3],
-) -> (TriangleSoup, HashMap<usize, usize>, HashSet<usize>) {
-    let split: HashSet<FaceId> = refined
-        .values()
-        .flat_map(|r| r.split.iter().map(|(f, _)| *f))
-        .collect();
-    let mut faces: Vec<[VertexId; 3]> = soup
+) -> (TriangleSoup, Vec<Origin>, HashMap<usize, usize>) {
+    let (mut faces, mut out_origin): (Vec<[VertexId; 3]>, Vec<Origin>) = soup
         .face_ids()
         .filter(|f| !swallowed[f.index()] && !split.contains(f))
-        .map(|f| soup.faces[f.index()])
-        .collect();
-    let (mut cap_of_face, mut pieces) = (HashMap::new(), HashSet::new());
+        .map(|f| (soup.faces[f.index()], origin[f.index()]))
+        .unzip();
+    let mut cap_of_face = HashMap::new();
     for (i, c) in cands.iter().enumerate() {
-        for (_, fan) in refined.get(&i).map_or(&[][..], |r| &r.split[..]) {
-            for t in fan {
-                cap_of_face.insert(faces.len(), i);
-                pieces.insert(faces.len());
-                faces.push(*t);
-            }
-        }
-        for t in &c.cap {
+        let fans = refined.get(&i).map_or(&[][..], |r| &r.split[..]);
+        let pieces = fans
+            .iter()
+            .flat_map(|(_, fan)| fan)
+            .map(|t| (t, Origin::Piece));
+        for (t, o) in pieces.chain(c.cap.iter().map(|t| (t, Origin::Cap))) {
             cap_of_face.insert(faces.len(), i);
             faces.push(*t);
+            out_origin.push(o);
         }
     }
     let mut positions = soup.positions.clone();
     positions.extend_from_slice(points);
-    (TriangleSoup::new(positions, faces), cap_of_face, pieces)
+    (TriangleSoup::new(positions, faces), out_origin, cap_of_face)
 }
 
 #[cfg(test)]

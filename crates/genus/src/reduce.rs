@@ -465,14 +465,7 @@ pub fn reduce_genus_with(
     // faces.
     let removed = soup.num_faces() - (out.num_faces() - added.len() - pieces.len());
     // The output's positions begin with the input's; the points come after them.
-    let mut used = vec![false; out.num_vertices()];
-    for v in out.faces.iter().flatten() {
-        used[v.index()] = true;
-    }
-    let points_added = used
-        .get(soup.num_vertices()..)
-        .map_or(0, |u| u.iter().filter(|&&u| u).count());
-    let (out, added_faces) = compact(&out, added);
+    let (out, added_faces, points_added) = compact(&out, added, soup.num_vertices());
     let topo_out = analyze(&out);
     let report = GenusReport {
         faces_in: soup.num_faces(),
@@ -969,8 +962,13 @@ fn validate(
     Some(bad.into_iter().collect())
 }
 
-/// Drops unreferenced vertices; maps the added face indices (face order is kept).
-fn compact(s: &TriangleSoup, added: Vec<usize>) -> (TriangleSoup, Vec<FaceId>) {
+/// Drops unreferenced vertices; maps the added face indices (face order is kept); counts the
+/// vertices kept from `first_new` on.
+fn compact(
+    s: &TriangleSoup,
+    added: Vec<usize>,
+    first_new: usize,
+) -> (TriangleSoup, Vec<FaceId>, usize) {
     let mut map = vec![u32::MAX; s.num_vertices()];
     let mut used = vec![false; s.num_vertices()];
     for t in &s.faces {
@@ -990,8 +988,12 @@ fn compact(s: &TriangleSoup, added: Vec<usize>) -> (TriangleSoup, Vec<FaceId>) {
         .iter()
         .map(|t| t.map(|v| VertexId(map[v.index()])))
         .collect();
+    let new = used
+        .get(first_new..)
+        .map_or(0, |u| u.iter().filter(|&&u| u).count());
     (
         TriangleSoup::new(positions, faces),
         added.into_iter().map(FaceId::from_index).collect(),
+        new,
     )
 }
